@@ -1,0 +1,14 @@
+//! Layer 0: identifiers, exact predicates, bounding boxes, tolerances relative to the model's
+//! size and the [`SizeField`] trait. Nothing here knows about meshes or files.
+
+pub mod aabb;
+pub mod ids;
+pub mod predicates;
+pub mod size_field;
+pub mod tolerance;
+
+pub use aabb::Aabb;
+pub use ids::{FaceId, RegionId};
+pub use predicates::Sign;
+pub use size_field::SizeField;
+pub use tolerance::Tolerance;

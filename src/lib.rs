@@ -1,0 +1,14 @@
+//! fepre: a finite-element preprocessor.
+//!
+//! CAD parts and surface meshes in; watertight tagged surfaces, quality tetrahedral meshes and
+//! solver decks out. The modules follow the pipeline, each importing only from layers below
+//! it (see `ARCHITECTURE.md`):
+//!
+//! - layer 0 [`core`]: ids, exact predicates, bounding boxes, tolerances, the size-field trait;
+//! - layer 1 [`mesh`]: containers with `validate()` and the surface topology report;
+//! - layer 2 [`quality`]: element quality measures (VTK/Verdict definitions);
+//! - layer 3 [`io`]: mesh file formats.
+
+pub mod core;
+pub mod io;
+pub mod mesh;

@@ -1,0 +1,16 @@
+//! Layer 1: the mesh containers that cross stage boundaries, each with a `validate()` that
+//! names the offending element, plus derived topology (the surface report).
+//!
+//! Containers hold flat arrays (`f64` coordinates, `u32` indices) and parallel tag arrays;
+//! adjacency is derived on demand, never stored.
+
+pub mod error;
+pub mod planar_mesh;
+pub mod tet_mesh;
+pub mod tri_surface;
+pub mod weld;
+
+pub use error::{Element, MeshError};
+pub use planar_mesh::PlanarMesh;
+pub use tet_mesh::TetMesh;
+pub use tri_surface::TriSurface;
