@@ -12,3 +12,4 @@
 pub mod core;
 pub mod io;
 pub mod mesh;
+pub mod quality;

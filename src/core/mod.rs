@@ -2,7 +2,9 @@
 //! size and the [`SizeField`] trait. Nothing here knows about meshes or files.
 
 pub mod aabb;
+pub mod bvh;
 pub mod ids;
+pub mod intersection;
 pub mod predicates;
 pub mod size_field;
 pub mod tolerance;

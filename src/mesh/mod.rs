@@ -7,6 +7,7 @@
 pub mod error;
 pub mod planar_mesh;
 pub mod tet_mesh;
+pub mod topology;
 pub mod tri_surface;
 pub mod weld;
 

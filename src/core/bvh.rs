@@ -1,0 +1,1 @@
+//! Placeholder: bounding-volume hierarchy lands here.

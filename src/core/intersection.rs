@@ -1,0 +1,1 @@
+//! Placeholder: exact triangle-triangle intersection lands here.

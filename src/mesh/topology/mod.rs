@@ -1,0 +1,1 @@
+//! Placeholder: the surface topology report lands here.

@@ -1,0 +1,1 @@
+//! Placeholder: element quality measures land here.
