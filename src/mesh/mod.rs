@@ -6,6 +6,7 @@
 
 pub mod error;
 pub mod planar_mesh;
+pub mod shapes;
 pub mod tet_mesh;
 pub mod topology;
 pub mod tri_surface;

@@ -3,7 +3,7 @@
 use crate::core::predicates::orient3d;
 use crate::core::{Aabb, FaceId, RegionId, Sign};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
-use crate::mesh::{Element, MeshError};
+use crate::mesh::{Element, MeshError, TriSurface};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
@@ -171,6 +171,33 @@ impl TetMesh {
     /// Bounding box of the vertices.
     pub fn bbox(&self) -> Aabb {
         Aabb::from_points(&self.vertices)
+    }
+
+    /// The tagged boundary as a surface with only the vertices it uses: the `boundary`
+    /// triangles if there are any, else the hull faces (faces of one tet) tagged `FaceId(1)`.
+    pub fn boundary_surface(&self) -> TriSurface {
+        let (tris, tags) = if self.boundary.is_empty() {
+            let h = self.hull_faces();
+            let n = h.len();
+            (h, vec![FaceId(1); n])
+        } else {
+            (self.boundary.clone(), self.boundary_tags.clone())
+        };
+        let mut index = vec![u32::MAX; self.vertices.len()];
+        let mut vertices = Vec::new();
+        let triangles = tris
+            .iter()
+            .map(|t| {
+                t.map(|v| {
+                    if index[v as usize] == u32::MAX {
+                        index[v as usize] = vertices.len() as u32;
+                        vertices.push(self.vertices[v as usize]);
+                    }
+                    index[v as usize]
+                })
+            })
+            .collect();
+        TriSurface { vertices, triangles, face_tags: tags, tag_names: self.face_names.clone() }
     }
 
     /// Reorders each boundary triangle that bounds a single tet so that it faces outward from

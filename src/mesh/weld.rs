@@ -3,7 +3,7 @@
 use crate::core::Tolerance;
 use crate::mesh::TriSurface;
 use glam::DVec3;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// The outcome of [`weld_vertices`].
 #[derive(Clone, Debug, PartialEq)]
@@ -17,37 +17,45 @@ pub struct Welded {
 /// Merges vertices closer than `tolerance` (absolute length; `0` merges exact duplicates only).
 ///
 /// Greedy and deterministic: vertices are visited in input order, and each joins the first
-/// kept vertex within `tolerance`, found through a hash grid of cell size `tolerance`.
-/// Non-finite vertices are never merged.
+/// kept vertex within `tolerance`. Bit-identical vertices (the common case: triangle soups) are
+/// merged first through a hash of their coordinates; the distinct ones then go through a hash
+/// grid of cell size `tolerance`. Non-finite vertices are never merged.
 pub fn weld_vertices(points: &[DVec3], tolerance: f64) -> Welded {
-    let mut vertices = Vec::new();
-    let mut remap = Vec::with_capacity(points.len());
-    if tolerance <= 0.0 || !tolerance.is_finite() {
-        let mut seen: HashMap<[u64; 3], u32> = HashMap::with_capacity(points.len());
-        for p in points {
+    // 1. exact duplicates: the first occurrence stands for all
+    let mut distinct: Vec<DVec3> = Vec::new();
+    let mut to_distinct: Vec<u32> = Vec::with_capacity(points.len());
+    let mut seen: FxHashMap<[u64; 3], u32> = FxHashMap::default();
+    seen.reserve(points.len() / 4);
+    for p in points {
+        let id = if p.is_finite() {
             // +0.0 and -0.0 are the same point
             let key = [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-            let id = if p.is_finite() {
-                *seen.entry(key).or_insert_with(|| {
-                    vertices.push(*p);
-                    (vertices.len() - 1) as u32
-                })
-            } else {
-                vertices.push(*p);
-                (vertices.len() - 1) as u32
-            };
-            remap.push(id);
-        }
-        return Welded { vertices, remap };
+            *seen.entry(key).or_insert_with(|| {
+                distinct.push(*p);
+                (distinct.len() - 1) as u32
+            })
+        } else {
+            distinct.push(*p);
+            (distinct.len() - 1) as u32
+        };
+        to_distinct.push(id);
     }
+    drop(seen);
+    if tolerance <= 0.0 || !tolerance.is_finite() {
+        return Welded { vertices: distinct, remap: to_distinct };
+    }
+    // 2. distinct points within the tolerance, in first-occurrence order
     let inv = 1.0 / tolerance;
     let tol2 = tolerance * tolerance;
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::with_capacity(points.len());
     let cell = |p: DVec3| -> [i64; 3] { [(p.x * inv).floor() as i64, (p.y * inv).floor() as i64, (p.z * inv).floor() as i64] };
-    for p in points {
+    let mut grid: FxHashMap<[i64; 3], Vec<u32>> = FxHashMap::default();
+    grid.reserve(distinct.len());
+    let mut vertices = Vec::with_capacity(distinct.len());
+    let mut kept: Vec<u32> = Vec::with_capacity(distinct.len());
+    for p in &distinct {
         if !p.is_finite() {
             vertices.push(*p);
-            remap.push((vertices.len() - 1) as u32);
+            kept.push((vertices.len() - 1) as u32);
             continue;
         }
         let c = cell(*p);
@@ -73,8 +81,9 @@ pub fn weld_vertices(points: &[DVec3], tolerance: f64) -> Welded {
                 k
             }
         };
-        remap.push(id);
+        kept.push(id);
     }
+    let remap = to_distinct.iter().map(|&d| kept[d as usize]).collect();
     Welded { vertices, remap }
 }
 
