@@ -7,8 +7,10 @@
 //! - layer 0 [`core`]: ids, exact predicates, bounding boxes, tolerances, the size-field trait;
 //! - layer 1 [`mesh`]: containers with `validate()` and the surface topology report;
 //! - layer 2 [`quality`]: element quality measures (VTK/Verdict definitions);
-//! - layer 3 [`io`]: mesh file formats.
+//! - layer 3 [`io`]: mesh file formats;
+//! - layer 6 [`cli`]: the command line, one file per subcommand.
 
+pub mod cli;
 pub mod core;
 pub mod io;
 pub mod mesh;
