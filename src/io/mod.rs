@@ -2,7 +2,7 @@
 //!
 //! [`read`] picks the reader from the file's extension and returns a [`Loaded`] mesh: a
 //! surface (welded with a tolerance relative to the model's size), a tet mesh or a point set,
-//! validated, with notes on anything skipped. [`write`] picks the writer the same way; every
+//! validated, with notes on anything skipped. [`write()`] picks the writer the same way; every
 //! writer writes a temporary file and renames it at the end, so a failed write leaves no file.
 //!
 //! | format | read | write | tags |
@@ -18,14 +18,18 @@
 //! | points (`.xyz`) | yes | no | none |
 
 pub mod atomic;
+pub mod common;
 pub mod error;
 pub mod gltf;
 pub mod medit;
 pub mod msh;
 pub mod obj;
 pub mod off;
+pub mod polygon;
 pub mod stl;
 pub mod tetgen;
+#[cfg(test)]
+pub(crate) mod test_meshes;
 pub mod text;
 pub mod vtu;
 pub mod xyz;

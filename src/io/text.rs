@@ -10,7 +10,7 @@ pub struct Tokens<'a> {
     path: &'a Path,
     data: &'a [u8],
     pos: usize,
-    line: usize,
+    cursor_line: usize,
     token_line: usize,
     comment: Option<u8>,
 }
@@ -19,7 +19,7 @@ impl<'a> Tokens<'a> {
     /// Tokens of `data`, read from `path`; `comment` starts a comment running to the end of
     /// the line (`#` for OFF, TetGen, Medit).
     pub fn new(path: &'a Path, data: &'a [u8], comment: Option<u8>) -> Self {
-        Tokens { path, data, pos: 0, line: 1, token_line: 1, comment }
+        Tokens { path, data, pos: 0, cursor_line: 1, token_line: 1, comment }
     }
 
     /// The file being read.
@@ -45,7 +45,7 @@ impl<'a> Tokens<'a> {
     /// Moves the cursor `n` bytes on (for binary blocks embedded in text, as in MSH).
     pub fn skip_bytes(&mut self, n: usize) {
         let end = (self.pos + n).min(self.data.len());
-        self.line += self.data[self.pos..end].iter().filter(|&&b| b == b'\n').count();
+        self.cursor_line += self.data[self.pos..end].iter().filter(|&&b| b == b'\n').count();
         self.pos = end;
     }
 
@@ -53,7 +53,7 @@ impl<'a> Tokens<'a> {
         while self.pos < self.data.len() {
             let b = self.data[self.pos];
             if b == b'\n' {
-                self.line += 1;
+                self.cursor_line += 1;
                 self.pos += 1;
             } else if b.is_ascii_whitespace() {
                 self.pos += 1;
@@ -72,24 +72,24 @@ impl<'a> Tokens<'a> {
     pub fn next(&mut self) -> Option<&'a str> {
         self.skip_space();
         if self.pos >= self.data.len() {
-            self.token_line = self.line;
+            self.token_line = self.cursor_line;
             return None;
         }
         let start = self.pos;
         while self.pos < self.data.len() && !self.data[self.pos].is_ascii_whitespace() && Some(self.data[self.pos]) != self.comment {
             self.pos += 1;
         }
-        self.token_line = self.line;
+        self.token_line = self.cursor_line;
         // Invalid UTF-8 becomes a token that no number parses, reported with its line.
         Some(std::str::from_utf8(&self.data[start..self.pos]).unwrap_or("\u{fffd}"))
     }
 
     /// The next token without consuming it.
     pub fn peek(&mut self) -> Option<&'a str> {
-        let (pos, line, tl) = (self.pos, self.line, self.token_line);
+        let (pos, line, tl) = (self.pos, self.cursor_line, self.token_line);
         let t = self.next();
         self.pos = pos;
-        self.line = line;
+        self.cursor_line = line;
         self.token_line = tl;
         t
     }

@@ -1,0 +1,112 @@
+//! Small helpers shared by the volume formats (Medit, TetGen, MSH, VTU): number formatting
+//! that reads back exactly, repair of tet orientation after reading, and integer tags parsed
+//! from the text of a file.
+
+use crate::core::Sign;
+use crate::core::predicates::orient3d;
+use crate::mesh::TetMesh;
+use std::fmt;
+
+/// Displays an `f64` so that parsing the text gives back the same value: plain decimals for
+/// ordinary magnitudes (`0.25`, `-3`, `1234.5`), scientific notation (`1.5e-9`, `2e20`) for
+/// very small or very large ones. Every reader we target (gmsh, TetGen, meshio, C's `strtod`)
+/// parses both.
+#[derive(Copy, Clone, Debug)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        if x == 0.0 || (1e-5..1e16).contains(&x.abs()) { write!(f, "{x}") } else { write!(f, "{x:e}") }
+    }
+}
+
+/// Makes every negatively oriented tet positive by swapping its last two vertices (decided
+/// exactly). Flat tets are left as they are, for [`TetMesh::validate`] to report. Returns a
+/// note for [`crate::io::Loaded::notes`] when any tet was swapped.
+///
+/// Every tet index must be in range.
+pub(crate) fn orient_tets(m: &mut TetMesh) -> Option<String> {
+    let mut flipped = 0usize;
+    for tet in &mut m.tets {
+        let [a, b, c, d] = tet.map(|i| m.vertices[i as usize]);
+        if orient3d(a, b, c, d) == Sign::Negative {
+            tet.swap(2, 3);
+            flipped += 1;
+        }
+    }
+    match flipped {
+        0 => None,
+        n if n == m.tets.len() => Some(format!(
+            "all {n} tetrahedra were negatively oriented; swapped two vertices of each (the file uses the opposite orientation convention)"
+        )),
+        n => Some(format!("reoriented {n} negatively oriented tetrahedra (swapped two vertices)")),
+    }
+}
+
+/// A note when some vertices of a tet mesh are used by no tet (mid-edge nodes of quadratic
+/// elements, geometry points); they are kept so that vertex numbers match the file.
+pub(crate) fn unused_vertices_note(m: &TetMesh) -> Option<String> {
+    let mut used = vec![false; m.vertices.len()];
+    for t in &m.tets {
+        for &v in t {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+    }
+    let n = used.iter().filter(|u| !**u).count();
+    (n > 0).then(|| format!("{n} vertices are used by no tetrahedron (kept, so that vertex numbers match the file)"))
+}
+
+/// Parses a non-negative integer tag, written as an integer or as an integral real (`3`,
+/// `3.0`, `3e0`), as TetGen writes attributes. The error says what is wrong with `text`.
+pub(crate) fn integral_tag(text: &str) -> Result<u32, String> {
+    if let Ok(v) = text.parse::<i64>() {
+        return u32::try_from(v).map_err(|_| format!("'{text}' is not a tag fepre can hold (0 to 4294967295)"));
+    }
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() && x.fract() == 0.0 && (0.0..=u32::MAX as f64).contains(&x) => Ok(x as u32),
+        Ok(x) if x.is_finite() && x.fract() == 0.0 => Err(format!("'{text}' is not a tag fepre can hold (0 to 4294967295)")),
+        Ok(_) => Err(format!("'{text}' is not an integer")),
+        Err(_) => Err(format!("'{text}' is not a number")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::RegionId;
+    use glam::DVec3;
+
+    #[test]
+    fn numbers_read_back_exactly() {
+        for x in [0.0, -0.0, 1.0, 0.1, 1.0 / 3.0, -2.5e-12, 6.02e23, 1e-5, 9.99e15, f64::MAX, f64::MIN_POSITIVE] {
+            let s = Num(x).to_string();
+            assert_eq!(s.parse::<f64>().unwrap().to_bits(), x.to_bits(), "{s}");
+            assert!(s.len() < 26, "{s}");
+        }
+        assert_eq!(Num(0.25).to_string(), "0.25");
+        assert_eq!(Num(3.0).to_string(), "3");
+        assert_eq!(Num(1.5e-9).to_string(), "1.5e-9");
+    }
+
+    #[test]
+    fn tags_and_orientation() {
+        assert_eq!(integral_tag("7"), Ok(7));
+        assert_eq!(integral_tag("7.0"), Ok(7));
+        assert!(integral_tag("-1").unwrap_err().contains("0 to"));
+        assert!(integral_tag("1.5").unwrap_err().contains("not an integer"));
+        assert!(integral_tag("x").unwrap_err().contains("not a number"));
+        let mut m = TetMesh {
+            vertices: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE],
+            tets: vec![[0, 2, 1, 3], [0, 1, 2, 3]],
+            region_tags: vec![RegionId(1); 2],
+            ..Default::default()
+        };
+        assert_eq!(orient_tets(&mut m).unwrap(), "reoriented 1 negatively oriented tetrahedra (swapped two vertices)");
+        assert_eq!(m.tets[0], [0, 2, 3, 1]);
+        assert_eq!(orient_tets(&mut m), None);
+        assert!(unused_vertices_note(&m).unwrap().starts_with("1 vertices"));
+    }
+}
