@@ -1,1 +1,5 @@
-fn main() {}
+//! The `fepre` command line; see `fepre --help`.
+
+fn main() -> std::process::ExitCode {
+    fepre::cli::main()
+}

@@ -1,0 +1,313 @@
+//! `fepre inspect FILE`: the topology report of a surface (or of a tet mesh's boundary) and,
+//! for tet meshes, element quality.
+
+use crate::cli::progress::Progress;
+use crate::core::{FaceId, Tolerance};
+use crate::io::{self, MeshData, ReadOptions};
+use crate::mesh::TriSurface;
+use crate::mesh::tet_mesh::TetMesh;
+use crate::mesh::topology::{IntersectingPair, ReportOptions, ShellReport, SurfaceReport, surface_report};
+use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality};
+use anyhow::Result;
+use serde::Serialize;
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Examples shown by `fepre inspect --help`.
+pub const EXAMPLES: &str = "\
+Examples:
+  fepre inspect part.stl                          closed? manifold? genus? volume? self-intersections?
+  fepre inspect part.stl --json | jq .genus       one JSON object for scripts
+  fepre inspect big.obj --no-self-intersections   skip the exact pairwise test on huge inputs
+  fepre inspect mesh.1.ele --histogram            a tet mesh's quality with a dihedral-angle histogram";
+
+/// Arguments of `fepre inspect`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Mesh file (.stl .obj .gltf .glb .off .mesh .node .ele .face .poly .smesh .msh .xyz).
+    pub file: PathBuf,
+    /// Print one JSON object on standard output instead of the text report.
+    #[arg(long)]
+    pub json: bool,
+    /// Skip the exact self-intersection test (the report then says null).
+    #[arg(long)]
+    pub no_self_intersections: bool,
+    /// List at most N offending pairs, edges or triangles.
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub max_listed: usize,
+    /// Keep the file's vertices as they are instead of merging coincident ones.
+    #[arg(long)]
+    pub no_weld: bool,
+    /// Merge vertices closer than REL times the bounding-box diagonal.
+    #[arg(long, value_name = "REL", default_value_t = Tolerance::WELD.relative, value_parser = crate::cli::parse_fraction)]
+    pub weld: f64,
+    /// Show the dihedral-angle histogram of a tet mesh in the text report.
+    #[arg(long)]
+    pub histogram: bool,
+}
+
+/// A tag with its name and how many triangles carry it.
+#[derive(Debug, Serialize)]
+struct TagInfo {
+    tag: u32,
+    name: Option<String>,
+    triangles: usize,
+}
+
+/// Keys present for tet meshes only.
+#[derive(Debug, Serialize)]
+struct TetKeys {
+    min_dihedral_deg: f64,
+    max_dihedral_deg: f64,
+    max_radius_edge: f64,
+    inverted: usize,
+    boundary_triangles: usize,
+    regions: Vec<TagInfo>,
+    quality: TetQualityReport,
+}
+
+/// The JSON object `fepre inspect --json` prints. For a tet mesh the surface keys describe
+/// the boundary of the meshed volume (its faces that belong to one tet), and `volume` is the
+/// sum of the tet volumes.
+#[derive(Debug, Serialize)]
+struct Report {
+    file: String,
+    format: &'static str,
+    kind: &'static str,
+    file_vertices: usize,
+    vertices: usize,
+    triangles: usize,
+    tets: usize,
+    components: usize,
+    closed: bool,
+    manifold: bool,
+    oriented: bool,
+    outward: bool,
+    open_edges: usize,
+    nonmanifold_edges: usize,
+    nonmanifold_vertices: usize,
+    degenerate_triangles: usize,
+    euler: i64,
+    genus: Option<i64>,
+    volume: f64,
+    area: f64,
+    boundary_loops: usize,
+    self_intersections: Option<usize>,
+    first_intersections: Vec<IntersectingPair>,
+    bbox: Option<[[f64; 3]; 2]>,
+    tags: Vec<TagInfo>,
+    shells: Vec<ShellReport>,
+    #[serde(flatten)]
+    tet: Option<TetKeys>,
+    notes: Vec<String>,
+    seconds: f64,
+}
+
+/// The boundary of a tet mesh as a surface over the mesh's own vertices: its hull faces
+/// (outward), each tagged as in `boundary` where listed there, else `FaceId(0)`.
+fn tet_boundary(m: &TetMesh) -> TriSurface {
+    let mut tag_of: HashMap<[u32; 3], FaceId> = HashMap::with_capacity(m.boundary.len());
+    for (t, tag) in m.boundary.iter().zip(&m.boundary_tags) {
+        let mut k = *t;
+        k.sort_unstable();
+        tag_of.insert(k, *tag);
+    }
+    let hull = m.hull_faces();
+    let face_tags = hull
+        .iter()
+        .map(|f| {
+            let mut k = *f;
+            k.sort_unstable();
+            tag_of.get(&k).copied().unwrap_or(FaceId(0))
+        })
+        .collect();
+    TriSurface { vertices: m.vertices.clone(), triangles: hull, face_tags, tag_names: m.face_names.clone() }
+}
+
+fn tag_infos(tags: impl Iterator<Item = u32>, names: impl Fn(u32) -> Option<String>) -> Vec<TagInfo> {
+    let mut count: BTreeMap<u32, usize> = BTreeMap::new();
+    for t in tags {
+        *count.entry(t).or_default() += 1;
+    }
+    count.into_iter().map(|(tag, triangles)| TagInfo { tag, name: names(tag), triangles }).collect()
+}
+
+/// Runs `fepre inspect`.
+///
+/// # Errors
+/// An unreadable or invalid input file (exit 1).
+pub fn run(args: &Args) -> Result<()> {
+    let start = Instant::now();
+    let progress = Progress::start(&format!("reading {}", args.file.display()));
+    let weld = if args.no_weld { None } else { Some(Tolerance::relative(args.weld)) };
+    let loaded = io::read(&args.file, &ReadOptions::default().with_weld(weld))?;
+    let opts = ReportOptions::default().with_self_intersections(!args.no_self_intersections).with_max_listed(args.max_listed);
+    progress.stage("computing the topology report");
+    let (surface, tet) = match &loaded.mesh {
+        MeshData::Surface(s) => (s.clone(), None),
+        MeshData::Volume(m) => {
+            progress.stage("measuring element quality");
+            let q = tet_mesh_quality(m);
+            let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(&crate::core::RegionId(r)).cloned());
+            let keys = TetKeys {
+                min_dihedral_deg: q.min_dihedral_deg,
+                max_dihedral_deg: q.max_dihedral_deg,
+                max_radius_edge: q.max_radius_edge,
+                inverted: q.inverted,
+                boundary_triangles: m.boundary.len(),
+                regions,
+                quality: q,
+            };
+            (tet_boundary(m), Some(keys))
+        }
+        MeshData::Points(p) => (TriSurface { vertices: p.clone(), ..Default::default() }, None),
+    };
+    progress.stage("computing the topology report");
+    let r: SurfaceReport = surface_report(&surface, &opts);
+    progress.finish();
+    let tags = tag_infos(surface.face_tags.iter().map(|t| t.0), |t| surface.tag_names.get(&FaceId(t)).cloned());
+    let report = Report {
+        file: args.file.display().to_string(),
+        format: loaded.format.name(),
+        kind: loaded.mesh.kind(),
+        file_vertices: loaded.file_vertices,
+        vertices: surface.vertices.len(),
+        triangles: r.triangles,
+        tets: if let MeshData::Volume(m) = &loaded.mesh { m.tets.len() } else { 0 },
+        components: r.components,
+        closed: r.closed,
+        manifold: r.manifold,
+        oriented: r.oriented,
+        outward: r.outward,
+        open_edges: r.open_edges,
+        nonmanifold_edges: r.nonmanifold_edges,
+        nonmanifold_vertices: r.nonmanifold_vertices,
+        degenerate_triangles: r.degenerate_triangles,
+        euler: r.euler,
+        genus: r.genus,
+        volume: tet.as_ref().map_or(r.volume, |t| t.quality.volume),
+        area: r.area,
+        boundary_loops: r.boundary_loops,
+        self_intersections: r.self_intersections,
+        first_intersections: r.first_intersections.clone(),
+        bbox: r.bbox.or_else(|| crate::core::Aabb::from_points(&surface.vertices).to_array()),
+        tags,
+        shells: r.shells,
+        tet,
+        notes: loaded.notes,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", render(&report, args.histogram));
+    }
+    Ok(())
+}
+
+fn yes(b: bool) -> &'static str {
+    if b { "yes" } else { "NO" }
+}
+
+fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
+    v.map_or_else(|| "-".to_string(), |x| x.to_string())
+}
+
+/// The text report.
+fn render(r: &Report, histogram: bool) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{} ({}, {})", r.file, r.format, r.kind);
+    let welded = if r.file_vertices != r.vertices { format!(" ({} in the file)", r.file_vertices) } else { String::new() };
+    let _ = writeln!(s, "  vertices            {}{welded}", r.vertices);
+    if r.tets > 0 {
+        let _ = writeln!(s, "  tetrahedra          {}", r.tets);
+        let _ = writeln!(s, "  boundary triangles  {} (tagged: {})", r.triangles, r.tet.as_ref().map_or(0, |t| t.boundary_triangles));
+    } else {
+        let _ = writeln!(s, "  triangles           {}", r.triangles);
+    }
+    let _ = writeln!(s, "  components          {}", r.components);
+    let _ = writeln!(
+        s,
+        "  closed {}   manifold {}   oriented {}   outward {}",
+        yes(r.closed),
+        yes(r.manifold),
+        yes(r.oriented),
+        yes(r.outward)
+    );
+    let _ = writeln!(s, "  euler               {}   genus {}", r.euler, opt(r.genus));
+    let _ = writeln!(s, "  volume              {:.9e}", r.volume);
+    let _ = writeln!(s, "  area                {:.9e}", r.area);
+    if let Some([lo, hi]) = r.bbox {
+        let _ = writeln!(s, "  bbox                [{}, {}, {}] to [{}, {}, {}]", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    }
+    if r.open_edges + r.nonmanifold_edges + r.nonmanifold_vertices + r.degenerate_triangles > 0 || r.boundary_loops > 0 {
+        let _ = writeln!(
+            s,
+            "  open edges {} in {} loops, non-manifold edges {}, non-manifold vertices {}, degenerate triangles {}",
+            r.open_edges, r.boundary_loops, r.nonmanifold_edges, r.nonmanifold_vertices, r.degenerate_triangles
+        );
+    }
+    match r.self_intersections {
+        None => {
+            let _ = writeln!(s, "  self-intersections  not tested");
+        }
+        Some(n) => {
+            let _ = writeln!(s, "  self-intersections  {n}");
+            for p in &r.first_intersections {
+                let _ = writeln!(s, "    triangle {} ({}) crosses triangle {} ({})", p.a, p.tag_a, p.b, p.tag_b);
+            }
+        }
+    }
+    if r.shells.len() > 1 {
+        let _ = writeln!(s, "  shells:");
+        let _ = writeln!(s, "    {:>3} {:>10} {:>7} {:>6} {:>7} {:>16} {:>8}", "#", "triangles", "closed", "euler", "genus", "volume", "outward");
+        for (i, sh) in r.shells.iter().enumerate().take(20) {
+            let _ = writeln!(
+                s,
+                "    {:>3} {:>10} {:>7} {:>6} {:>7} {:>16.9e} {:>8}",
+                i,
+                sh.triangles,
+                yes(sh.closed),
+                sh.euler,
+                opt(sh.genus),
+                sh.volume,
+                sh.outward.map_or("-", yes)
+            );
+        }
+        if r.shells.len() > 20 {
+            let _ = writeln!(s, "    … {} more", r.shells.len() - 20);
+        }
+    }
+    if !r.tags.is_empty() {
+        let _ = writeln!(s, "  face tags:");
+        for t in r.tags.iter().take(30) {
+            let _ = writeln!(s, "    {:>6}  {:>9} triangles  {}", t.tag, t.triangles, t.name.as_deref().unwrap_or(""));
+        }
+        if r.tags.len() > 30 {
+            let _ = writeln!(s, "    … {} more", r.tags.len() - 30);
+        }
+    }
+    if let Some(t) = &r.tet {
+        let _ = writeln!(s, "  regions:");
+        for g in &t.regions {
+            let _ = writeln!(s, "    {:>6}  {:>9} tets  {}", g.tag, g.triangles, g.name.as_deref().unwrap_or(""));
+        }
+        let _ = writeln!(s, "  quality:");
+        for line in t.quality.render().lines() {
+            let _ = writeln!(s, "    {line}");
+        }
+        if histogram {
+            let _ = writeln!(s, "  dihedral angles (degrees):");
+            for line in t.quality.dihedral_histogram.render(50).lines() {
+                let _ = writeln!(s, "    {line}");
+            }
+        }
+    }
+    for n in &r.notes {
+        let _ = writeln!(s, "  note: {n}");
+    }
+    let _ = writeln!(s, "  ({:.3} s)", r.seconds);
+    s
+}

@@ -1,0 +1,97 @@
+//! Layer 6: the command line. One file per subcommand; this file holds the argument types
+//! and the mapping of outcomes to exit codes: 0 ok, 1 the input could not be processed,
+//! 2 bad usage.
+
+pub mod convert;
+pub mod inspect;
+pub mod progress;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+const EXAMPLES: &str = "\
+Examples:
+  fepre inspect part.stl                   report topology: closed, manifold, genus, volume, self-intersections
+  fepre inspect part.stl --json            the same report as one JSON object
+  fepre inspect mesh.1.ele                 a tet mesh: also dihedral angles, radius-edge ratios, inverted tets
+  fepre convert model.glb model.msh        any format fepre reads to any it writes, tags kept
+  fepre convert mesh.mesh boundary.stl     a tet mesh's tagged boundary as a surface
+
+Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
+
+/// fepre: a finite-element preprocessor. CAD parts and surface meshes in; watertight tagged
+/// surfaces, quality tetrahedral meshes and solver decks out.
+#[derive(Debug, Parser)]
+#[command(name = "fepre", version, about, after_help = EXAMPLES, propagate_version = true)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Report a mesh file's topology (components, closed, manifold, oriented, Euler
+    /// characteristic, genus, volume, self-intersections) and, for tet meshes, element quality.
+    #[command(after_help = inspect::EXAMPLES)]
+    Inspect(inspect::Args),
+    /// Convert a mesh between formats, chosen from the file extensions; tags are kept where the
+    /// output format can hold them.
+    #[command(after_help = convert::EXAMPLES)]
+    Convert(convert::Args),
+}
+
+/// Parses the arguments, runs the command and returns the process exit code.
+pub fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            // --help and --version print and succeed; everything else is bad usage (2)
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    let result = match cli.command {
+        Command::Inspect(a) => inspect::run(&a),
+        Command::Convert(a) => convert::run(&a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {}", message(&e));
+            ExitCode::from(if e.is::<UsageError>() { 2 } else { 1 })
+        }
+    }
+}
+
+/// The error and its causes, each cause added only where the message does not already say it
+/// (library errors such as `IoError` include their cause in their own text).
+fn message(e: &anyhow::Error) -> String {
+    let mut msg = e.to_string();
+    for cause in e.chain().skip(1) {
+        let c = cause.to_string();
+        if !msg.contains(&c) {
+            msg.push_str(": ");
+            msg.push_str(&c);
+        }
+    }
+    msg
+}
+
+/// A usage error found after parsing (an impossible option value, an output format fepre
+/// cannot write): exit code 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
+
+/// Wraps a message as a [`UsageError`].
+pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
+    anyhow::Error::new(UsageError(message.into()))
+}
+
+/// Parses a non-negative finite fraction (relative tolerances).
+pub fn parse_fraction(s: &str) -> Result<f64, String> {
+    let x: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    if x.is_finite() && x >= 0.0 { Ok(x) } else { Err(format!("'{s}' must be a finite number >= 0")) }
+}
