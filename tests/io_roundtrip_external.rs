@@ -289,3 +289,36 @@ fn meshio_reads_our_files_with_the_same_counts_and_tags() {
         eprintln!("note: the Python interpreter has no vtk module; checked VTU with meshio only");
     }
 }
+
+/// Our points `.node` and surface `.node + .face` are read by TetGen itself: it tetrahedralizes
+/// the points, and reads a `.face` written beside an `.ele` when reconstructing.
+#[test]
+fn tetgen_reads_our_points_and_surface_faces() {
+    let Some(tetgen) = tools::require(tools::tetgen(), "tetgen", "the tetgen checks of points .node and surface .face") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let m = cube();
+    // points: TetGen's Delaunay tetrahedralization of our .node has every point and the hull volume
+    put(d, "p.node", MeshData::Points(m.vertices.clone()));
+    tools::run_ok(Command::new(&tetgen).args(["-Q", "p"]), d);
+    let r = read_volume(&d.join("p.1.ele"));
+    assert_eq!(r.vertices.len(), m.vertices.len());
+    assert!((r.volume() - 1.0).abs() < 1e-12, "volume {}", r.volume());
+    // surface as .node + .face: put the volume's .ele beside it and let tetgen -r take the faces
+    let s = cube_surface();
+    put(d, "f.face", MeshData::Surface(s.clone()));
+    let ele = d.join("v.ele");
+    put(d, "v.ele", MeshData::Volume(m.clone()));
+    std::fs::copy(&ele, d.join("f.ele")).unwrap();
+    tools::run_ok(Command::new(&tetgen).args(["-rQ", "f"]), d);
+    let r = read_volume(&d.join("f.1.ele"));
+    assert_eq!(r.tets.len(), m.tets.len());
+    // TetGen also outputs the two faces between the regions, which our surface does not list,
+    // with marker 0; every face we wrote comes back with its marker
+    let mut got: Vec<FaceId> = r.boundary_tags.iter().copied().filter(|t| t.0 != 0).collect();
+    got.sort();
+    let mut want = s.face_tags.clone();
+    want.sort();
+    assert_eq!(got, want, "TetGen keeps the markers of our .face");
+    assert_eq!(r.boundary_tags.len(), s.face_tags.len() + 2, "plus the two interface faces");
+}

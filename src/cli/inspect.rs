@@ -21,7 +21,7 @@ Examples:
   fepre inspect part.stl                          closed? manifold? genus? volume? self-intersections?
   fepre inspect part.stl --json | jq .genus       one JSON object for scripts
   fepre inspect big.obj --no-self-intersections   skip the exact pairwise test on huge inputs
-  fepre inspect mesh.1.ele --histogram            a tet mesh's quality with a dihedral-angle histogram";
+  fepre inspect mesh.1.ele                        a tet mesh: quality statistics and a dihedral-angle histogram";
 
 /// Arguments of `fepre inspect`.
 #[derive(Debug, clap::Args)]
@@ -43,9 +43,6 @@ pub struct Args {
     /// Merge vertices closer than REL times the bounding-box diagonal.
     #[arg(long, value_name = "REL", default_value_t = Tolerance::WELD.relative, value_parser = crate::cli::parse_fraction)]
     pub weld: f64,
-    /// Show the dihedral-angle histogram of a tet mesh in the text report.
-    #[arg(long)]
-    pub histogram: bool,
 }
 
 /// A tag with its name and how many triangles carry it.
@@ -202,7 +199,7 @@ pub fn run(args: &Args) -> Result<()> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print!("{}", render(&report, args.histogram));
+        print!("{}", render(&report));
     }
     Ok(())
 }
@@ -216,9 +213,19 @@ fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
 }
 
 /// The text report.
-fn render(r: &Report, histogram: bool) -> String {
+fn render(r: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{} ({}, {})", r.file, r.format, r.kind);
+    if r.kind == "point set" {
+        let _ = writeln!(s, "  points              {}", r.vertices);
+        if let Some([lo, hi]) = r.bbox {
+            let _ = writeln!(s, "  bbox                [{}, {}, {}] to [{}, {}, {}]", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        }
+        for n in &r.notes {
+            let _ = writeln!(s, "  note: {n}");
+        }
+        return s;
+    }
     let welded = if r.file_vertices != r.vertices { format!(" ({} in the file)", r.file_vertices) } else { String::new() };
     let _ = writeln!(s, "  vertices            {}{welded}", r.vertices);
     if r.tets > 0 {
@@ -297,12 +304,6 @@ fn render(r: &Report, histogram: bool) -> String {
         let _ = writeln!(s, "  quality:");
         for line in t.quality.render().lines() {
             let _ = writeln!(s, "    {line}");
-        }
-        if histogram {
-            let _ = writeln!(s, "  dihedral angles (degrees):");
-            for line in t.quality.dihedral_histogram.render(50).lines() {
-                let _ = writeln!(s, "    {line}");
-            }
         }
     }
     for n in &r.notes {
