@@ -26,6 +26,7 @@ pub mod msh;
 pub mod obj;
 pub mod off;
 pub mod polygon;
+pub(crate) mod point_lines;
 pub mod stl;
 pub mod tetgen;
 #[cfg(test)]
@@ -275,6 +276,20 @@ pub fn read(path: &Path, options: &ReadOptions) -> Result<Loaded, IoError> {
     };
     checked.map_err(|source| IoError::Invalid { path: path.to_path_buf(), source })?;
     Ok(loaded)
+}
+
+/// Reads a point set: `.xyz`, or the points of a TetGen `.node` (its elements, if any, are not
+/// read).
+///
+/// # Errors
+/// An [`IoError`] naming the file and line, or [`IoError::UnknownFormat`] for other extensions.
+pub fn read_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("xyz") => xyz::read_points(path, &point_lines::read_file(path)?),
+        Some("node") => tetgen::read_node_points(path),
+        _ => Err(IoError::UnknownFormat { path: path.to_path_buf(), ext, known: ".xyz .node".to_string() }),
+    }
 }
 
 /// Writes `mesh` to `path` in the format of its extension, through a temporary file.

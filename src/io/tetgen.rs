@@ -32,10 +32,12 @@ mod poly;
 use crate::core::{FaceId, RegionId};
 use crate::io::atomic::{write_atomic, write_atomic_many, write_err};
 use crate::io::common::{Num, integral_tag, orient_tets, unused_vertices_note};
+use crate::io::point_lines::{self, Layout};
 use crate::io::text::Tokens;
 use crate::io::{Format, IoError, Loaded, Location, MeshData, read_bytes};
 use crate::mesh::{TetMesh, TriSurface};
 use glam::DVec3;
+use std::fmt;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -122,12 +124,33 @@ impl<'a> Lines<'a> {
         n.min(self.tok.remaining().len() / line_bytes.max(1) + 1)
     }
 
-    /// The next non-empty line; at the end of the file an error saying what was expected.
-    pub(crate) fn next(&mut self, what: &str) -> Result<Line<'a>, IoError> {
+    /// The bytes after the last line read.
+    pub(crate) fn remaining(&self) -> &'a [u8] {
+        self.tok.remaining()
+    }
+
+    /// Moves on `n` bytes (past lines read by other means), keeping the line count.
+    pub(crate) fn skip_bytes(&mut self, n: usize) {
+        self.tok.skip_bytes(n);
+    }
+
+    /// The next non-empty line; at the end of the file an error saying what was expected
+    /// (`what` is formatted only then).
+    pub(crate) fn next(&mut self, what: impl fmt::Display) -> Result<Line<'a>, IoError> {
         match self.try_next() {
             Some((line, tokens)) => Ok(Line { path: self.tok.path(), line, tokens }),
             None => Err(self.tok.error(format!("unexpected end of file: expected {what} (is the file truncated?)"))),
         }
+    }
+}
+
+/// "node 3 of 10": an item of a list, for messages, formatted only when needed.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Nth(pub(crate) &'static str, pub(crate) usize, pub(crate) usize);
+
+impl fmt::Display for Nth {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {} of {}", self.0, self.1, self.2)
     }
 }
 
@@ -202,16 +225,43 @@ pub(crate) struct Nodes {
     pub(crate) source: PathBuf,
 }
 
+/// The points of a `.node` file (attributes and markers skipped).
+///
+/// # Errors
+/// As for any `.node` file: the file and line of the first problem.
+pub fn read_node_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
+    read_node_file(path).map(|n| n.points)
+}
+
 fn read_node_file(path: &Path) -> Result<Nodes, IoError> {
-    let bytes = read_bytes(path)?;
+    let bytes = point_lines::read_file(path)?;
     let mut lines = Lines::new(path, &bytes);
     let header = lines.next("the header line 'nodes dimension attributes markers'")?;
-    read_nodes(&mut lines, &header)
+    read_nodes_then(&mut lines, &header, false)
 }
 
 /// Reads a node list whose header line (`count [dimension [attributes [markers]]]`) is
-/// `header`.
+/// `header`: in parallel when the list is well formed, otherwise line by line to report the
+/// first problem.
 pub(crate) fn read_nodes(lines: &mut Lines, header: &Line) -> Result<Nodes, IoError> {
+    read_nodes_then(lines, header, true)
+}
+
+/// [`read_nodes`]; with `go_on` false, `lines` is left anywhere (when nothing follows the
+/// node list, counting the lines read would be wasted time).
+fn read_nodes_then(lines: &mut Lines, header: &Line, go_on: bool) -> Result<Nodes, IoError> {
+    let n = node_header(header)?;
+    if let Some(fast) = point_lines::parse(lines.remaining(), Layout::Numbered, Some(n)) {
+        if go_on {
+            lines.skip_bytes(fast.consumed);
+        }
+        return Ok(Nodes { points: fast.points, first: fast.first, source: lines.path().to_path_buf() });
+    }
+    read_nodes_careful(lines, header)
+}
+
+/// The number of nodes of a node list header, checked to be 3-D.
+fn node_header(header: &Line) -> Result<usize, IoError> {
     let n = header.count(0, "the number of nodes")?;
     let dim = header.count_or(1, "the dimension", 3)?;
     if dim != 3 {
@@ -221,10 +271,16 @@ pub(crate) fn read_nodes(lines: &mut Lines, header: &Line) -> Result<Nodes, IoEr
             message: format!("dimension {dim}; fepre reads 3-D TetGen files only"),
         });
     }
+    Ok(n)
+}
+
+/// The careful node list reader: line by line, naming the line of the first problem.
+pub(crate) fn read_nodes_careful(lines: &mut Lines, header: &Line) -> Result<Nodes, IoError> {
+    let n = node_header(header)?;
     let mut points = Vec::with_capacity(lines.cap(n, 8));
     let mut first = 0;
     for i in 0..n {
-        let l = lines.next(&format!("node {} of {n}", i + 1))?;
+        let l = lines.next(Nth("node", i + 1, n))?;
         let number: i64 = {
             let t = l.get(0, "a node number")?;
             t.parse().map_err(|_| l.error(format!("expected a node number, found '{t}'")))?
@@ -259,7 +315,7 @@ fn read_ele(path: &Path, bytes: &[u8], nodes: &Nodes) -> Result<Tets, IoError> {
     let mut tets = Vec::with_capacity(lines.cap(n, 10));
     let mut tags = Vec::with_capacity(lines.cap(n, 10));
     for i in 0..n {
-        let l = lines.next(&format!("tetrahedron {} of {n}", i + 1))?;
+        let l = lines.next(Nth("tetrahedron", i + 1, n))?;
         if l.tokens.len() < 1 + per + nattr {
             return Err(l.error(format!(
                 "expected {} numbers (number, {per} nodes, {nattr} attributes), found {}",
@@ -295,7 +351,7 @@ fn read_faces(path: &Path, bytes: &[u8], nodes: &Nodes) -> Result<(Vec<[u32; 3]>
     let mut tris = Vec::with_capacity(lines.cap(n, 8));
     let mut tags = Vec::with_capacity(lines.cap(n, 8));
     for i in 0..n {
-        let l = lines.next(&format!("face {} of {n}", i + 1))?;
+        let l = lines.next(Nth("face", i + 1, n))?;
         tris.push([l.node(1, nodes)?, l.node(2, nodes)?, l.node(3, nodes)?]);
         tags.push(FaceId(if markers > 0 { l.tag(4, "the boundary marker")? } else { 0 }));
     }

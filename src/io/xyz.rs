@@ -1,14 +1,35 @@
 //! Point sets as plain text: one `x y z` per line (`#` starts a comment).
 
+use crate::io::point_lines::{self, Layout};
 use crate::io::text::Tokens;
 use crate::io::{Format, IoError, Loaded, MeshData};
+use glam::DVec3;
 use std::path::Path;
 
-/// Reads `x y z` lines.
+/// Reads `x y z` lines: in parallel when every line is well formed, otherwise line by line to
+/// report the first problem.
 ///
 /// # Errors
 /// A line without three finite numbers.
 pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
+    let points = read_points(path, bytes)?;
+    let n = points.len();
+    Ok(Loaded::new(MeshData::Points(points), Format::Xyz, n))
+}
+
+/// The points of `x y z` lines, as [`read`] reads them.
+///
+/// # Errors
+/// A line without three finite numbers.
+pub fn read_points(path: &Path, bytes: &[u8]) -> Result<Vec<DVec3>, IoError> {
+    match point_lines::parse(bytes, Layout::Xyz, None) {
+        Some(fast) => Ok(fast.points),
+        None => read_careful(path, bytes),
+    }
+}
+
+/// The careful reader: token by token, naming the line of the first problem.
+pub(crate) fn read_careful(path: &Path, bytes: &[u8]) -> Result<Vec<DVec3>, IoError> {
     let mut tok = Tokens::new(path, bytes, Some(b'#'));
     let mut points = Vec::with_capacity(bytes.len() / 50);
     while !tok.at_end() {
@@ -19,8 +40,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
         }
         points.push(p);
     }
-    let n = points.len();
-    Ok(Loaded::new(MeshData::Points(points), Format::Xyz, n))
+    Ok(points)
 }
 
 #[cfg(test)]

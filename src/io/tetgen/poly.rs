@@ -5,11 +5,11 @@
 //! facet is a header line `polygons [holes [marker]]` followed by its polygons
 //! (`n v1 … vn`) and its hole points; a `.smesh` facet is one line `n v1 … vn [marker]`.
 
-use super::{Line, Lines, read_nodes, write_node_list};
+use super::{Line, Lines, Nth, read_node_file, read_nodes, write_node_list};
 use crate::core::{FaceId, RegionId};
 use crate::io::polygon;
 use crate::io::atomic::{write_atomic, write_err};
-use crate::io::{Format, IoError, Loaded, Location, MeshData, PlcSeeds, read_bytes};
+use crate::io::{Format, IoError, Loaded, Location, MeshData, PlcSeeds};
 use crate::mesh::TriSurface;
 use glam::DVec3;
 use std::io::Write;
@@ -20,14 +20,9 @@ use std::path::Path;
 pub(super) fn read(path: &Path, bytes: &[u8], smesh: bool) -> Result<Loaded, IoError> {
     let mut lines = Lines::new(path, bytes);
     let header = lines.next("the node list header 'nodes dimension attributes markers'")?;
-    let node_bytes;
     let nodes = if header.count(0, "the number of nodes")? == 0 {
         // The nodes are in x.node.
-        let node_path = path.with_extension("node");
-        node_bytes = read_bytes(&node_path)?;
-        let mut node_lines = Lines::new(&node_path, &node_bytes);
-        let h = node_lines.next("the header line 'nodes dimension attributes markers'")?;
-        read_nodes(&mut node_lines, &h)?
+        read_node_file(&path.with_extension("node"))?
     } else {
         read_nodes(&mut lines, &header)?
     };
@@ -41,15 +36,15 @@ pub(super) fn read(path: &Path, bytes: &[u8], smesh: bool) -> Result<Loaded, IoE
     let mut multi_polygon_facets = 0usize;
     let mut split_polygons = 0usize;
     for f in 0..nfacets {
-        let what = format!("facet {} of {nfacets}", f + 1);
+        let what = Nth("facet", f + 1, nfacets);
         let (polygons, tag) = if smesh {
-            let l = lines.next(&what)?;
+            let l = lines.next(what)?;
             let n = l.count(0, "the number of the facet's vertices")?;
             let poly = (0..n).map(|k| l.node(1 + k, &nodes)).collect::<Result<Vec<_>, _>>()?;
             let tag = if markers && l.tokens.len() > 1 + n { l.tag(1 + n, "the facet marker")? } else { 0 };
             (vec![(l.line, poly)], tag)
         } else {
-            let l = lines.next(&what)?;
+            let l = lines.next(what)?;
             let npoly = l.count(0, "the number of polygons")?;
             let nholes = l.count_or(1, "the number of holes", 0)?;
             let tag = if markers && l.tokens.len() > 2 { l.tag(2, "the facet marker")? } else { 0 };
@@ -62,7 +57,7 @@ pub(super) fn read(path: &Path, bytes: &[u8], smesh: bool) -> Result<Loaded, IoE
             }
             let mut polygons = Vec::with_capacity(npoly.min(1024));
             for p in 0..npoly {
-                let pl = lines.next(&format!("polygon {} of {what}", p + 1))?;
+                let pl = lines.next(format_args!("polygon {} of {what}", p + 1))?;
                 let n = pl.count(0, "the number of the polygon's vertices")?;
                 let poly = (0..n).map(|k| pl.node(1 + k, &nodes)).collect::<Result<Vec<_>, _>>()?;
                 polygons.push((pl.line, poly));
@@ -111,14 +106,14 @@ fn read_seeds(lines: &mut Lines) -> Result<PlcSeeds, IoError> {
     let h = Line { path: lines.path(), line, tokens };
     let n = h.count(0, "the number of holes")?;
     for i in 0..n {
-        let l = lines.next(&format!("hole {} of {n}", i + 1))?;
+        let l = lines.next(Nth("hole", i + 1, n))?;
         seeds.holes.push(l.point(1, "a hole coordinate")?);
     }
     let Some((line, tokens)) = lines.try_next() else { return Ok(seeds) };
     let h = Line { path: lines.path(), line, tokens };
     let n = h.count(0, "the number of regions")?;
     for i in 0..n {
-        let l = lines.next(&format!("region {} of {n}", i + 1))?;
+        let l = lines.next(Nth("region", i + 1, n))?;
         let p = l.point(1, "a region coordinate")?;
         let tag = l.tag(4, "the region attribute")?;
         let max_volume = if l.tokens.len() > 5 { Some(l.finite(5, "the maximum volume")?).filter(|v| *v > 0.0) } else { None };
