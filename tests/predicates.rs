@@ -331,3 +331,46 @@ fn orient3d_where_floating_point_fails() {
     }
     assert!(disagreements > 0, "naive orient3d was never inconsistent on near-coplanar points");
 }
+
+fn int_points(n: usize, range: i32) -> impl Strategy<Value = Vec<[i32; 3]>> {
+    prop::collection::vec((-range..=range, -range..=range, -range..=range).prop_map(|(x, y, z)| [x, y, z]), n)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The integer predicates decide exactly as the float ones on the same (exactly
+    /// representable) coordinates: small ranges give many exact degeneracies, the limit range
+    /// exercises the i128 bounds.
+    #[test]
+    fn integer_predicates_equal_float_predicates(
+        small in int_points(5, 3),
+        large in int_points(5, INT_COORD_LIMIT),
+        ids in Just([9u32, 4, 7, 1, 5]),
+    ) {
+        for p in [&small, &large] {
+            let f: Vec<DVec3> = p.iter().map(|q| DVec3::new(q[0] as f64, q[1] as f64, q[2] as f64)).collect();
+            prop_assert_eq!(orient3d_int(p[0], p[1], p[2], p[3]), orient3d(f[0], f[1], f[2], f[3]));
+            prop_assert_eq!(insphere_int(p[0], p[1], p[2], p[3], p[4]), insphere(f[0], f[1], f[2], f[3], f[4]));
+            prop_assert_eq!(
+                insphere_sos_int([p[0], p[1], p[2], p[3], p[4]], ids),
+                insphere_sos([f[0], f[1], f[2], f[3], f[4]], ids)
+            );
+        }
+    }
+}
+
+#[test]
+fn integer_insphere_at_the_limits() {
+    // extreme coordinates: the i128 evaluation must not overflow, and must agree with robust
+    let l = INT_COORD_LIMIT;
+    let corners = [[l, l, l], [-l, -l, l], [-l, l, -l], [l, -l, -l], [-l, -l, -l], [l, l, -l], [0, 0, 0], [l, -l, l]];
+    let f = |q: [i32; 3]| DVec3::new(q[0] as f64, q[1] as f64, q[2] as f64);
+    for a in 0..corners.len() {
+        for e in 0..corners.len() {
+            let (p, q, r, s, t) = (corners[a], corners[(a + 1) % 8], corners[(a + 2) % 8], corners[(a + 3) % 8], corners[e]);
+            assert_eq!(insphere_int(p, q, r, s, t), insphere(f(p), f(q), f(r), f(s), f(t)));
+            assert_eq!(orient3d_int(p, q, r, s), orient3d(f(p), f(q), f(r), f(s)));
+        }
+    }
+}

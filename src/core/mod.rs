@@ -7,6 +7,7 @@ pub mod ids;
 pub mod intersection;
 pub mod predicates;
 pub mod size_field;
+pub mod spatial_order;
 pub mod tolerance;
 
 pub use aabb::Aabb;

@@ -90,6 +90,16 @@ impl Sign {
         self == Sign::Zero
     }
 
+    /// The sign of an exact integer.
+    #[inline]
+    pub fn of_i128(x: i128) -> Sign {
+        match x.cmp(&0) {
+            std::cmp::Ordering::Greater => Sign::Positive,
+            std::cmp::Ordering::Less => Sign::Negative,
+            std::cmp::Ordering::Equal => Sign::Zero,
+        }
+    }
+
     /// The sign of the product of two signs.
     #[inline]
     pub fn times(self, other: Sign) -> Sign {
@@ -119,9 +129,40 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 
 /// Orientation of four points: `Positive` if the tet `(a, b, c, d)` has positive volume,
 /// i.e. `det[b-a, c-a, d-a] > 0`.
+///
+/// [`orient3d_filter`] decides first; `robust`'s adaptive evaluation decides the rest.
 #[inline]
 pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
-    Sign::of(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).reversed()
+    let diff = |p: DVec3| [p.x - d.x, p.y - d.y, p.z - d.z];
+    match orient3d_filter(diff(a), diff(b), diff(c)) {
+        Some(s) => s,
+        None => Sign::of(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).reversed(),
+    }
+}
+
+/// A semi-static filter for [`orient3d`], given the rounded differences `a - d`, `b - d`,
+/// `c - d`: the sign when it is certain, `None` otherwise.
+///
+/// The determinant is evaluated as in Shewchuk's first stage; his error bound is
+/// `(7 + 56ε)ε · permanent`, the permanent at most `6 m³ ≤ 6 L^1.5` with `L` the largest
+/// `|x - d|²`. The sign is certain when `det² > (4.9e-15)² · L³` (`4.9e-15` covers
+/// `6 · (7 + 56ε)ε = 4.663e-15` with margin for the rounding of the squares and powers).
+#[inline(always)]
+pub fn orient3d_filter(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<Sign> {
+    let det = a[0] * (b[1] * c[2] - b[2] * c[1]) + b[0] * (c[1] * a[2] - c[2] * a[1]) + c[0] * (a[1] * b[2] - a[2] * b[1]);
+    let lift = |p: [f64; 3]| p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    let (la, lb, lc) = (lift(a), lift(b), lift(c));
+    let l1 = if la > lb { la } else { lb };
+    let l = if l1 > lc { l1 } else { lc };
+    if !(l > 1e-90 && l < 1e90) {
+        return None;
+    }
+    if det * det > 2.4e-29 * (l * l * l) {
+        // det[a-d, b-d, c-d] is Shewchuk's orient3d, the opposite of ours
+        Some(if det > 0.0 { Sign::Negative } else { Sign::Positive })
+    } else {
+        None
+    }
 }
 
 /// In-circle test: `Positive` if `d` lies strictly inside the circle through `a, b, c` and
@@ -133,9 +174,57 @@ pub fn incircle(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> Sign {
 
 /// In-sphere test: `Positive` if `e` lies strictly inside the sphere through `a, b, c, d` and
 /// [`orient3d`]`(a, b, c, d)` is `Positive` (the sign flips for a negative tet).
+///
+/// [`insphere_filter`] decides first; `robust`'s adaptive evaluation decides the rest.
 #[inline]
 pub fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
-    Sign::of(robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e))).reversed()
+    let diff = |p: DVec3| [p.x - e.x, p.y - e.y, p.z - e.z];
+    match insphere_filter(diff(a), diff(b), diff(c), diff(d)) {
+        Some(s) => s,
+        None => Sign::of(robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e))).reversed(),
+    }
+}
+
+/// A semi-static filter for [`insphere`], given the rounded differences `a - e`, `b - e`,
+/// `c - e`, `d - e`: the sign when it is certain, `None` otherwise.
+///
+/// The determinant is evaluated as in Shewchuk's first stage; his error bound is
+/// `(16 + 224ε)ε · permanent`. With `L` the largest lift `|a - e|²` (so every difference is at
+/// most `√L`), each 2×2 product sum is at most `2L`, each 3×3 at most `6L^1.5`, each lift at most
+/// `L`... more tightly every coordinate is at most `m ≤ √L` and the permanent at most
+/// `72 m⁵ ≤ 72 L^2.5`. The sign is certain when `det² > (1.3e-13)² · L⁵` (`1.3e-13` covers
+/// `72 · (16 + 224ε)ε = 1.279e-13` with margin for the rounding of the squares and powers).
+/// `None` also when `L` is so small or large that the powers could underflow or overflow.
+#[inline(always)]
+pub fn insphere_filter(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Option<Sign> {
+    let ab = a[0] * b[1] - b[0] * a[1];
+    let bc = b[0] * c[1] - c[0] * b[1];
+    let cd = c[0] * d[1] - d[0] * c[1];
+    let da = d[0] * a[1] - a[0] * d[1];
+    let ac = a[0] * c[1] - c[0] * a[1];
+    let bd = b[0] * d[1] - d[0] * b[1];
+    let abc = a[2] * bc - b[2] * ac + c[2] * ab;
+    let bcd = b[2] * cd - c[2] * bd + d[2] * bc;
+    let cda = c[2] * da + d[2] * ac + a[2] * cd;
+    let dab = d[2] * ab + a[2] * bd + b[2] * da;
+    let lift = |p: [f64; 3]| p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    let (la, lb, lc, ld) = (lift(a), lift(b), lift(c), lift(d));
+    let det = (ld * abc - lc * dab) + (lb * cda - la * bcd);
+    // plain comparisons: the lifts are never NaN for finite input (NaN fails the range test)
+    let l1 = if la > lb { la } else { lb };
+    let l2 = if lc > ld { lc } else { ld };
+    let l = if l1 > l2 { l1 } else { l2 };
+    if !(l > 1e-55 && l < 1e55) {
+        return None;
+    }
+    let l2 = l * l;
+    let bound2 = 1.69e-26 * (l2 * l2 * l);
+    if det * det > bound2 {
+        // Shewchuk's sign is the opposite of ours
+        Some(if det > 0.0 { Sign::Negative } else { Sign::Positive })
+    } else {
+        None
+    }
 }
 
 /// Positions of `ids` sorted by decreasing vertex index: `order[0]` is the point whose
@@ -318,27 +407,122 @@ pub fn insphere_sos(p: [DVec3; 5], id: [u32; 5]) -> Sign {
     if !exact.is_zero() {
         return exact;
     }
-    // M5 rows (x, y, z, |p|² + ε_i, 1): det M5 is Shewchuk's insphere, the opposite of ours.
-    // The coefficient of ε_i is (-1)^(i+4) (1-based i) times the 4×4 [x y z 1] minor of the
-    // other rows, which is Shewchuk's orient3d = -(our orient3d).
-    let order = rank_order(&id);
-    for pass in 0..2 {
-        for &i in &order {
-            let o: Vec<usize> = (0..5).filter(|&k| k != i).collect();
-            let ours = if pass == 0 {
-                orient3d(p[o[0]], p[o[1]], p[o[2]], p[o[3]])
-            } else {
-                orient3d_sos([p[o[0]], p[o[1]], p[o[2]], p[o[3]]], [id[o[0]], id[o[1]], id[o[2]], id[o[3]]])
-            };
-            if !ours.is_zero() {
-                // det M5 coefficient sign = (-1)^(i+1+4) · (-ours); our result = -det M5
-                let cof_even = (i + 1 + 4) % 2 == 0;
-                let det_sign = if cof_even { ours.reversed() } else { ours };
-                return det_sign.reversed();
+    let s = lifted_sos(&id, |o| orient3d(p[o[0]], p[o[1]], p[o[2]], p[o[3]]));
+    if !s.is_zero() {
+        return s;
+    }
+    lifted_sos(&id, |o| orient3d_sos([p[o[0]], p[o[1]], p[o[2]], p[o[3]]], [id[o[0]], id[o[1]], id[o[2]], id[o[3]]]))
+}
+
+/// The sign of the perturbed in-sphere determinant when the exact one vanishes.
+///
+/// M5 has rows (x, y, z, |p|² + ε_i, 1); det M5 is Shewchuk's insphere, the opposite of ours.
+/// The coefficient of ε_i is (-1)^(i+4) (1-based i) times the 4×4 [x y z 1] minor of the other
+/// rows, which is Shewchuk's orient3d = -(our orient3d). The largest perturbation belongs to
+/// the largest vertex index. `orient` gives our orient3d of the four points listed.
+#[inline]
+fn lifted_sos(id: &[u32; 5], mut orient: impl FnMut([usize; 4]) -> Sign) -> Sign {
+    for i in rank_order(id) {
+        let mut o = [0usize; 4];
+        let mut k = 0;
+        for j in 0..5 {
+            if j != i {
+                o[k] = j;
+                k += 1;
             }
+        }
+        let ours = orient(o);
+        if !ours.is_zero() {
+            // det M5 coefficient sign = (-1)^(i+1+4) · (-ours); our result = -det M5
+            let cof_even = (i + 1 + 4) % 2 == 0;
+            let det_sign = if cof_even { ours.reversed() } else { ours };
+            return det_sign.reversed();
         }
     }
     Sign::Zero
+}
+
+/// Largest magnitude of an integer coordinate accepted by the integer predicates: coordinate
+/// differences then stay below 2^24 and every in-sphere term below 2^127.
+pub const INT_COORD_LIMIT: i32 = (1 << 23) - 1;
+
+#[inline]
+fn diff_i(a: [i32; 3], b: [i32; 3]) -> [i64; 3] {
+    [a[0] as i64 - b[0] as i64, a[1] as i64 - b[1] as i64, a[2] as i64 - b[2] as i64]
+}
+
+/// [`orient3d`] for integer coordinates of magnitude at most [`INT_COORD_LIMIT`], exact in
+/// `i128` (same sign convention).
+#[inline]
+pub fn orient3d_int(a: [i32; 3], b: [i32; 3], c: [i32; 3], d: [i32; 3]) -> Sign {
+    let (u, v, w) = (diff_i(b, a), diff_i(c, a), diff_i(d, a));
+    // the products of two differences fit i64 (< 2^48); the triple products need i128
+    let m0 = (v[1] * w[2] - v[2] * w[1]) as i128;
+    let m1 = (v[0] * w[2] - v[2] * w[0]) as i128;
+    let m2 = (v[0] * w[1] - v[1] * w[0]) as i128;
+    let det = u[0] as i128 * m0 - u[1] as i128 * m1 + u[2] as i128 * m2;
+    Sign::of_i128(det)
+}
+
+/// [`insphere`] for integer coordinates of magnitude at most [`INT_COORD_LIMIT`] (same sign
+/// convention): a floating-point evaluation with a certified error bound decides when it can,
+/// an exact `i128` evaluation otherwise.
+#[inline]
+pub fn insphere_int(a: [i32; 3], b: [i32; 3], c: [i32; 3], d: [i32; 3], e: [i32; 3]) -> Sign {
+    let r = [diff_i(a, e), diff_i(b, e), diff_i(c, e), diff_i(d, e)];
+    // |x|² < 3·2^48: exact in f64 and i64
+    let w: [i64; 4] = r.map(|q| q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    // 3×3 minors of the rows other than i, by 2×2 minors of rows pairs (exact in i64)
+    let m2 = |i: usize, j: usize, x: usize, y: usize| r[i][x] * r[j][y] - r[i][y] * r[j][x];
+    // float filter: differences and lifts are exact in f64; the evaluation below makes at
+    // most ~10 roundings of relative size 2^-53 on terms bounded by the permanent
+    let f = r.map(|q| q.map(|x| x as f64));
+    let minor_f = |i: usize, j: usize, k: usize| -> (f64, f64) {
+        let (p, q, s) = (f[i], f[j], f[k]);
+        let v = p[0] * (q[1] * s[2] - q[2] * s[1]) - p[1] * (q[0] * s[2] - q[2] * s[0]) + p[2] * (q[0] * s[1] - q[1] * s[0]);
+        let pa = |t: [f64; 3]| t.map(f64::abs);
+        let (p, q, s) = (pa(p), pa(q), pa(s));
+        let perm = p[0] * (q[1] * s[2] + q[2] * s[1]) + p[1] * (q[0] * s[2] + q[2] * s[0]) + p[2] * (q[0] * s[1] + q[1] * s[0]);
+        (v, perm)
+    };
+    let wf = w.map(|x| x as f64);
+    let (m0, p0) = minor_f(1, 2, 3);
+    let (m1, p1) = minor_f(0, 2, 3);
+    let (m2f, p2) = minor_f(0, 1, 3);
+    let (m3, p3) = minor_f(0, 1, 2);
+    // det of rows (x, y, z, w) expanded along w: -w0 M0 + w1 M1 - w2 M2 + w3 M3 (Shewchuk's sign)
+    let det = -wf[0] * m0 + wf[1] * m1 - wf[2] * m2f + wf[3] * m3;
+    let perm = wf[0] * p0 + wf[1] * p1 + wf[2] * p2 + wf[3] * p3;
+    let bound = 1e-14 * perm;
+    if det > bound {
+        return Sign::Negative;
+    }
+    if det < -bound {
+        return Sign::Positive;
+    }
+    let minor_i = |i: usize, j: usize, k: usize| -> i128 {
+        r[i][0] as i128 * m2(j, k, 1, 2) as i128 - r[i][1] as i128 * m2(j, k, 0, 2) as i128
+            + r[i][2] as i128 * m2(j, k, 0, 1) as i128
+    };
+    let det = -(w[0] as i128) * minor_i(1, 2, 3) + w[1] as i128 * minor_i(0, 2, 3) - w[2] as i128 * minor_i(0, 1, 3)
+        + w[3] as i128 * minor_i(0, 1, 2);
+    // det above is Shewchuk's insphere; ours is its opposite
+    Sign::of_i128(det).reversed()
+}
+
+/// [`insphere_sos`] for integer coordinates of magnitude at most [`INT_COORD_LIMIT`]: the same
+/// perturbation, so the same decisions as on the equal `f64` coordinates.
+pub fn insphere_sos_int(p: [[i32; 3]; 5], id: [u32; 5]) -> Sign {
+    let exact = insphere_int(p[0], p[1], p[2], p[3], p[4]);
+    if !exact.is_zero() {
+        return exact;
+    }
+    let s = lifted_sos(&id, |o| orient3d_int(p[o[0]], p[o[1]], p[o[2]], p[o[3]]));
+    if !s.is_zero() {
+        return s;
+    }
+    let f = p.map(|q| DVec3::new(q[0] as f64, q[1] as f64, q[2] as f64));
+    lifted_sos(&id, |o| orient3d_sos([f[o[0]], f[o[1]], f[o[2]], f[o[3]]], [id[o[0]], id[o[1]], id[o[2]], id[o[3]]]))
 }
 
 #[cfg(test)]
