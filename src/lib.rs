@@ -14,4 +14,5 @@ pub mod cli;
 pub mod core;
 pub mod io;
 pub mod mesh;
+pub mod mesh3d;
 pub mod quality;

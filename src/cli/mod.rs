@@ -3,6 +3,7 @@
 //! 2 bad usage.
 
 pub mod convert;
+pub mod delaunay;
 pub mod inspect;
 pub mod progress;
 
@@ -16,6 +17,7 @@ Examples:
   fepre inspect mesh.1.ele                 a tet mesh: also dihedral angles, radius-edge ratios, inverted tets
   fepre convert model.glb model.msh        any format fepre reads to any it writes, tags kept
   fepre convert mesh.mesh boundary.stl     a tet mesh's tagged boundary as a surface
+  fepre delaunay points.xyz -o dt.mesh     exact Delaunay tetrahedralization of a point set
 
 Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
 
@@ -36,6 +38,10 @@ pub enum Command {
     /// characteristic, genus, volume, self-intersections) and, for tet meshes, element quality.
     #[command(after_help = inspect::EXAMPLES)]
     Inspect(inspect::Args),
+    /// Delaunay tetrahedralization of a point set (exact, any degeneracy), optionally written
+    /// as a tet mesh.
+    #[command(after_help = delaunay::EXAMPLES)]
+    Delaunay(delaunay::Args),
     /// Convert a mesh between formats, chosen from the file extensions; tags are kept where the
     /// output format can hold them.
     #[command(after_help = convert::EXAMPLES)]
@@ -55,6 +61,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Inspect(a) => inspect::run(&a),
         Command::Convert(a) => convert::run(&a),
+        Command::Delaunay(a) => delaunay::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,3 @@
+//! Layer 4: volume meshing. Sees points, surfaces with tags and size fields, never CAD types.
+
+pub mod delaunay;
