@@ -1,3 +1,4 @@
 //! Layer 4: volume meshing. Sees points, surfaces with tags and size fields, never CAD types.
 
 pub mod delaunay;
+pub mod optimize;

@@ -1,0 +1,230 @@
+//! Vertex insertion, for bad tets that flips and smoothing cannot improve (typically slivers
+//! whose four vertices are fixed).
+//!
+//! A new vertex `p` goes at the circumcentre of the bad tet (or, failing that, its centroid).
+//! Its cavity starts from the tet containing `p`, found by a walk decided with exact
+//! [`orient3d`](crate::core::predicates::orient3d), and grows over unconstrained faces to the
+//! tets whose circumsphere contains `p` (exact [`insphere`](crate::core::predicates::insphere));
+//! then, while some cavity face does not see `p` strictly (exact), the tet beyond it joins the
+//! cavity. The cavity never crosses a constrained face, so `p` is interior to one region. The
+//! cavity is replaced by the tets joining its faces to `p`, `p` is smoothed in its new star, and
+//! the insertion is kept only if the least score of the new tets beats that of the cavity and
+//! the radius-edge bound holds; otherwise the old tets are put back and `p` is dropped.
+
+use crate::core::Sign;
+use crate::core::predicates::{insphere, orient3d};
+use crate::mesh::tet_mesh::TET_FACES;
+use crate::mesh3d::optimize::smooth::{MIN_GAIN, Smoother};
+use crate::mesh3d::optimize::work::{NONE, Work};
+use crate::quality::tetrahedron::{tet_circumradius, tet_radius_edge};
+use glam::DVec3;
+
+/// The most tets a cavity may hold.
+const MAX_CAVITY: usize = 48;
+/// The most steps of the point-location walk.
+const MAX_WALK: usize = 64;
+
+/// Scratch space for insertion, reused across calls.
+#[derive(Default)]
+pub(crate) struct Inserter {
+    cavity: Vec<u32>,
+    old: Vec<[u32; 4]>,
+    new: Vec<[u32; 4]>,
+    star: Vec<u32>,
+}
+
+/// Circumcentre of a tet (floating point; `None` if not finite).
+fn circumcentre(p: &[DVec3; 4]) -> Option<DVec3> {
+    let (a, b, c) = (p[1] - p[0], p[2] - p[0], p[3] - p[0]);
+    let det = a.dot(b.cross(c));
+    if det == 0.0 {
+        return None;
+    }
+    let num = b.cross(c) * a.length_squared() + c.cross(a) * b.length_squared() + a.cross(b) * c.length_squared();
+    let o = p[0] + num / (2.0 * det);
+    o.is_finite().then_some(o)
+}
+
+impl Inserter {
+    /// The live tet containing `p` (strictly inside or on its boundary), walking from `t`
+    /// without crossing constrained faces; `None` if the walk fails.
+    fn locate(&self, w: &Work, mut t: u32, p: DVec3) -> Option<u32> {
+        'walk: for _ in 0..MAX_WALK {
+            let tet = w.tets[t as usize];
+            let c = w.corners(&tet);
+            for (k, f) in TET_FACES.iter().enumerate() {
+                // p strictly beyond the outward face k
+                if orient3d(c[f[0]], c[f[1]], c[f[2]], p) == Sign::Positive {
+                    let n = w.nbr[t as usize][k];
+                    if n == NONE || w.constrained(t, k) {
+                        return None;
+                    }
+                    t = n >> 2;
+                    continue 'walk;
+                }
+            }
+            return Some(t);
+        }
+        None
+    }
+
+    /// Grows the cavity of `p` from `start`; false if it gets too large.
+    fn grow(&mut self, w: &mut Work, start: u32, p: DVec3) -> bool {
+        self.cavity.clear();
+        w.new_visit();
+        w.visit(start);
+        self.cavity.push(start);
+        let mut i = 0;
+        while i < self.cavity.len() {
+            let t = self.cavity[i];
+            i += 1;
+            for k in 0..4 {
+                let n = w.nbr[t as usize][k];
+                if n == NONE || w.constrained(t, k) || w.visited(n >> 2) {
+                    continue;
+                }
+                let [a, b, c, d] = w.corners(&w.tets[(n >> 2) as usize]);
+                if insphere(a, b, c, d, p) == Sign::Positive {
+                    w.visit(n >> 2);
+                    self.cavity.push(n >> 2);
+                    if self.cavity.len() > MAX_CAVITY {
+                        return false;
+                    }
+                }
+            }
+        }
+        // star-shape: every outer face must see p strictly
+        loop {
+            let mut grew = false;
+            let mut i = 0;
+            while i < self.cavity.len() {
+                let t = self.cavity[i];
+                i += 1;
+                let tet = w.tets[t as usize];
+                let c = w.corners(&tet);
+                for (k, f) in TET_FACES.iter().enumerate() {
+                    let n = w.nbr[t as usize][k];
+                    if n != NONE && w.visited(n >> 2) {
+                        continue;
+                    }
+                    // outward face: p must be strictly inside, i.e. Negative
+                    if orient3d(c[f[0]], c[f[1]], c[f[2]], p) == Sign::Negative {
+                        continue;
+                    }
+                    if n == NONE || w.constrained(t, k) {
+                        return false;
+                    }
+                    w.visit(n >> 2);
+                    self.cavity.push(n >> 2);
+                    grew = true;
+                    if self.cavity.len() > MAX_CAVITY {
+                        return false;
+                    }
+                }
+            }
+            if !grew {
+                return true;
+            }
+        }
+    }
+
+    /// Tries to insert a vertex for the bad live tet `t`; true if one was inserted (and kept).
+    pub(crate) fn try_insert(&mut self, w: &mut Work, sm: &mut Smoother, t: u32, max_re: f64) -> bool {
+        let c = w.corners(&w.tets[t as usize]);
+        let centroid = (c[0] + c[1] + c[2] + c[3]) * 0.25;
+        let candidates = [circumcentre(&c), Some(centroid)];
+        for p in candidates.into_iter().flatten() {
+            // a circumcentre far away is of no use
+            if p.distance(centroid) > 2.0 * tet_circumradius(&c) {
+                continue;
+            }
+            if self.insert_at(w, sm, t, p, max_re) {
+                return true;
+            }
+        }
+        false
+    }
+
+    fn insert_at(&mut self, w: &mut Work, sm: &mut Smoother, t: u32, p: DVec3, max_re: f64) -> bool {
+        let Some(start) = self.locate(w, t, p) else {
+            return false;
+        };
+        if !self.grow(w, start, p) {
+            return false;
+        }
+        let region = w.region[start as usize];
+        if self.cavity.iter().any(|&s| w.region[s as usize] != region) {
+            return false;
+        }
+        let old_min = self.cavity.iter().map(|&s| w.q[s as usize]).fold(f64::INFINITY, f64::min);
+        let mut old_re = 0.0f64;
+        self.old.clear();
+        for &s in &self.cavity {
+            let tet = w.tets[s as usize];
+            old_re = old_re.max(tet_radius_edge(&w.corners(&tet)));
+            self.old.push(tet);
+        }
+        let v = w.push_vertex(p);
+        self.new.clear();
+        w.new_visit();
+        for &s in &self.cavity {
+            w.visit(s);
+        }
+        for &s in &self.cavity {
+            let tet = w.tets[s as usize];
+            for (k, f) in TET_FACES.iter().enumerate() {
+                let n = w.nbr[s as usize][k];
+                if n != NONE && w.visited(n >> 2) {
+                    continue;
+                }
+                // the outward face (f0, f1, f2) sees v on its inner side: (f1, f0, f2, v)
+                self.new.push([tet[f[1]], tet[f[0]], tet[f[2]], v]);
+            }
+        }
+        let cavity = std::mem::take(&mut self.cavity);
+        let done = w.replace(&cavity, &self.new, region);
+        self.cavity = cavity;
+        if !done {
+            w.pop_vertex(v);
+            return false;
+        }
+        sm.smooth_new(w, v);
+        // judge the new star
+        let mut star = std::mem::take(&mut self.star);
+        let ok = w.star(v, &mut star) && {
+            let new_min = star.iter().map(|&s| w.q[s as usize]).fold(f64::INFINITY, f64::min);
+            let bound = max_re.max(old_re);
+            new_min > old_min + MIN_GAIN && star.iter().all(|&s| tet_radius_edge(&w.corners(&w.tets[s as usize])) <= bound)
+        };
+        if ok {
+            self.star = star;
+            return true;
+        }
+        // undo: the old tets fill the same cavity
+        let undone = w.replace(&star, &self.old, region);
+        self.star = star;
+        if undone {
+            w.v2t[v as usize] = NONE;
+            w.pop_vertex(v);
+        }
+        // if the undo failed (it cannot: the old tets were a valid filling), the insertion stays
+        !undone
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh3d::optimize::measure::Targets;
+
+    #[test]
+    fn circumcentre_is_equidistant() {
+        let p = [DVec3::new(0.1, 0.0, 0.0), DVec3::new(1.0, 0.2, 0.0), DVec3::new(0.0, 1.0, 0.3), DVec3::new(0.2, 0.1, 1.0)];
+        let o = circumcentre(&p).unwrap();
+        let r = o.distance(p[0]);
+        for q in &p[1..] {
+            assert!((o.distance(*q) - r).abs() < 1e-12);
+        }
+        let _ = Targets::new(15.0, 160.0);
+    }
+}

@@ -1,0 +1,205 @@
+//! The quality score the optimiser maximises, and its gradient with respect to one vertex.
+//!
+//! A tet's *score* combines its smallest and largest dihedral angles, each normalised by its
+//! target: `min(θ_min / θ_target_min, (180° − θ_max) / (180° − θ_target_max))`. A tet meets both
+//! targets exactly when its score is at least 1; the score is 0 for a flat tet. The angles are
+//! the judge's (`shared/tools/cgal_ref/tet_quality.h`): the interior dihedral angle at an edge is
+//! `180° − acos(n̂_k · n̂_l)` with `n_k`, `n_l` the outward normals of the two faces at the edge.
+//!
+//! The score is only ever evaluated on tets already known to be positively oriented (decided
+//! exactly with [`orient3d`](crate::core::predicates::orient3d) by the caller); it is a
+//! floating-point heuristic that ranks candidates, never a decision on validity.
+//!
+//! Gradients (used by smoothing) are of one dihedral angle with respect to one vertex. For the
+//! angle `θ` at edge `(p, q)` between the faces `F_r = (p, q, r)` and `F_s = (p, q, s)`, with
+//! `N_r` the outward (unnormalised) normal of `F_r` and `e = q − p`:
+//! - `∂θ/∂r = |e| N_r / |N_r|²` (moving `r` out of the tet opens the angle by the step over the
+//!   height of `r` above the edge, `|N_r| / |e|`);
+//! - `∂θ/∂q = −(t_r ∂θ/∂r + t_s ∂θ/∂s)` with `t_x = (x − p)·e / |e|²`, which follows from the
+//!   invariance of `θ` under translations and rotations and from `∂θ/∂q ⊥ e`; `p` likewise with
+//!   the roles of `p` and `q` exchanged.
+
+use crate::mesh::tet_mesh::TET_FACES;
+use crate::quality::tetrahedron::TET_EDGES;
+use glam::DVec3;
+
+/// The faces at each edge of [`TET_EDGES`]: the faces opposite the edge's two other vertices.
+pub(crate) const EDGE_FACES: [[usize; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], [0, 2], [0, 1]];
+
+const DEG: f64 = 180.0 / std::f64::consts::PI;
+
+/// The two dihedral targets, as the reciprocals the score multiplies by.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub(crate) struct Targets {
+    /// `1 / θ_target_min` (degrees⁻¹).
+    pub inv_min: f64,
+    /// `1 / (180° − θ_target_max)` (degrees⁻¹).
+    pub inv_max: f64,
+}
+
+impl Targets {
+    /// Targets for a smallest angle `min_deg` and a largest angle `max_deg` (degrees), both
+    /// clamped into `(0°, 180°)`.
+    pub(crate) fn new(min_deg: f64, max_deg: f64) -> Targets {
+        let lo = if min_deg.is_finite() { min_deg.clamp(1e-3, 179.0) } else { 15.0 };
+        let hi = if max_deg.is_finite() { max_deg.clamp(1.0, 180.0 - 1e-3) } else { 160.0 };
+        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi) }
+    }
+}
+
+/// Outward normals (unnormalised) of a positively oriented tet: face `k` opposite vertex `k`.
+#[inline]
+pub(crate) fn normals(p: &[DVec3; 4]) -> [DVec3; 4] {
+    TET_FACES.map(|[a, b, c]| (p[b] - p[a]).cross(p[c] - p[a]))
+}
+
+/// The cosines `n̂_k · n̂_l` at the six edges ([`TET_EDGES`] order); the dihedral angle is
+/// `180° − acos(c)`, so the smallest angle has the smallest cosine. `None` if a face is
+/// degenerate in floating point.
+#[inline]
+pub(crate) fn cosines(n: &[DVec3; 4]) -> Option<[f64; 6]> {
+    let l2 = n.map(|v| v.length_squared());
+    if l2.iter().any(|&x| !(x > 0.0) || !x.is_finite()) {
+        return None;
+    }
+    let inv = l2.map(|x| 1.0 / x.sqrt());
+    Some(EDGE_FACES.map(|[k, l]| (n[k].dot(n[l]) * inv[k] * inv[l]).clamp(-1.0, 1.0)))
+}
+
+/// The dihedral angle in degrees from the cosine of the outward normals.
+#[inline]
+pub(crate) fn angle(c: f64) -> f64 {
+    180.0 - c.acos() * DEG
+}
+
+/// The score of a positively oriented tet (see the module documentation): at least 1 when both
+/// targets are met, 0 for a tet degenerate in floating point.
+#[inline]
+pub(crate) fn score(p: &[DVec3; 4], tg: &Targets) -> f64 {
+    let Some(c) = cosines(&normals(p)) else {
+        return 0.0;
+    };
+    let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+    (angle(lo) * tg.inv_min).min((180.0 - angle(hi)) * tg.inv_max).max(0.0)
+}
+
+/// One term of a tet's score: the normalised small-angle or large-angle measure of one edge,
+/// with its gradient with respect to the moving vertex.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Term {
+    /// The value (the tet's score is the least of its terms).
+    pub value: f64,
+    /// Its gradient with respect to the moving vertex (score units per length).
+    pub grad: DVec3,
+}
+
+/// Calls `f` with every term of the tet `p` below `limit` and its gradient with respect to
+/// vertex `m`: each edge gives `θ / θ_target_min` and `(180° − θ) / (180° − θ_target_max)`.
+/// Nothing for a tet degenerate in floating point.
+pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, mut f: impl FnMut(Term)) {
+    let n = normals(p);
+    let Some(c) = cosines(&n) else { return };
+    for e in 0..6 {
+        let th = angle(c[e]);
+        let small = th * tg.inv_min;
+        let large = (180.0 - th) * tg.inv_max;
+        if small >= limit && large >= limit {
+            continue;
+        }
+        let g = angle_gradient(p, &n, e, m) * DEG;
+        if small < limit {
+            f(Term { value: small, grad: g * tg.inv_min });
+        }
+        if large < limit {
+            f(Term { value: large, grad: -g * tg.inv_max });
+        }
+    }
+}
+
+/// The gradient (radians per length) of the dihedral angle at edge `e` ([`TET_EDGES`] order)
+/// with respect to the position of vertex `m`, given the outward normals `n`.
+pub(crate) fn angle_gradient(p: &[DVec3; 4], n: &[DVec3; 4], e: usize, m: usize) -> DVec3 {
+    let [i, j] = TET_EDGES[e];
+    let [fk, fl] = EDGE_FACES[e];
+    // the face opposite vertex `fl` contains vertex `fk`, and vice versa
+    let edge = p[j] - p[i];
+    let len = edge.length();
+    let g_of = |face: usize| {
+        let nn = n[face].length_squared();
+        if nn > 0.0 { n[face] * (len / nn) } else { DVec3::ZERO }
+    };
+    let gk = g_of(fl);
+    let gl = g_of(fk);
+    if m == fk {
+        return gk;
+    }
+    if m == fl {
+        return gl;
+    }
+    let l2 = edge.length_squared();
+    if l2 == 0.0 {
+        return DVec3::ZERO;
+    }
+    // m is an endpoint; w the other one
+    let w = if m == i { j } else { i };
+    let axis = p[m] - p[w];
+    let tk = (p[fk] - p[w]).dot(axis) / l2;
+    let tl = (p[fl] - p[w]).dot(axis) / l2;
+    -(gk * tk + gl * tl)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::quality::tetrahedron::{tet_dihedral_angles, tet_min_max_dihedral};
+
+    fn tet() -> [DVec3; 4] {
+        [DVec3::new(0.1, -0.2, 0.05), DVec3::new(1.2, 0.1, -0.1), DVec3::new(0.3, 0.9, 0.2), DVec3::new(0.4, 0.35, 1.1)]
+    }
+
+    #[test]
+    fn angles_match_the_judge() {
+        let p = tet();
+        let c = cosines(&normals(&p)).unwrap();
+        let a = tet_dihedral_angles(&p).unwrap();
+        for e in 0..6 {
+            assert!((angle(c[e]) - a[e]).abs() < 1e-12, "edge {e}: {} vs {}", angle(c[e]), a[e]);
+        }
+        let tg = Targets::new(15.0, 160.0);
+        let (lo, hi) = tet_min_max_dihedral(&p);
+        let s = score(&p, &tg);
+        assert!((s - (lo / 15.0).min((180.0 - hi) / 20.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn gradients_match_finite_differences() {
+        let p = tet();
+        let n = normals(&p);
+        for e in 0..6 {
+            for m in 0..4 {
+                let g = angle_gradient(&p, &n, e, m);
+                for axis in 0..3 {
+                    let h = 1e-6;
+                    let mut a = p;
+                    let mut b = p;
+                    a[m][axis] += h;
+                    b[m][axis] -= h;
+                    let fa = tet_dihedral_angles(&a).unwrap()[e].to_radians();
+                    let fb = tet_dihedral_angles(&b).unwrap()[e].to_radians();
+                    let fd = (fa - fb) / (2.0 * h);
+                    assert!(
+                        (fd - g[axis]).abs() < 1e-5 * (1.0 + fd.abs()),
+                        "edge {e} vertex {m} axis {axis}: {fd} vs {}",
+                        g[axis]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn flat_tets_score_zero() {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
+        assert_eq!(score(&p, &Targets::new(15.0, 160.0)), 0.0);
+    }
+}

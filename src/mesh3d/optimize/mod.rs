@@ -1,0 +1,357 @@
+//! Tetrahedral mesh optimisation: raises the smallest dihedral angles and lowers the largest of
+//! a valid tet mesh, however it was built, while keeping its boundary exactly.
+//!
+//! Stage: layer 4 (mesh3d), the last step of volume meshing. Input: a [`TetMesh`] that passes
+//! [`TetMesh::validate`]. Output: the same mesh improved in place, and an [`OptimizeReport`].
+//!
+//! # What is kept
+//! - Every tet positively oriented: each local change is checked with the exact
+//!   [`orient3d`](crate::core::predicates::orient3d) before it is made.
+//! - The boundary: *constrained* faces (hull faces, the mesh's `boundary` triangles and every
+//!   face between tets of different regions) are never removed, and their vertices never move.
+//!   `boundary` and `boundary_tags` are left untouched and stay faces of the mesh.
+//! - Region tags: changes only replace tets of one region by tets of the same region.
+//! - The vertices: existing vertices keep their indices; vertices on no constrained face may
+//!   move. Vertex insertion (optional, [`OptimizeOptions::insert`]) appends new vertices at the
+//!   end of `vertices`, strictly inside one region; no vertex is removed.
+//! - The volume: every change replaces a set of tets by another filling the same polyhedron,
+//!   so the volume changes by rounding only.
+//!
+//! # Method
+//! After Klingner and Shewchuk ("Aggressive tetrahedral mesh improvement", 2007), with a
+//! score per tet that is at least 1 when both dihedral targets are met
+//! ([`measure`]). Passes go over the tets below target, worst first (ties by slot), and for each
+//! try, keeping the first that raises the least score of the tets it changes:
+//! 1. edge removal for each of its six edges (3-2 and 4-4 flips and their generalisation to
+//!    rings of up to [`edge_removal::MAX_RING`] tets, best ring triangulation by dynamic
+//!    programming);
+//! 2. the 2-3 flip of each of its four faces;
+//! 3. smoothing of each of its free vertices (non-smooth steepest ascent of the star's least
+//!    score);
+//! 4. vertex insertion at its circumcentre or centroid, with the new vertex smoothed.
+//!
+//! No change makes a tet's radius-edge ratio exceed [`OptimizeOptions::max_radius_edge`] unless
+//! one of the tets it replaces already did by more. Passes stop when one changes nothing, after
+//! [`OptimizeOptions::max_passes`], or when the time budget is spent.
+//!
+//! The result is deterministic for a given input and options (the work is serial; only the
+//! initial scores and the final summary use threads, and they do not depend on the thread
+//! count), except that a [`OptimizeOptions::time_budget`] that runs out makes it depend on
+//! the machine's speed.
+//!
+//! Adjacency (face neighbours, from sorted face records) is built on entry and dropped on exit;
+//! scratch buffers are reused, so the hot loops do not allocate per tet.
+
+mod edge_removal;
+mod face_removal;
+mod insert;
+mod measure;
+mod smooth;
+mod work;
+
+#[cfg(test)]
+mod tests;
+
+use crate::mesh::{MeshError, TetMesh};
+use crate::quality::tetrahedron::{TET_EDGES, tet_min_max_dihedral, tet_radius_edge};
+use edge_removal::EdgeRemoval;
+use face_removal::try_flip23;
+use insert::Inserter;
+use measure::{Targets, cosines, normals};
+use rayon::prelude::*;
+use serde::Serialize;
+use smooth::Smoother;
+use std::time::{Duration, Instant};
+use work::Work;
+
+/// Options of [`optimize`].
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct OptimizeOptions {
+    /// Target smallest dihedral angle (degrees): tets below it are worked on.
+    pub min_dihedral_deg: f64,
+    /// Target largest dihedral angle (degrees): tets above it are worked on.
+    pub max_dihedral_deg: f64,
+    /// Radius-edge bound: no change creates a tet above it, unless a tet it replaces was
+    /// already worse.
+    pub max_radius_edge: f64,
+    /// The most passes over the bad tets.
+    pub max_passes: usize,
+    /// Stop starting new work after this long (`None`: no limit). A budget that runs out makes
+    /// the result depend on the machine's speed.
+    pub time_budget: Option<Duration>,
+    /// Allow smoothing of free vertices.
+    pub smooth: bool,
+    /// Allow inserting vertices (appended to `vertices`, strictly inside a region).
+    pub insert: bool,
+}
+
+impl Default for OptimizeOptions {
+    fn default() -> Self {
+        OptimizeOptions {
+            min_dihedral_deg: 15.0,
+            max_dihedral_deg: 160.0,
+            max_radius_edge: 2.0,
+            max_passes: 8,
+            time_budget: None,
+            smooth: true,
+            insert: true,
+        }
+    }
+}
+
+impl OptimizeOptions {
+    /// Sets [`OptimizeOptions::min_dihedral_deg`].
+    pub fn with_min_dihedral(mut self, deg: f64) -> Self {
+        self.min_dihedral_deg = deg;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::max_dihedral_deg`].
+    pub fn with_max_dihedral(mut self, deg: f64) -> Self {
+        self.max_dihedral_deg = deg;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::max_radius_edge`].
+    pub fn with_max_radius_edge(mut self, ratio: f64) -> Self {
+        self.max_radius_edge = ratio;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::max_passes`].
+    pub fn with_max_passes(mut self, passes: usize) -> Self {
+        self.max_passes = passes;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::time_budget`].
+    pub fn with_time_budget(mut self, budget: Option<Duration>) -> Self {
+        self.time_budget = budget;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::smooth`].
+    pub fn with_smoothing(mut self, smooth: bool) -> Self {
+        self.smooth = smooth;
+        self
+    }
+
+    /// Sets [`OptimizeOptions::insert`].
+    pub fn with_insertion(mut self, insert: bool) -> Self {
+        self.insert = insert;
+        self
+    }
+}
+
+/// What [`optimize`] did.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct OptimizeReport {
+    /// Tets before.
+    pub tets_before: usize,
+    /// Tets after.
+    pub tets_after: usize,
+    /// Smallest dihedral angle before (degrees, the judge's definition).
+    pub min_dihedral_before: f64,
+    /// Largest dihedral angle before (degrees).
+    pub max_dihedral_before: f64,
+    /// Smallest dihedral angle after (degrees).
+    pub min_dihedral_after: f64,
+    /// Largest dihedral angle after (degrees).
+    pub max_dihedral_after: f64,
+    /// Largest radius-edge ratio before.
+    pub max_radius_edge_before: f64,
+    /// Largest radius-edge ratio after.
+    pub max_radius_edge_after: f64,
+    /// Tets missing a target before.
+    pub bad_before: usize,
+    /// Tets missing a target after.
+    pub bad_after: usize,
+    /// 2-3 flips.
+    pub flips23: usize,
+    /// 3-2 flips (edge removal with three tets around the edge).
+    pub flips32: usize,
+    /// 4-4 flips (edge removal with four tets around the edge).
+    pub flips44: usize,
+    /// Edge removals with five or more tets around the edge.
+    pub edge_removals: usize,
+    /// Vertex moves by smoothing.
+    pub smoothing_moves: usize,
+    /// Vertices inserted (appended to `vertices`).
+    pub insertions: usize,
+    /// Passes made.
+    pub passes: usize,
+    /// Wall-clock seconds, adjacency and summaries included.
+    pub seconds: f64,
+}
+
+/// Why [`optimize`] refused a mesh.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum OptimizeError {
+    /// The input mesh is invalid (what [`TetMesh::validate`] would report).
+    #[error("cannot optimise an invalid mesh: {0}")]
+    InvalidMesh(#[from] MeshError),
+    /// The mesh has more tets than the optimiser's adjacency can address.
+    #[error("the mesh has {tets} tetrahedra; the optimiser handles at most {max}")]
+    TooLarge {
+        /// Tets in the mesh.
+        tets: usize,
+        /// The most the optimiser handles.
+        max: usize,
+    },
+}
+
+/// Whole-mesh extremes in the judge's definitions.
+fn extremes(mesh: &TetMesh) -> (f64, f64, f64) {
+    mesh.tets
+        .par_iter()
+        .map(|t| {
+            let p = t.map(|i| mesh.vertices[i as usize]);
+            let (lo, hi) = tet_min_max_dihedral(&p);
+            (lo, hi, tet_radius_edge(&p))
+        })
+        .reduce(|| (180.0, 0.0, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1), a.2.max(b.2)))
+}
+
+/// The optimiser's state and scratch.
+struct Optimizer<'a> {
+    w: Work,
+    opts: &'a OptimizeOptions,
+    er: EdgeRemoval,
+    sm: Smoother,
+    ins: Inserter,
+    report: OptimizeReport,
+}
+
+impl Optimizer<'_> {
+    /// The edges of live tet `t`, worst dihedral angle first (by its score term).
+    fn edges_worst_first(&self, t: u32) -> [usize; 6] {
+        let p = self.w.corners(&self.w.tets[t as usize]);
+        let mut order = [0, 1, 2, 3, 4, 5];
+        if let Some(c) = cosines(&normals(&p)) {
+            let tg = &self.w.tg;
+            let bad = |e: usize| {
+                let th = measure::angle(c[e]);
+                (th * tg.inv_min).min((180.0 - th) * tg.inv_max)
+            };
+            let key = [0, 1, 2, 3, 4, 5].map(bad);
+            order.sort_by(|&a, &b| key[a].total_cmp(&key[b]));
+        }
+        order
+    }
+
+    /// Works on the bad live tet `t`; true if anything changed.
+    fn improve(&mut self, t: u32, allow_insert: bool) -> bool {
+        let max_re = self.opts.max_radius_edge;
+        let tet = self.w.tets[t as usize];
+        for e in self.edges_worst_first(t) {
+            let [i, j] = TET_EDGES[e];
+            if let Some(n) = self.er.try_remove(&mut self.w, t, tet[i], tet[j], max_re) {
+                match n {
+                    3 => self.report.flips32 += 1,
+                    4 => self.report.flips44 += 1,
+                    _ => self.report.edge_removals += 1,
+                }
+                return true;
+            }
+        }
+        for k in 0..4 {
+            if try_flip23(&mut self.w, t, k, max_re) {
+                self.report.flips23 += 1;
+                return true;
+            }
+        }
+        let mut changed = false;
+        if self.opts.smooth {
+            for v in tet {
+                if self.sm.try_smooth(&mut self.w, v, max_re) {
+                    self.report.smoothing_moves += 1;
+                    changed = true;
+                    if self.w.q[t as usize] >= 1.0 {
+                        return true;
+                    }
+                }
+            }
+        }
+        if !changed && allow_insert && self.ins.try_insert(&mut self.w, &mut self.sm, t, max_re) {
+            self.report.insertions += 1;
+            return true;
+        }
+        changed
+    }
+
+    /// The live tets below target, worst first.
+    fn bad_tets(&self) -> Vec<(f64, u32)> {
+        let mut bad: Vec<(f64, u32)> =
+            self.w.live_slots().filter(|&t| self.w.q[t as usize] < 1.0).map(|t| (self.w.q[t as usize], t)).collect();
+        bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        bad
+    }
+
+    fn run(&mut self, start: Instant) {
+        let out_of_time = |opts: &OptimizeOptions| opts.time_budget.is_some_and(|b| start.elapsed() >= b);
+        let mut insert_now = false;
+        for _ in 0..self.opts.max_passes {
+            let bad = self.bad_tets();
+            if bad.is_empty() || out_of_time(self.opts) {
+                break;
+            }
+            self.report.passes += 1;
+            let mut changed = false;
+            for &(_, t) in &bad {
+                if !self.w.alive(t) || self.w.q[t as usize] >= 1.0 {
+                    continue;
+                }
+                if out_of_time(self.opts) {
+                    break;
+                }
+                changed |= self.improve(t, insert_now);
+            }
+            if !changed {
+                if insert_now || !self.opts.insert {
+                    break;
+                }
+                insert_now = true;
+            }
+        }
+    }
+}
+
+/// Improves `mesh` in place: see the [module documentation](self) for what is kept and how.
+///
+/// # Errors
+/// [`OptimizeError::InvalidMesh`] if the mesh fails the checks of [`TetMesh::validate`] (the
+/// mesh is then left as it was), [`OptimizeError::TooLarge`] beyond 2³⁰ − 1 tets.
+pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeReport, OptimizeError> {
+    let start = Instant::now();
+    if mesh.tets.len() > work::MAX_TETS {
+        return Err(OptimizeError::TooLarge { tets: mesh.tets.len(), max: work::MAX_TETS });
+    }
+    let tg = Targets::new(opts.min_dihedral_deg, opts.max_dihedral_deg);
+    let w = Work::build(mesh, tg)?;
+    let (lo, hi, re) = extremes(mesh);
+    let bad_before = w.q.iter().filter(|&&q| q < 1.0).count();
+    let report = OptimizeReport {
+        tets_before: mesh.tets.len(),
+        min_dihedral_before: lo,
+        max_dihedral_before: hi,
+        max_radius_edge_before: re,
+        bad_before,
+        ..Default::default()
+    };
+    let nv = mesh.vertices.len();
+    let mut o = Optimizer { w, opts, er: EdgeRemoval::default(), sm: Smoother::default(), ins: Inserter::default(), report };
+    o.run(start);
+    let mut report = o.report;
+    report.bad_after = o.w.live_slots().filter(|&t| o.w.q[t as usize] < 1.0).count();
+    o.w.write_back(mesh);
+    debug_assert_eq!(mesh.vertices.len(), nv + report.insertions);
+    let (lo, hi, re) = extremes(mesh);
+    report.tets_after = mesh.tets.len();
+    report.min_dihedral_after = lo;
+    report.max_dihedral_after = hi;
+    report.max_radius_edge_after = re;
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}

@@ -1,0 +1,260 @@
+//! Vertex smoothing by non-smooth optimisation: a free vertex moves to raise the least score of
+//! the tets around it, after Freitag, Jones and Plassmann's method as Klingner and Shewchuk use
+//! it ("Aggressive tetrahedral mesh improvement", 2007).
+//!
+//! The objective `f(x) = min` over the star's tets and their edges of the two normalised angle
+//! terms of [`measure`](crate::mesh3d::optimize::measure) is maximised from the current
+//! position:
+//! 1. the *active* terms are those within a small margin of `f`; the search direction `d` is the
+//!    point of least norm in the convex hull of their gradients (Gilbert's algorithm), the
+//!    steepest ascent direction of their minimum;
+//! 2. the first step goes where the linear model of an inactive term would meet that of the
+//!    active ones, capped to a fraction of the star's size; it is halved until the least score
+//!    rises and every tet of the star stays positively oriented, decided exactly with
+//!    [`orient3d`](crate::core::predicates::orient3d) at the very position that is kept;
+//! 3. this repeats while the score rises.
+//!
+//! Only vertices on no constrained face move (a constrained face's vertices are fixed), so the
+//! boundary, the region interfaces and the union of the star (hence the volume, up to rounding)
+//! stay as they are.
+
+use crate::core::Sign;
+use crate::core::predicates::orient3d;
+use crate::mesh3d::optimize::measure::{Term, score, terms_below};
+use crate::mesh3d::optimize::work::{Work, local};
+use crate::quality::tetrahedron::tet_radius_edge;
+use glam::DVec3;
+
+/// Terms within this much of the least are active.
+const ACTIVE: f64 = 1e-3;
+/// Terms within this much of the least are considered for the step prediction.
+const WINDOW: f64 = 0.6;
+/// Iterations of steepest ascent per call.
+const ITERATIONS: usize = 12;
+/// Halvings of the step in the line search.
+const HALVINGS: usize = 10;
+/// Least improvement of the score that counts.
+pub(crate) const MIN_GAIN: f64 = 1e-6;
+
+/// Scratch space for smoothing, reused across calls.
+#[derive(Default)]
+pub(crate) struct Smoother {
+    star: Vec<u32>,
+    at: Vec<u8>,
+    terms: Vec<Term>,
+    grads: Vec<DVec3>,
+}
+
+/// The point of least norm in the convex hull of `g` (Gilbert's algorithm, approximately).
+fn min_norm(g: &[DVec3]) -> DVec3 {
+    let Some(mut x) = g.iter().copied().min_by(|a, b| a.length_squared().total_cmp(&b.length_squared())) else {
+        return DVec3::ZERO;
+    };
+    for _ in 0..64 {
+        let xx = x.length_squared();
+        if xx == 0.0 {
+            break;
+        }
+        let (gi, gx) = g.iter().map(|&gi| (gi, gi.dot(x))).min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((x, xx));
+        if xx - gx <= 1e-10 * xx {
+            break;
+        }
+        let diff = gi - x;
+        let dd = diff.length_squared();
+        if dd == 0.0 {
+            break;
+        }
+        x += diff * ((xx - gx) / dd).clamp(0.0, 1.0);
+    }
+    x
+}
+
+impl Smoother {
+    /// The tet of star entry `s` with vertex `v` at `x`.
+    #[inline]
+    fn corners_at(&self, w: &Work, s: usize, x: DVec3) -> [DVec3; 4] {
+        let mut p = w.corners(&w.tets[self.star[s] as usize]);
+        p[self.at[s] as usize] = x;
+        p
+    }
+
+    /// The least score of the star with the vertex at `x`, or `None` if a tet would not be
+    /// positively oriented (exact).
+    fn evaluate(&self, w: &Work, x: DVec3, beat: f64) -> Option<f64> {
+        let mut f = f64::INFINITY;
+        for s in 0..self.star.len() {
+            let [a, b, c, d] = self.corners_at(w, s, x);
+            if orient3d(a, b, c, d) != Sign::Positive {
+                return None;
+            }
+            f = f.min(score(&[a, b, c, d], &w.tg));
+            if f <= beat {
+                return Some(f);
+            }
+        }
+        Some(f)
+    }
+
+    /// Loads the star of `v`; false if `v` is fixed or has no star.
+    fn load(&mut self, w: &mut Work, v: u32) -> bool {
+        if w.fixed[v as usize] || !w.star(v, &mut self.star) {
+            return false;
+        }
+        self.at.clear();
+        for &t in &self.star {
+            self.at.push(local(&w.tets[t as usize], v).unwrap_or(0) as u8);
+        }
+        true
+    }
+
+    /// Moves free vertex `v` to raise the least score of its star; true if it moved. New tets
+    /// keep radius-edge ratios within `max(max_re, the star's worst before)`.
+    pub(crate) fn try_smooth(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {
+        if !self.load(w, v) {
+            return false;
+        }
+        let x0 = w.pts[v as usize];
+        let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        let Some((x, f)) = self.optimise(w, x0, f0) else {
+            return false;
+        };
+        if f <= f0 + MIN_GAIN {
+            return false;
+        }
+        let mut old_re = 0.0f64;
+        for s in 0..self.star.len() {
+            old_re = old_re.max(tet_radius_edge(&self.corners_at(w, s, x0)));
+        }
+        let bound = max_re.max(old_re);
+        for s in 0..self.star.len() {
+            if tet_radius_edge(&self.corners_at(w, s, x)) > bound {
+                return false;
+            }
+        }
+        w.pts[v as usize] = x;
+        for &t in &self.star {
+            w.q[t as usize] = w.score_of(&w.tets[t as usize]);
+        }
+        true
+    }
+
+    /// Optimises the position of the star's vertex from `x0` (least score `f0`): the best
+    /// position found and its least score, every star tet positive there.
+    fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64) -> Option<(DVec3, f64)> {
+        // a length scale: the mean distance to the star's other vertices
+        let mut scale = 0.0;
+        for s in 0..self.star.len() {
+            let p = self.corners_at(w, s, x0);
+            scale += (0..4).map(|i| p[i].distance(x0)).sum::<f64>() / 3.0;
+        }
+        scale /= self.star.len() as f64;
+        let (mut x, mut f) = (x0, f0);
+        for _ in 0..ITERATIONS {
+            self.terms.clear();
+            for s in 0..self.star.len() {
+                let p = self.corners_at(w, s, x);
+                let terms = &mut self.terms;
+                terms_below(&p, self.at[s] as usize, &w.tg, f + WINDOW, |t| terms.push(t));
+            }
+            self.grads.clear();
+            for t in &self.terms {
+                if t.value <= f + ACTIVE {
+                    self.grads.push(t.grad);
+                }
+            }
+            let d = min_norm(&self.grads);
+            let dd = d.length_squared();
+            if !(dd > 0.0) || !dd.is_finite() {
+                break;
+            }
+            let mut alpha = 0.2 * scale / dd.sqrt();
+            for t in &self.terms {
+                let gd = t.grad.dot(d);
+                if t.value > f + ACTIVE && gd < dd {
+                    alpha = alpha.min((t.value - f) / (dd - gd));
+                }
+            }
+            let mut moved = false;
+            for _ in 0..HALVINGS {
+                let y = x + d * alpha;
+                if let Some(fy) = self.evaluate(w, y, f + MIN_GAIN) {
+                    if fy > f + MIN_GAIN {
+                        x = y;
+                        f = fy;
+                        moved = true;
+                        break;
+                    }
+                }
+                alpha *= 0.5;
+            }
+            if !moved {
+                break;
+            }
+        }
+        (f > f0).then_some((x, f))
+    }
+
+    /// Optimises the position of a vertex `v` just inserted (its star in place), as
+    /// [`Smoother::try_smooth`] without the radius-edge comparison (the caller judges the
+    /// result); true if it moved.
+    pub(crate) fn smooth_new(&mut self, w: &mut Work, v: u32) -> bool {
+        if !self.load(w, v) {
+            return false;
+        }
+        let x0 = w.pts[v as usize];
+        let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        let Some((x, f)) = self.optimise(w, x0, f0) else {
+            return false;
+        };
+        if f <= f0 + MIN_GAIN {
+            return false;
+        }
+        w.pts[v as usize] = x;
+        for &t in &self.star {
+            w.q[t as usize] = w.score_of(&w.tets[t as usize]);
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::kuhn_cube;
+    use crate::mesh3d::optimize::measure::Targets;
+
+    #[test]
+    fn min_norm_point() {
+        let d = min_norm(&[DVec3::new(1.0, 1.0, 0.0), DVec3::new(1.0, -1.0, 0.0)]);
+        assert!((d - DVec3::X).length() < 1e-9, "{d}");
+        let d = min_norm(&[DVec3::X, -DVec3::X]);
+        assert!(d.length() < 1e-9);
+        assert_eq!(min_norm(&[]), DVec3::ZERO);
+    }
+
+    #[test]
+    fn smoothing_a_displaced_vertex() {
+        // the centre of a 2×2×2 Kuhn cube pushed towards a corner: smoothing pulls it back
+        let mut m = kuhn_cube(2, 0.0, 1);
+        let centre = m.vertices.iter().position(|p| (*p - DVec3::splat(0.5)).length() < 1e-12).unwrap() as u32;
+        m.vertices[centre as usize] = DVec3::new(0.3, 0.32, 0.35);
+        assert_eq!(m.validate(), Ok(()));
+        let v0 = m.volume();
+        let mut w = Work::build(&m, Targets::new(30.0, 130.0)).unwrap();
+        let mut star = Vec::new();
+        w.star(centre, &mut star);
+        assert_eq!(star.len(), 24);
+        let before = star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        let mut sm = Smoother::default();
+        assert!(sm.try_smooth(&mut w, centre, 2.0));
+        let after = star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        assert!(after > before + 0.1, "{before} -> {after}");
+        let mut out = m.clone();
+        w.write_back(&mut out);
+        assert_eq!(out.validate(), Ok(()));
+        assert!((out.volume() - v0).abs() < 1e-14);
+        // corner vertices are fixed
+        let mut w = Work::build(&m, Targets::new(30.0, 130.0)).unwrap();
+        assert!(!sm.try_smooth(&mut w, 0, 2.0));
+    }
+}

@@ -1,0 +1,1 @@
+//! Tests of the whole optimiser on small meshes.

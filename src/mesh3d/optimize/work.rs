@@ -1,0 +1,555 @@
+//! The optimiser's working mesh: tets with face adjacency, constrained faces, cached scores,
+//! and one transactional operation, [`Work::replace`], through which every topological change
+//! goes.
+//!
+//! Adjacency is built once from sorted face records. A face is *constrained* when it is a hull
+//! face (one tet), a `boundary` triangle of the input, or lies between tets of different
+//! regions; constrained faces are never removed, and their vertices (*fixed* vertices) never
+//! move. Dead tet slots are kept on a free list and reused, so slot numbers are deterministic.
+
+use crate::core::predicates::orient3d;
+use crate::core::{RegionId, Sign};
+use crate::mesh::tet_mesh::{TET_FACES, sorted3};
+use crate::mesh::tri_surface::{check_finite, check_simplex};
+use crate::mesh::{Element, MeshError, TetMesh};
+use crate::mesh3d::optimize::measure::{Targets, score};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// No tet (a hull face's neighbour, a dead slot).
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// The most tets the working mesh can hold (neighbour codes pack `tet << 2 | face`).
+pub(crate) const MAX_TETS: usize = (u32::MAX >> 2) as usize;
+
+/// The working mesh.
+pub(crate) struct Work {
+    /// Vertex positions (inserted vertices appended).
+    pub pts: Vec<DVec3>,
+    /// Tets; a dead slot holds `[NONE; 4]`.
+    pub tets: Vec<[u32; 4]>,
+    /// Neighbour across face `k` (opposite vertex `k`) as `tet << 2 | face`, or [`NONE`].
+    pub nbr: Vec<[u32; 4]>,
+    /// Bit `k` set: face `k` is constrained.
+    pub cons: Vec<u8>,
+    /// Region of each tet.
+    pub region: Vec<RegionId>,
+    /// Cached score of each live tet.
+    pub q: Vec<f64>,
+    /// Dead slots, reused last-in first-out.
+    free: Vec<u32>,
+    /// One live tet at each vertex.
+    pub v2t: Vec<u32>,
+    /// Vertices of constrained faces: they never move.
+    pub fixed: Vec<bool>,
+    /// Visit marks per tet slot, compared with `stamp`.
+    mark: Vec<u32>,
+    stamp: u32,
+    /// The score targets.
+    pub tg: Targets,
+    // scratch for `replace`
+    outer: Vec<FaceRec>,
+    inner: Vec<FaceRec>,
+    slots: Vec<u32>,
+    stack: Vec<u32>,
+}
+
+/// A face in `replace`: sorted vertices, parity of the outward orientation relative to the
+/// sorted order, and where it leads (a neighbour code, or a new tet's `index << 2 | face`).
+#[derive(Copy, Clone, Debug)]
+struct FaceRec {
+    key: [u32; 3],
+    even: bool,
+    link: u32,
+    constrained: bool,
+}
+
+/// The permutation parity of four distinct local indices: true if even.
+#[inline]
+pub(crate) fn even_perm(p: [usize; 4]) -> bool {
+    let mut inv = 0;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            inv += usize::from(p[i] > p[j]);
+        }
+    }
+    inv % 2 == 0
+}
+
+/// Position of `v` in `t`, if any.
+#[inline]
+pub(crate) fn local(t: &[u32; 4], v: u32) -> Option<usize> {
+    t.iter().position(|&x| x == v)
+}
+
+impl Work {
+    /// Builds the working mesh, checking what the optimiser relies on: array lengths, finite
+    /// coordinates, indices, exact positive orientation of every tet, at most two tets per face
+    /// and from opposite sides, and every boundary triangle a face.
+    ///
+    /// # Errors
+    /// The first violation, as [`MeshError`] (the same variants as [`TetMesh::validate`]).
+    pub(crate) fn build(mesh: &TetMesh, tg: Targets) -> Result<Work, MeshError> {
+        let nt = mesh.tets.len();
+        if mesh.region_tags.len() != nt {
+            return Err(MeshError::LengthMismatch { what: "region_tags", found: mesh.region_tags.len(), expected: nt });
+        }
+        if mesh.boundary_tags.len() != mesh.boundary.len() {
+            return Err(MeshError::LengthMismatch {
+                what: "boundary_tags",
+                found: mesh.boundary_tags.len(),
+                expected: mesh.boundary.len(),
+            });
+        }
+        check_finite(&mesh.vertices)?;
+        let nv = mesh.vertices.len();
+        for (t, tet) in mesh.tets.iter().enumerate() {
+            check_simplex(Element::Tet(t), tet, nv)?;
+        }
+        for (t, tri) in mesh.boundary.iter().enumerate() {
+            check_simplex(Element::BoundaryTriangle(t), tri, nv)?;
+        }
+        let pts = mesh.vertices.clone();
+        let orient = |t: &[u32; 4]| {
+            let [a, b, c, d] = t.map(|i| pts[i as usize]);
+            orient3d(a, b, c, d)
+        };
+        if let Some(t) = mesh.tets.par_iter().position_first(|t| orient(t) != Sign::Positive) {
+            return Err(MeshError::BadOrientation {
+                element: Element::Tet(t),
+                vertices: mesh.tets[t].to_vec(),
+                orientation: orient(&mesh.tets[t]),
+            });
+        }
+        // sorted face records: (key, tet << 2 | face, even)
+        let mut rec: Vec<([u32; 3], u32, bool)> = Vec::with_capacity(4 * nt);
+        for (t, tet) in mesh.tets.iter().enumerate() {
+            for (k, f) in TET_FACES.iter().enumerate() {
+                let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+                rec.push((key, (t as u32) << 2 | k as u32, even));
+            }
+        }
+        rec.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut bkeys: Vec<[u32; 3]> = mesh.boundary.iter().map(|&t| sorted3(t).0).collect();
+        bkeys.par_sort_unstable();
+        bkeys.dedup();
+        for (i, tri) in mesh.boundary.iter().enumerate() {
+            let key = sorted3(*tri).0;
+            if rec.binary_search_by(|r| r.0.cmp(&key)).is_err() {
+                return Err(MeshError::BoundaryNotAFace { triangle: i, vertices: *tri });
+            }
+        }
+        let mut nbr = vec![[NONE; 4]; nt];
+        let mut cons = vec![0u8; nt];
+        let mut i = 0;
+        while i < rec.len() {
+            let mut j = i + 1;
+            while j < rec.len() && rec[j].0 == rec[i].0 {
+                j += 1;
+            }
+            let key = rec[i].0;
+            let (t0, k0) = ((rec[i].1 >> 2) as usize, (rec[i].1 & 3) as usize);
+            if j - i > 2 {
+                return Err(MeshError::NonManifold {
+                    entity: key.to_vec(),
+                    elements: rec[i..j].iter().map(|r| Element::Tet((r.1 >> 2) as usize)).collect(),
+                });
+            }
+            let listed = bkeys.binary_search(&key).is_ok();
+            if j - i == 2 {
+                let (t1, k1) = ((rec[i + 1].1 >> 2) as usize, (rec[i + 1].1 & 3) as usize);
+                if rec[i].2 == rec[i + 1].2 {
+                    return Err(MeshError::Overlap { entity: key.to_vec(), first: Element::Tet(t0), second: Element::Tet(t1) });
+                }
+                nbr[t0][k0] = rec[i + 1].1;
+                nbr[t1][k1] = rec[i].1;
+                if listed || mesh.region_tags[t0] != mesh.region_tags[t1] {
+                    cons[t0] |= 1 << k0;
+                    cons[t1] |= 1 << k1;
+                }
+            } else {
+                cons[t0] |= 1 << k0;
+            }
+            i = j;
+        }
+        drop(rec);
+        let mut fixed = vec![false; nv];
+        let mut v2t = vec![NONE; nv];
+        for (t, tet) in mesh.tets.iter().enumerate() {
+            for (k, f) in TET_FACES.iter().enumerate() {
+                if cons[t] & (1 << k) != 0 {
+                    for &l in f {
+                        fixed[tet[l] as usize] = true;
+                    }
+                }
+            }
+            for &v in tet {
+                v2t[v as usize] = t as u32;
+            }
+        }
+        let q = mesh.tets.par_iter().map(|t| score(&t.map(|i| pts[i as usize]), &tg)).collect();
+        Ok(Work {
+            pts,
+            tets: mesh.tets.clone(),
+            nbr,
+            cons,
+            region: mesh.region_tags.clone(),
+            q,
+            free: Vec::new(),
+            v2t,
+            fixed,
+            mark: vec![0; nt],
+            stamp: 0,
+            tg,
+            outer: Vec::new(),
+            inner: Vec::new(),
+            slots: Vec::new(),
+            stack: Vec::new(),
+        })
+    }
+
+    /// Writes the live tets (in slot order), their regions and the vertices back into `mesh`.
+    pub(crate) fn write_back(self, mesh: &mut TetMesh) {
+        let mut tets = Vec::with_capacity(self.tets.len() - self.free.len());
+        let mut regions = Vec::with_capacity(tets.capacity());
+        for (t, r) in self.tets.iter().zip(&self.region) {
+            if t[0] != NONE {
+                tets.push(*t);
+                regions.push(*r);
+            }
+        }
+        mesh.vertices = self.pts;
+        mesh.tets = tets;
+        mesh.region_tags = regions;
+    }
+
+    /// Whether slot `t` holds a live tet.
+    #[inline]
+    pub(crate) fn alive(&self, t: u32) -> bool {
+        (t as usize) < self.tets.len() && self.tets[t as usize][0] != NONE
+    }
+
+    /// The corner positions of the tet `t`.
+    #[inline]
+    pub(crate) fn corners(&self, t: &[u32; 4]) -> [DVec3; 4] {
+        t.map(|i| self.pts[i as usize])
+    }
+
+    /// Exact orientation of the vertex quadruple `t`.
+    #[inline]
+    pub(crate) fn orient(&self, t: &[u32; 4]) -> Sign {
+        let [a, b, c, d] = self.corners(t);
+        orient3d(a, b, c, d)
+    }
+
+    /// Score of the vertex quadruple `t` (assumed positively oriented).
+    #[inline]
+    pub(crate) fn score_of(&self, t: &[u32; 4]) -> f64 {
+        score(&self.corners(t), &self.tg)
+    }
+
+    /// Whether face `k` of live tet `t` is constrained.
+    #[inline]
+    pub(crate) fn constrained(&self, t: u32, k: usize) -> bool {
+        self.cons[t as usize] & (1 << k) != 0
+    }
+
+    /// Starts a new visit: afterwards [`Work::visit`] marks each slot once.
+    #[inline]
+    pub(crate) fn new_visit(&mut self) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.stamp = 1;
+        }
+    }
+
+    /// Marks slot `t`; false if it was already marked in this visit.
+    #[inline]
+    pub(crate) fn visit(&mut self, t: u32) -> bool {
+        let m = &mut self.mark[t as usize];
+        if *m == self.stamp {
+            false
+        } else {
+            *m = self.stamp;
+            true
+        }
+    }
+
+    /// Whether slot `t` is marked in this visit.
+    #[inline]
+    pub(crate) fn visited(&self, t: u32) -> bool {
+        self.mark[t as usize] == self.stamp
+    }
+
+    /// The live tets containing vertex `v` (its star), into `out`; false (and `out`
+    /// unspecified) if `v` has no tet.
+    pub(crate) fn star(&mut self, v: u32, out: &mut Vec<u32>) -> bool {
+        out.clear();
+        let start = self.v2t[v as usize];
+        if start == NONE || !self.alive(start) || local(&self.tets[start as usize], v).is_none() {
+            return false;
+        }
+        self.new_visit();
+        self.visit(start);
+        out.push(start);
+        let mut i = 0;
+        while i < out.len() {
+            let t = out[i] as usize;
+            i += 1;
+            let m = local(&self.tets[t], v).unwrap_or(0);
+            for k in 0..4 {
+                if k == m {
+                    continue;
+                }
+                let n = self.nbr[t][k];
+                if n != NONE && self.visit(n >> 2) {
+                    out.push(n >> 2);
+                }
+            }
+        }
+        true
+    }
+
+    /// Replaces the live tets `old` (distinct, all in `region`, no constrained face between
+    /// two of them) by the tets `new`, in `region`, if the new tets fill exactly the same cavity: every new tet positively oriented (exact), and the
+    /// new tets' boundary equal to the old tets' boundary as oriented faces, each new interior
+    /// face shared by exactly two new tets from opposite sides. Outer faces keep their
+    /// neighbours and constraint marks. Returns false, changing nothing, otherwise.
+    pub(crate) fn replace(&mut self, old: &[u32], new: &[[u32; 4]], region: RegionId) -> bool {
+        if new.iter().any(|t| self.orient(t) != Sign::Positive) {
+            return false;
+        }
+        self.new_visit();
+        for &t in old {
+            if !self.alive(t) || !self.visit(t) || self.region[t as usize] != region {
+                return false;
+            }
+        }
+        let mut outer = std::mem::take(&mut self.outer);
+        let mut inner = std::mem::take(&mut self.inner);
+        outer.clear();
+        inner.clear();
+        for &t in old {
+            let tet = self.tets[t as usize];
+            for (k, f) in TET_FACES.iter().enumerate() {
+                let n = self.nbr[t as usize][k];
+                if n != NONE && self.visited(n >> 2) {
+                    if self.constrained(t, k) {
+                        // a constrained face would be removed
+                        self.outer = outer;
+                        self.inner = inner;
+                        return false;
+                    }
+                    continue;
+                }
+                let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+                outer.push(FaceRec { key, even, link: n, constrained: self.constrained(t, k) });
+            }
+        }
+        for (i, tet) in new.iter().enumerate() {
+            for (k, f) in TET_FACES.iter().enumerate() {
+                let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+                inner.push(FaceRec { key, even, link: (i as u32) << 2 | k as u32, constrained: false });
+            }
+        }
+        outer.sort_unstable_by(|a, b| a.key.cmp(&b.key));
+        inner.sort_unstable_by(|a, b| a.key.cmp(&b.key).then(a.link.cmp(&b.link)));
+        // check: new faces pair up among themselves or with exactly one outer face
+        let mut ok = outer.windows(2).all(|w| w[0].key != w[1].key);
+        let mut matched = 0;
+        let mut i = 0;
+        while ok && i < inner.len() {
+            let r = inner[i];
+            if i + 1 < inner.len() && inner[i + 1].key == r.key {
+                let s = inner[i + 1];
+                ok = r.even != s.even
+                    && (i + 2 >= inner.len() || inner[i + 2].key != r.key)
+                    && outer.binary_search_by(|o| o.key.cmp(&r.key)).is_err();
+                i += 2;
+            } else {
+                match outer.binary_search_by(|o| o.key.cmp(&r.key)) {
+                    Ok(j) if outer[j].even == r.even => matched += 1,
+                    _ => ok = false,
+                }
+                i += 1;
+            }
+        }
+        ok &= matched == outer.len();
+        if !ok || self.tets.len() - self.free.len() - old.len() + new.len() > MAX_TETS {
+            self.outer = outer;
+            self.inner = inner;
+            return false;
+        }
+        // commit: free the old slots, then take slots for the new tets
+        for &t in old {
+            self.tets[t as usize] = [NONE; 4];
+            self.free.push(t);
+        }
+        let mut slots = std::mem::take(&mut self.slots);
+        slots.clear();
+        for tet in new {
+            let s = match self.free.pop() {
+                Some(s) => s,
+                None => {
+                    self.tets.push([NONE; 4]);
+                    self.nbr.push([NONE; 4]);
+                    self.cons.push(0);
+                    self.region.push(region);
+                    self.q.push(0.0);
+                    self.mark.push(0);
+                    (self.tets.len() - 1) as u32
+                }
+            };
+            let su = s as usize;
+            self.tets[su] = *tet;
+            self.nbr[su] = [NONE; 4];
+            self.cons[su] = 0;
+            self.region[su] = region;
+            self.q[su] = self.score_of(tet);
+            for &v in tet {
+                self.v2t[v as usize] = s;
+            }
+            slots.push(s);
+        }
+        let code = |link: u32| slots[(link >> 2) as usize] << 2 | (link & 3);
+        let mut i = 0;
+        while i < inner.len() {
+            let r = inner[i];
+            let a = code(r.link);
+            if i + 1 < inner.len() && inner[i + 1].key == r.key {
+                let b = code(inner[i + 1].link);
+                self.nbr[(a >> 2) as usize][(a & 3) as usize] = b;
+                self.nbr[(b >> 2) as usize][(b & 3) as usize] = a;
+                i += 2;
+            } else {
+                let o = outer[outer.binary_search_by(|o| o.key.cmp(&r.key)).unwrap_or(0)];
+                let (at, ak) = ((a >> 2) as usize, (a & 3) as usize);
+                self.nbr[at][ak] = o.link;
+                if o.link != NONE {
+                    self.nbr[(o.link >> 2) as usize][(o.link & 3) as usize] = a;
+                }
+                if o.constrained {
+                    self.cons[at] |= 1 << ak;
+                }
+                i += 1;
+            }
+        }
+        self.outer = outer;
+        self.inner = inner;
+        self.slots = slots;
+        true
+    }
+
+    /// The slots filled by the last successful [`Work::replace`], in the order of its `new`.
+    pub(crate) fn last_new(&self) -> &[u32] {
+        &self.slots
+    }
+
+    /// Appends a vertex (not yet in any tet) and returns its index.
+    pub(crate) fn push_vertex(&mut self, p: DVec3) -> u32 {
+        self.pts.push(p);
+        self.v2t.push(NONE);
+        self.fixed.push(false);
+        (self.pts.len() - 1) as u32
+    }
+
+    /// Removes the last vertex, if it is `v` and in no tet (an insertion that was undone).
+    pub(crate) fn pop_vertex(&mut self, v: u32) {
+        if v as usize + 1 == self.pts.len() && self.v2t[v as usize] == NONE {
+            self.pts.pop();
+            self.v2t.pop();
+            self.fixed.pop();
+        }
+    }
+
+    /// Scratch stack for callers that need one (taken and given back).
+    pub(crate) fn take_stack(&mut self) -> Vec<u32> {
+        let mut s = std::mem::take(&mut self.stack);
+        s.clear();
+        s
+    }
+
+    /// Gives back the scratch stack.
+    pub(crate) fn give_stack(&mut self, s: Vec<u32>) {
+        self.stack = s;
+    }
+
+    /// Number of live tets.
+    pub(crate) fn live(&self) -> usize {
+        self.tets.len() - self.free.len()
+    }
+
+    /// The live tets' slots.
+    pub(crate) fn live_slots(&self) -> impl Iterator<Item = u32> + '_ {
+        self.tets.iter().enumerate().filter(|(_, t)| t[0] != NONE).map(|(i, _)| i as u32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::FaceId;
+
+    fn two_tets() -> TetMesh {
+        TetMesh {
+            vertices: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::new(1.0, 1.0, 1.0)],
+            tets: vec![[0, 1, 2, 3], [1, 4, 2, 3]],
+            region_tags: vec![RegionId(1); 2],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn adjacency_and_constraints() {
+        let mut m = two_tets();
+        m.boundary = vec![[0, 2, 1]];
+        m.boundary_tags = vec![FaceId(1)];
+        let w = Work::build(&m, Targets::new(15.0, 160.0)).unwrap();
+        // shared face (1, 2, 3) is face 0 of tet 0 and face 1 of tet 1 (opposite vertex 4)
+        assert_eq!(w.nbr[0][0], 1 << 2 | 1);
+        assert_eq!(w.nbr[1][1], 0);
+        assert_eq!(w.cons[0] & 1, 0, "interior face free");
+        assert_eq!(w.cons[0] & !1, 0b1110, "hull faces constrained");
+        assert!(w.fixed.iter().all(|&f| f), "every vertex is on the hull");
+        m.region_tags[1] = RegionId(2);
+        let w = Work::build(&m, Targets::new(15.0, 160.0)).unwrap();
+        assert_eq!(w.cons[0], 0b1111, "an interface is constrained");
+    }
+
+    #[test]
+    fn build_rejects_bad_meshes() {
+        let mut m = two_tets();
+        m.tets[1] = [1, 2, 4, 3];
+        assert!(matches!(
+            Work::build(&m, Targets::new(15.0, 160.0)),
+            Err(MeshError::BadOrientation { element: Element::Tet(1), .. })
+        ));
+        let mut m = two_tets();
+        m.boundary = vec![[0, 1, 4]];
+        m.boundary_tags = vec![FaceId(1)];
+        assert!(matches!(Work::build(&m, Targets::new(15.0, 160.0)), Err(MeshError::BoundaryNotAFace { .. })));
+        let mut m = two_tets();
+        m.region_tags.pop();
+        assert!(matches!(Work::build(&m, Targets::new(15.0, 160.0)), Err(MeshError::LengthMismatch { .. })));
+    }
+
+    #[test]
+    fn replace_checks_the_cavity() {
+        let m = two_tets();
+        let mut w = Work::build(&m, Targets::new(15.0, 160.0)).unwrap();
+        // a wrong replacement: one tet only
+        assert!(!w.replace(&[0, 1], &[[0, 1, 2, 3]], RegionId(1)));
+        assert_eq!(w.tets, m.tets);
+        // an inverted tet
+        assert!(!w.replace(&[0], &[[0, 2, 1, 3]], RegionId(1)));
+        // the identity is a valid replacement
+        assert!(w.replace(&[0, 1], &[[1, 4, 2, 3], [0, 1, 2, 3]], RegionId(1)));
+        assert_eq!(w.live(), 2);
+        let mut out = Vec::new();
+        assert!(w.star(0, &mut out));
+        assert_eq!(out.len(), 1);
+        assert!(w.star(1, &mut out));
+        assert_eq!(out.len(), 2);
+    }
+}
