@@ -1,8 +1,10 @@
 //! The quality score the optimiser maximises, and its gradient with respect to one vertex.
 //!
 //! A tet's *score* combines its smallest and largest dihedral angles, each normalised by its
-//! target: `min(θ_min / θ_target_min, (180° − θ_max) / (180° − θ_target_max))`. A tet meets both
-//! targets exactly when its score is at least 1; the score is 0 for a flat tet. The angles are
+//! target, and its radius-edge ratio `R / l_min` normalised by its bound `ρ`:
+//! `min(θ_min / θ_target_min, (180° − θ_max) / (180° − θ_target_max), ρ l_min / R)`. A tet meets
+//! all targets exactly when its score is at least 1; the score is 0 for a flat tet. Smoothing
+//! follows the gradients of the angle terms only; the radius-edge term just limits its steps. The angles are
 //! the judge's (`shared/tools/cgal_ref/tet_quality.h`): the interior dihedral angle at an edge is
 //! `180° − acos(n̂_k · n̂_l)` with `n_k`, `n_l` the outward normals of the two faces at the edge.
 //!
@@ -20,7 +22,7 @@
 //!   the roles of `p` and `q` exchanged.
 
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::quality::tetrahedron::TET_EDGES;
+use crate::quality::tetrahedron::{TET_EDGES, tet_radius_edge};
 use glam::DVec3;
 
 /// The faces at each edge of [`TET_EDGES`]: the faces opposite the edge's two other vertices.
@@ -28,13 +30,16 @@ pub(crate) const EDGE_FACES: [[usize; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], 
 
 const DEG: f64 = 180.0 / std::f64::consts::PI;
 
-/// The two dihedral targets, as the reciprocals the score multiplies by.
+/// The two dihedral targets, as the reciprocals the score multiplies by, and the radius-edge
+/// bound.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub(crate) struct Targets {
     /// `1 / θ_target_min` (degrees⁻¹).
     pub inv_min: f64,
     /// `1 / (180° − θ_target_max)` (degrees⁻¹).
     pub inv_max: f64,
+    /// The radius-edge bound `ρ` (`+∞`: none); the score's third term is `ρ / (R / l_min)`.
+    pub max_re: f64,
 }
 
 impl Targets {
@@ -43,7 +48,15 @@ impl Targets {
     pub(crate) fn new(min_deg: f64, max_deg: f64) -> Targets {
         let lo = if min_deg.is_finite() { min_deg.clamp(1e-3, 179.0) } else { 15.0 };
         let hi = if max_deg.is_finite() { max_deg.clamp(1.0, 180.0 - 1e-3) } else { 160.0 };
-        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi) }
+        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi), max_re: f64::INFINITY }
+    }
+
+    /// The same targets with the radius-edge bound `ratio` (ignored unless positive).
+    pub(crate) fn with_radius_edge(mut self, ratio: f64) -> Targets {
+        if ratio > 0.0 {
+            self.max_re = ratio;
+        }
+        self
     }
 }
 
@@ -72,7 +85,7 @@ pub(crate) fn angle(c: f64) -> f64 {
     180.0 - c.acos() * DEG
 }
 
-/// The score of a positively oriented tet (see the module documentation): at least 1 when both
+/// The score of a positively oriented tet (see the module documentation): at least 1 when all
 /// targets are met, 0 for a tet degenerate in floating point.
 #[inline]
 pub(crate) fn score(p: &[DVec3; 4], tg: &Targets) -> f64 {
@@ -80,7 +93,8 @@ pub(crate) fn score(p: &[DVec3; 4], tg: &Targets) -> f64 {
         return 0.0;
     };
     let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-    (angle(lo) * tg.inv_min).min((180.0 - angle(hi)) * tg.inv_max).max(0.0)
+    let s = (angle(lo) * tg.inv_min).min((180.0 - angle(hi)) * tg.inv_max).max(0.0);
+    if tg.max_re.is_finite() { s.min(tg.max_re / tet_radius_edge(p)) } else { s }
 }
 
 /// One term of a tet's score: the normalised small-angle or large-angle measure of one edge,

@@ -328,7 +328,7 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
     if mesh.tets.len() > work::MAX_TETS {
         return Err(OptimizeError::TooLarge { tets: mesh.tets.len(), max: work::MAX_TETS });
     }
-    let tg = Targets::new(opts.min_dihedral_deg, opts.max_dihedral_deg);
+    let tg = Targets::new(opts.min_dihedral_deg, opts.max_dihedral_deg).with_radius_edge(opts.max_radius_edge);
     let w = Work::build(mesh, tg)?;
     let (lo, hi, re) = extremes(mesh);
     let bad_before = w.q.iter().filter(|&&q| q < 1.0).count();
