@@ -130,7 +130,8 @@ impl Inserter {
 
     /// Tries to insert a vertex for the bad live tet `t`; true if one was inserted (and kept).
     pub(crate) fn try_insert(&mut self, w: &mut Work, sm: &mut Smoother, t: u32, max_re: f64) -> bool {
-        let c = w.corners(&w.tets[t as usize]);
+        let tet = w.tets[t as usize];
+        let c = w.corners(&tet);
         let centroid = (c[0] + c[1] + c[2] + c[3]) * 0.25;
         let candidates = [circumcentre(&c), Some(centroid)];
         for p in candidates.into_iter().flatten() {
@@ -138,7 +139,12 @@ impl Inserter {
             if p.distance(centroid) > 2.0 * tet_circumradius(&c) {
                 continue;
             }
-            if self.insert_at(w, sm, t, p, max_re) {
+            // an undone attempt puts the tets back in other slots: walk from one at a corner
+            let start = if w.alive(t) && w.tets[t as usize] == tet { t } else { w.v2t[tet[0] as usize] };
+            if !w.alive(start) {
+                return false;
+            }
+            if self.insert_at(w, sm, start, p, max_re) {
                 return true;
             }
         }

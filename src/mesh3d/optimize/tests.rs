@@ -1,1 +1,241 @@
-//! Tests of the whole optimiser on small meshes.
+//! Tests of the whole optimiser on small meshes: what it must keep (boundary, fixed vertices,
+//! regions, volume), what it must do (remove slivers, insert where nothing else helps), and
+//! that it is deterministic.
+
+use super::*;
+use crate::core::{FaceId, RegionId};
+use crate::mesh::shapes::kuhn_cube;
+use crate::mesh::tet_mesh::{TET_FACES, sorted3};
+use crate::mesh3d::delaunay::{DelaunayOptions, tetrahedralize};
+use glam::DVec3;
+use std::collections::BTreeMap;
+
+/// `mesh` with its hull faces as boundary triangles, tagged 1, 2, 3, 1, ...
+fn with_hull_boundary(mut mesh: TetMesh) -> TetMesh {
+    mesh.boundary = mesh.hull_faces();
+    mesh.boundary_tags = (0..mesh.boundary.len()).map(|i| FaceId(1 + (i % 3) as u32)).collect();
+    mesh
+}
+
+/// Regions 1 and 2 by the tets' centroids left and right of `x = 0.5`.
+fn split_regions(mut mesh: TetMesh) -> TetMesh {
+    mesh.region_tags = mesh
+        .tets
+        .iter()
+        .map(|t| if t.iter().map(|&i| mesh.vertices[i as usize].x).sum::<f64>() < 2.0 { RegionId(1) } else { RegionId(2) })
+        .collect();
+    mesh
+}
+
+/// Delaunay mesh of the unit cube's corners and `n` pseudo-random points inside: plenty of
+/// slivers.
+fn random_box(n: usize, seed: u64) -> TetMesh {
+    let mut state = seed | 1;
+    let mut rnd = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, (i >> 2) as f64)).collect();
+    for _ in 0..n {
+        p.push(DVec3::new(0.1 + 0.8 * rnd(), 0.1 + 0.8 * rnd(), 0.1 + 0.8 * rnd()));
+    }
+    let d = tetrahedralize(&p, &DelaunayOptions::default()).unwrap();
+    d.to_tet_mesh(&p)
+}
+
+/// Sorted keys of the faces between tets of different regions.
+fn interfaces(m: &TetMesh) -> Vec<[u32; 3]> {
+    let mut faces: BTreeMap<[u32; 3], Vec<RegionId>> = BTreeMap::new();
+    for (t, r) in m.tets.iter().zip(&m.region_tags) {
+        for f in TET_FACES {
+            faces.entry(sorted3([t[f[0]], t[f[1]], t[f[2]]]).0).or_default().push(*r);
+        }
+    }
+    faces.into_iter().filter(|(_, r)| r.len() == 2 && r[0] != r[1]).map(|(k, _)| k).collect()
+}
+
+fn region_volumes(m: &TetMesh) -> BTreeMap<RegionId, f64> {
+    let mut v = BTreeMap::new();
+    for t in 0..m.tets.len() {
+        *v.entry(m.region_tags[t]).or_insert(0.0) += m.tet_volume(t);
+    }
+    v
+}
+
+fn min_max_dihedral(m: &TetMesh) -> (f64, f64) {
+    m.tets
+        .iter()
+        .map(|t| tet_min_max_dihedral(&t.map(|i| m.vertices[i as usize])))
+        .fold((180.0, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
+}
+
+/// Checks what the optimiser keeps: validity, boundary triangles and tags, the vertices of hull,
+/// boundary and interface faces (bitwise), the interface faces, each region's volume.
+fn check_kept(before: &TetMesh, after: &TetMesh, report: &OptimizeReport) {
+    assert_eq!(after.validate(), Ok(()));
+    assert_eq!(after.boundary, before.boundary);
+    assert_eq!(after.boundary_tags, before.boundary_tags);
+    assert_eq!(after.vertices.len(), before.vertices.len() + report.insertions);
+    let mut fixed = vec![false; before.vertices.len()];
+    for f in before.hull_faces().iter().chain(&before.boundary).chain(&interfaces(before)) {
+        f.iter().for_each(|&v| fixed[v as usize] = true);
+    }
+    for (v, _) in fixed.iter().enumerate().filter(|f| *f.1) {
+        assert_eq!(after.vertices[v], before.vertices[v], "fixed vertex {v} moved");
+    }
+    assert_eq!(interfaces(after), interfaces(before), "the region interfaces changed");
+    let (v0, v1) = (region_volumes(before), region_volumes(after));
+    assert_eq!(v0.keys().collect::<Vec<_>>(), v1.keys().collect::<Vec<_>>(), "region tags changed");
+    for (r, a) in &v0 {
+        assert!((a - v1[r]).abs() <= 1e-12 * a, "region {r:?}: volume {a} became {}", v1[r]);
+    }
+    assert_eq!(report.tets_after, after.tets.len());
+}
+
+/// An octahedron (apexes `T`, `B`, a twisted equator) cut into a sliver and the four tets
+/// joining it to the apexes: every vertex is on the hull, so only flips can help.
+fn sliver_octahedron(h: f64) -> TetMesh {
+    let vertices = vec![
+        DVec3::new(0.0, 0.0, 1.0),  // 0: T
+        DVec3::new(0.0, 0.0, -1.0), // 1: B
+        DVec3::new(1.0, 0.0, h),    // 2
+        DVec3::new(-1.0, 0.0, h),   // 3
+        DVec3::new(0.0, 1.0, -h),   // 4
+        DVec3::new(0.0, -1.0, -h),  // 5
+    ];
+    let mut tets = vec![[2, 3, 4, 5], [0, 2, 3, 4], [0, 2, 3, 5], [1, 4, 5, 2], [1, 4, 5, 3]];
+    for t in &mut tets {
+        let [a, b, c, d] = t.map(|i| vertices[i as usize]);
+        if (b - a).dot((c - a).cross(d - a)) < 0.0 {
+            t.swap(0, 1);
+        }
+    }
+    let n = tets.len();
+    with_hull_boundary(TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..Default::default() })
+}
+
+#[test]
+fn a_sliver_between_constrained_faces_is_flipped_away() {
+    let m = sliver_octahedron(0.05);
+    assert_eq!(m.validate(), Ok(()));
+    assert_eq!(m.boundary.len(), 8);
+    let (lo, _) = min_max_dihedral(&m);
+    assert!(lo < 10.0, "the input has a sliver: {lo}");
+    let mut out = m.clone();
+    let r = optimize(&mut out, &OptimizeOptions::default()).unwrap();
+    check_kept(&m, &out, &r);
+    assert_eq!(out.vertices, m.vertices, "every vertex is fixed");
+    assert_eq!((r.smoothing_moves, r.insertions), (0, 0));
+    assert!(r.flips32 + r.flips44 + r.edge_removals + r.flips23 > 0);
+    let (lo, hi) = min_max_dihedral(&out);
+    assert!(lo >= 15.0 && hi <= 160.0, "{lo} {hi}");
+    assert_eq!((r.min_dihedral_after, r.max_dihedral_after), (lo, hi));
+    assert_eq!(r.bad_after, 0);
+}
+
+#[test]
+fn boundary_and_interface_vertices_never_move() {
+    let m = with_hull_boundary(split_regions(kuhn_cube(4, 0.45, 7)));
+    let opts = OptimizeOptions::default().with_min_dihedral(30.0).with_max_dihedral(130.0);
+    let mut out = m.clone();
+    let r = optimize(&mut out, &opts).unwrap();
+    assert!(r.bad_before > 0);
+    check_kept(&m, &out, &r);
+    assert!(r.smoothing_moves > 0, "{r:?}");
+    let moved = (0..m.vertices.len()).filter(|&v| out.vertices[v] != m.vertices[v]).count();
+    assert!(moved > 0);
+    assert!(r.min_dihedral_after > r.min_dihedral_before, "{r:?}");
+    assert!(r.bad_after < r.bad_before, "{r:?}");
+}
+
+#[test]
+fn region_tags_are_kept_across_regions() {
+    let m = with_hull_boundary(split_regions(random_box(300, 11)));
+    assert!(!interfaces(&m).is_empty());
+    let mut out = m.clone();
+    let r = optimize(&mut out, &OptimizeOptions::default()).unwrap();
+    check_kept(&m, &out, &r);
+    assert!(r.flips32 + r.flips44 + r.flips23 > 0, "{r:?}");
+    assert!(r.bad_after < r.bad_before, "{r:?}");
+    // an interface face between two regions is in the boundary list of neither: constrained
+    // all the same, as checked by `check_kept`; each region's tets stay on their side
+    let left: f64 = (0..out.tets.len()).filter(|&t| out.region_tags[t] == RegionId(1)).map(|t| out.tet_volume(t)).sum();
+    assert!((left - region_volumes(&m)[&RegionId(1)]).abs() < 1e-12);
+}
+
+#[test]
+fn a_good_mesh_is_left_unchanged() {
+    // Kuhn tets: dihedral angles 45°–90°, radius-edge 0.87
+    let m = with_hull_boundary(kuhn_cube(3, 0.0, 1));
+    let mut out = m.clone();
+    let r = optimize(&mut out, &OptimizeOptions::default()).unwrap();
+    assert_eq!(out, m);
+    assert_eq!((r.bad_before, r.bad_after, r.passes), (0, 0, 0));
+    assert_eq!(r.flips23 + r.flips32 + r.flips44 + r.edge_removals + r.smoothing_moves + r.insertions, 0);
+}
+
+#[test]
+fn results_are_deterministic() {
+    let m = with_hull_boundary(random_box(400, 3));
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let mut out = m.clone();
+        let mut r = pool.install(|| optimize(&mut out, &OptimizeOptions::default())).unwrap();
+        r.seconds = 0.0;
+        (out, r)
+    };
+    let (a, ra) = run(1);
+    let (b, rb) = run(3);
+    assert_eq!(ra, rb);
+    assert_eq!(a, b);
+    assert!(ra.flips32 + ra.smoothing_moves > 0);
+    check_kept(&m, &a, &ra);
+}
+
+/// The 12 vertices of an icosahedron, all cospherical: every Delaunay tet has its four vertices
+/// on the hull, and some are flat.
+fn icosahedron() -> TetMesh {
+    let g = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut p = Vec::new();
+    for (a, b) in [(1.0, g), (-1.0, g), (1.0, -g), (-1.0, -g)] {
+        p.push(DVec3::new(0.0, a, b));
+        p.push(DVec3::new(a, b, 0.0));
+        p.push(DVec3::new(b, 0.0, a));
+    }
+    let d = tetrahedralize(&p, &DelaunayOptions::default()).unwrap();
+    with_hull_boundary(d.to_tet_mesh(&p))
+}
+
+#[test]
+fn only_insertion_helps_inside_an_icosahedron() {
+    let m = icosahedron();
+    assert_eq!(m.validate(), Ok(()));
+    assert_eq!(m.boundary.len(), 20);
+    let opts = OptimizeOptions::default().with_min_dihedral(40.0).with_max_dihedral(130.0);
+    let mut flips_only = m.clone();
+    let r0 = optimize(&mut flips_only, &opts.clone().with_insertion(false)).unwrap();
+    check_kept(&m, &flips_only, &r0);
+    assert!(r0.bad_after > 0, "{r0:?}");
+    let mut out = m.clone();
+    let r = optimize(&mut out, &opts).unwrap();
+    check_kept(&m, &out, &r);
+    assert!(r.insertions > 0, "{r:?}");
+    assert_eq!(r.bad_after, 0, "{r:?}");
+    let (lo, hi) = min_max_dihedral(&out);
+    assert!(lo >= 40.0 && hi <= 130.0, "{lo} {hi}");
+    assert!(lo > r0.min_dihedral_after, "{lo} vs {}", r0.min_dihedral_after);
+}
+
+#[test]
+fn invalid_meshes_are_refused_and_left_alone() {
+    let mut m = kuhn_cube(2, 0.0, 1);
+    m.tets[0].swap(0, 1);
+    let copy = m.clone();
+    assert!(matches!(optimize(&mut m, &OptimizeOptions::default()), Err(OptimizeError::InvalidMesh(_))));
+    assert_eq!(m, copy);
+    let mut m = kuhn_cube(2, 0.0, 1);
+    m.tets[0][0] = 1000;
+    assert!(matches!(optimize(&mut m, &OptimizeOptions::default()), Err(OptimizeError::InvalidMesh(_))));
+}

@@ -441,11 +441,6 @@ impl Work {
         true
     }
 
-    /// The slots filled by the last successful [`Work::replace`], in the order of its `new`.
-    pub(crate) fn last_new(&self) -> &[u32] {
-        &self.slots
-    }
-
     /// Appends a vertex (not yet in any tet) and returns its index.
     pub(crate) fn push_vertex(&mut self, p: DVec3) -> u32 {
         self.pts.push(p);
