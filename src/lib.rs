@@ -7,7 +7,7 @@
 //! - layer 0 [`core`]: ids, exact predicates, bounding boxes, tolerances, the size-field trait;
 //! - layer 1 [`mesh`]: containers with `validate()` and the surface topology report;
 //! - layer 2 [`quality`]: element quality measures (VTK/Verdict definitions);
-//! - layer 3 [`io`]: mesh file formats;
+//! - layer 3 [`io`]: mesh file formats; [`cad`]: B-rep import (STEP);
 //! - layer 6 [`cli`]: the command line, one file per subcommand.
 
 pub mod cli;

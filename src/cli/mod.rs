@@ -5,6 +5,7 @@
 pub mod convert;
 pub mod delaunay;
 pub mod inspect;
+pub mod mesh;
 pub mod progress;
 
 use clap::{Parser, Subcommand};
@@ -18,6 +19,7 @@ Examples:
   fepre convert model.glb model.msh        any format fepre reads to any it writes, tags kept
   fepre convert mesh.mesh boundary.stl     a tet mesh's tagged boundary as a surface
   fepre delaunay points.xyz -o dt.mesh     exact Delaunay tetrahedralization of a point set
+  fepre mesh part.stl -o part.mesh         quality tet mesh of a closed surface, boundary tags kept
 
 Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
 
@@ -42,6 +44,10 @@ pub enum Command {
     /// as a tet mesh.
     #[command(after_help = delaunay::EXAMPLES)]
     Delaunay(delaunay::Args),
+    /// Quality tetrahedral mesh of the volume a closed surface encloses (boundary recovery,
+    /// Delaunay refinement, sliver removal), boundary tags and regions kept.
+    #[command(after_help = mesh::EXAMPLES)]
+    Mesh(mesh::Args),
     /// Convert a mesh between formats, chosen from the file extensions; tags are kept where the
     /// output format can hold them.
     #[command(after_help = convert::EXAMPLES)]
@@ -62,6 +68,7 @@ pub fn main() -> ExitCode {
         Command::Inspect(a) => inspect::run(&a),
         Command::Convert(a) => convert::run(&a),
         Command::Delaunay(a) => delaunay::run(&a),
+        Command::Mesh(a) => mesh::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -93,6 +93,22 @@ pub(crate) trait Owner {
     fn owns(&self, v: &[u32; 4]) -> bool;
 }
 
+/// Faces an insertion's cavity may not cross: the subfaces of a constrained tetrahedralization.
+pub(crate) trait Walls {
+    /// True if face `f` of tet `t` is a wall.
+    fn wall(&self, t: u32, f: usize) -> bool;
+}
+
+/// No walls: plain Delaunay insertion.
+pub(crate) struct NoWalls;
+
+impl Walls for NoWalls {
+    #[inline(always)]
+    fn wall(&self, _t: u32, _f: usize) -> bool {
+        false
+    }
+}
+
 /// The serial insertion owns every tet.
 pub(crate) struct Everything;
 
@@ -218,6 +234,22 @@ pub(crate) fn dig<K: Kernel, S: TetStore, M: Marks, O: Owner>(
     t0: u32,
     p: u32,
 ) -> bool {
+    dig_walled(k, s, o, &NoWalls, marks, sc, t0, p)
+}
+
+/// [`dig`] that does not cross walls: a wall face is a boundary face of the cavity whatever
+/// lies behind it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn dig_walled<K: Kernel, S: TetStore, M: Marks, O: Owner, W: Walls>(
+    k: &K,
+    s: &S,
+    o: &O,
+    walls: &W,
+    marks: &mut M,
+    sc: &mut Scratch,
+    t0: u32,
+    p: u32,
+) -> bool {
     sc.cavity.clear();
     sc.boundary.clear();
     sc.stack.clear();
@@ -230,6 +262,11 @@ pub(crate) fn dig<K: Kernel, S: TetStore, M: Marks, O: Owner>(
             let n = r >> 2;
             let m = marks.get(n);
             if m == IN {
+                continue;
+            }
+            if walls.wall(t, f) {
+                let w = s.v(t);
+                sc.boundary.push(([w[fv[0]], w[fv[2]], w[fv[1]]], r));
                 continue;
             }
             if m != OUT {

@@ -13,12 +13,12 @@
 //! Delaunay tetrahedralization of the input, without flat tets, whatever the insertion order
 //! or the number of threads. [`Delaunay::validate`] checks all of this independently.
 
-mod cavity;
-mod edge_table;
-mod kernel;
+pub(crate) mod cavity;
+pub(crate) mod edge_table;
+pub(crate) mod kernel;
 mod output;
 mod parallel;
-mod store;
+pub(crate) mod store;
 mod triangulation;
 mod validate;
 

@@ -1,0 +1,84 @@
+//! The result as a [`TetMesh`]: the material tets with their region tags, the subfaces as
+//! boundary triangles with the tags of the input triangles they lie in, oriented outward from
+//! the material (interfaces between two regions keep the input's orientation). The input
+//! vertices keep their indices; Steiner points follow.
+
+use crate::mesh::TetMesh;
+use crate::mesh::TriSurface;
+use crate::mesh3d::mesher::MeshingError;
+use crate::mesh3d::mesher::carve::Labels;
+use crate::mesh3d::mesher::surface_model::SurfaceModel;
+use crate::mesh3d::mesher::tetra::{NONE, Tetra};
+
+/// Builds the output mesh.
+///
+/// # Errors
+/// [`MeshingError::Internal`] if the result fails [`TetMesh::validate`] or a subface is
+/// missing (both would be bugs).
+pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &TriSurface) -> Result<TetMesh, MeshingError> {
+    let n_in = input.vertices.len();
+    let mut index = vec![NONE; tr.num_points()];
+    let mut vertices = input.vertices.clone();
+    for (i, slot) in index.iter_mut().enumerate().take(n_in) {
+        *slot = i as u32;
+    }
+    let mut tets = Vec::new();
+    let mut region_tags = Vec::new();
+    for t in tr.live() {
+        let l = labels.get(t);
+        if l == 0 {
+            continue;
+        }
+        let v = tr.tets[t as usize].v.map(|p| {
+            if index[p as usize] == NONE {
+                index[p as usize] = vertices.len() as u32;
+                vertices.push(tr.point(p));
+            }
+            index[p as usize]
+        });
+        tets.push(v);
+        region_tags.push(labels.tags[(l - 1) as usize]);
+    }
+    let mut boundary = Vec::new();
+    let mut boundary_tags = Vec::new();
+    let mut buf = Vec::new();
+    for (f, s) in sm.subfaces() {
+        let (t, k) = tr
+            .face_of(s[0], s[1], s[2], &mut buf)
+            .ok_or_else(|| MeshingError::Internal(format!("subface {s:?} is missing at the end")))?;
+        let other = tr.tets[t as usize].n[k] >> 2;
+        let (lt, lo) = (labels.get(t), labels.get(other));
+        if lt == 0 && lo == 0 {
+            continue; // between two voids: not a boundary of the mesh
+        }
+        // orientation: outward from the material tet when only one side is material
+        let mut tri = s;
+        let inner = if lt != 0 && lo == 0 { Some(t) } else if lo != 0 && lt == 0 { Some(other) } else { None };
+        if let Some(m) = inner {
+            let w = tr.tets[m as usize].v;
+            let apex = w.iter().copied().find(|x| !s.contains(x)).unwrap_or(w[0]);
+            let [a, b, c, d] = [s[0], s[1], s[2], apex].map(|p| tr.point(p));
+            // the apex must be on the negative side of an outward face
+            if crate::core::predicates::orient3d(a, b, c, d) == crate::core::Sign::Positive {
+                tri = [s[0], s[2], s[1]];
+            }
+        }
+        let mapped = tri.map(|p| index[p as usize]);
+        if mapped.contains(&NONE) {
+            return Err(MeshingError::Internal(format!("subface {s:?} uses a vertex of no tet")));
+        }
+        boundary.push(mapped);
+        boundary_tags.push(sm.facets[f as usize].tag);
+    }
+    let mesh = TetMesh {
+        vertices,
+        tets,
+        region_tags,
+        boundary,
+        boundary_tags,
+        face_names: input.tag_names.clone(),
+        region_names: Default::default(),
+    };
+    mesh.validate().map_err(|e| MeshingError::Internal(format!("the mesh does not validate: {e}")))?;
+    Ok(mesh)
+}

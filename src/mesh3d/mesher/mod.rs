@@ -1,0 +1,273 @@
+//! Tetrahedral meshing of closed surfaces.
+//!
+//! Stage: layer 4. Input: a closed, tagged [`TriSurface`] (outer boundaries and cavities; each
+//! region a connected volume between them, or given by a seed point), a [`SizeField`] and
+//! [`MeshOptions`]. Output: a [`TetMesh`] whose tets carry a region tag and whose boundary
+//! triangles carry the tag of the input triangle they lie in.
+//!
+//! Stages, one file each:
+//! 1. `input.rs`: the surface must be closed, manifold and free of self-intersections; the
+//!    errors name the offending edges or the two crossing triangles and their tags;
+//! 2. `tetra.rs`: the Delaunay tetrahedralization of the surface vertices;
+//! 3. `recover.rs`: boundary recovery, Steiner points on segments and facets until every
+//!    piece of the surface is a face of the tetrahedralization;
+//! 4. `carve.rs`: the exterior and the cavities removed by flood fill across the surface,
+//!    regions numbered;
+//! 5. `refine.rs`: Delaunay refinement inside, with encroachment rules, a radius-edge bound
+//!    and the size field;
+//! 6. `keep.rs` (with `keep_surface`): the boundary Steiner points collapsed back onto the
+//!    input vertices, so the surface is exactly the input;
+//! 7. the optimisation of [`crate::mesh3d::optimize`] when it exists, then `extract.rs`: the
+//!    result as a [`TetMesh`].
+
+mod carve;
+mod extract;
+mod input;
+mod keep;
+mod presize;
+mod recover;
+mod refine;
+mod surface_model;
+mod tetra;
+mod ties;
+
+use crate::core::{FaceId, RegionId, SizeField};
+use crate::mesh::{TetMesh, TriSurface};
+use glam::DVec3;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Options of [`mesh_surface`].
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct MeshOptions {
+    /// Refine tets whose circumradius-to-shortest-edge ratio exceeds this.
+    pub max_radius_edge: f64,
+    /// Minimum dihedral angle (degrees) the optimisation aims for.
+    pub min_dihedral: f64,
+    /// Largest edge length wanted anywhere (on top of the size field), if any.
+    pub max_size: Option<f64>,
+    /// Keep the input surface exactly: no Steiner point stays on it.
+    pub keep_surface: bool,
+    /// Seed of the randomised insertion order (the result does not depend on it).
+    pub seed: u64,
+    /// Run the optimisation (flips, smoothing, insertion) after refinement.
+    pub optimize: bool,
+}
+
+impl Default for MeshOptions {
+    fn default() -> Self {
+        MeshOptions { max_radius_edge: 1.5, min_dihedral: 15.0, max_size: None, keep_surface: false, seed: 0x5eed, optimize: true }
+    }
+}
+
+impl MeshOptions {
+    /// Sets [`MeshOptions::max_radius_edge`].
+    pub fn with_max_radius_edge(mut self, r: f64) -> Self {
+        self.max_radius_edge = r;
+        self
+    }
+    /// Sets [`MeshOptions::min_dihedral`].
+    pub fn with_min_dihedral(mut self, d: f64) -> Self {
+        self.min_dihedral = d;
+        self
+    }
+    /// Sets [`MeshOptions::max_size`].
+    pub fn with_max_size(mut self, h: Option<f64>) -> Self {
+        self.max_size = h;
+        self
+    }
+    /// Sets [`MeshOptions::optimize`].
+    pub fn with_optimize(mut self, on: bool) -> Self {
+        self.optimize = on;
+        self
+    }
+    /// Sets [`MeshOptions::keep_surface`].
+    pub fn with_keep_surface(mut self, keep: bool) -> Self {
+        self.keep_surface = keep;
+        self
+    }
+}
+
+/// A region given by a point inside it.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct RegionSeed {
+    /// A point strictly inside the region.
+    pub point: DVec3,
+    /// The region's tag.
+    pub tag: RegionId,
+}
+
+/// Holes and region seeds (from a `.poly` file, or given by the caller).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Seeds {
+    /// Points inside volumes that must stay empty (beyond the cavities found by enclosure).
+    pub holes: Vec<DVec3>,
+    /// Regions by seed point; regions without a seed are numbered by enclosure.
+    pub regions: Vec<RegionSeed>,
+}
+
+/// What [`mesh_surface`] did, for reports.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct MeshReport {
+    /// Vertices of the result.
+    pub nodes: usize,
+    /// Tets of the result.
+    pub tets: usize,
+    /// Steiner points left on the boundary.
+    pub boundary_steiner_points: usize,
+    /// Steiner points inserted in the volume.
+    pub volume_steiner_points: usize,
+    /// Regions.
+    pub regions: usize,
+    /// Seconds per stage: delaunay, recovery, carve, refine, keep, optimize, extract.
+    pub stage_seconds: Vec<(String, f64)>,
+    /// What the optimisation did, when it ran.
+    pub optimize: Option<crate::mesh3d::optimize::OptimizeReport>,
+    /// Total wall seconds.
+    pub seconds: f64,
+}
+
+/// Why a surface could not be meshed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MeshingError {
+    /// The surface is not closed: it has edges used by one triangle only.
+    #[error("the surface is open: {count} boundary edges, e.g. {}; close it (or fill its holes) before meshing", edges_text(edges))]
+    Open {
+        /// Number of boundary edges.
+        count: usize,
+        /// The first boundary edges (vertex pairs).
+        edges: Vec<[u32; 2]>,
+    },
+    /// An edge is used by more than two triangles.
+    #[error("edge ({}, {}) is shared by {count} triangles (non-manifold); separate the bodies or merge the duplicated faces", edge[0], edge[1])]
+    NonManifold {
+        /// The edge.
+        edge: [u32; 2],
+        /// Triangles on it.
+        count: usize,
+    },
+    /// Two triangles cross.
+    #[error("triangles {a} ({tag_a}) and {b} ({tag_b}) intersect; {count} crossing pairs in all: repair the surface")]
+    SelfIntersecting {
+        /// One triangle.
+        a: u32,
+        /// The other.
+        b: u32,
+        /// Tag of `a`.
+        tag_a: FaceId,
+        /// Tag of `b`.
+        tag_b: FaceId,
+        /// Crossing pairs in all.
+        count: usize,
+    },
+    /// The surface is degenerate: a zero-area triangle, or all vertices in one plane.
+    #[error("degenerate surface: {0}")]
+    Degenerate(String),
+    /// Boundary recovery failed near a triangle.
+    #[error("boundary recovery failed near input triangle {triangle} ({tag}): {message}")]
+    Recovery {
+        /// The input triangle.
+        triangle: usize,
+        /// Its tag.
+        tag: FaceId,
+        /// What went wrong.
+        message: String,
+    },
+    /// Keep-surface: some Steiner points that recovery needed on the boundary could not be
+    /// merged back into the input vertices.
+    #[error("the surface cannot be kept exactly: {left} of the {recovered} points that boundary recovery put on it could not be removed again; mesh without --keep-surface (split triangles inherit their tags)")]
+    KeepSurface {
+        /// Points left on the boundary.
+        left: usize,
+        /// Points recovery put there.
+        recovered: usize,
+    },
+    /// A bug of fepre (an invariant broke); please report it with the input.
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+fn edges_text(e: &[[u32; 2]]) -> String {
+    e.iter().take(5).map(|x| format!("({}, {})", x[0], x[1])).collect::<Vec<_>>().join(", ")
+}
+
+/// Meshes the volume enclosed by `surface`.
+///
+/// # Errors
+/// [`MeshingError`] for open, non-manifold, self-intersecting or degenerate surfaces, and when
+/// the boundary cannot be recovered.
+pub fn mesh_surface(
+    surface: &TriSurface,
+    seeds: &Seeds,
+    size: &dyn SizeField,
+    options: &MeshOptions,
+) -> Result<(TetMesh, MeshReport), MeshingError> {
+    let start = Instant::now();
+    let mut report = MeshReport::default();
+    let mut stage = |name: &str, t: &mut Instant| {
+        report.stage_seconds.push((name.to_string(), t.elapsed().as_secs_f64()));
+        *t = Instant::now();
+    };
+    let mut clock = Instant::now();
+    input::check(surface)?;
+    stage("check", &mut clock);
+    // the boundary may change: cut its triangles to the size first
+    let sized = if options.keep_surface { None } else { presize::presize(surface, size, options.max_size) };
+    let surface = sized.as_ref().unwrap_or(surface);
+    if sized.is_some() {
+        stage("presize", &mut clock);
+    }
+    let ranks = ties::ranks(&surface.vertices, &surface.triangles);
+    let mut tr = tetra::Tetra::new(surface.vertices.clone(), ranks, options.seed).map_err(MeshingError::Degenerate)?;
+    stage("delaunay", &mut clock);
+    let mut sm = surface_model::SurfaceModel::new(surface.vertices.len(), &surface.triangles, &surface.face_tags);
+    let budget = 50 * surface.triangles.len() + 10_000;
+    let rec = recover::recover(&mut tr, &mut sm, budget)?;
+    stage("recovery", &mut clock);
+    let mut labels = carve::carve(&mut tr, &sm, seeds)?;
+    stage("carve", &mut clock);
+    let mut refined = refine::refine(&mut tr, &mut labels, size, options)?;
+    if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() {
+        eprintln!("refine: {:?}", refined);
+    }
+    stage("refine", &mut clock);
+    keep::drop_exterior(&mut tr, &labels);
+    if options.keep_surface {
+        // merging is easiest once the material has points of its own near the boundary
+        let left = keep::keep_surface(&mut tr, &mut sm);
+        if left > 0 {
+            return Err(MeshingError::KeepSurface { left, recovered: rec.segment_points + rec.facet_points });
+        }
+        stage("keep", &mut clock);
+    }
+    {
+        let again = refine::refine(&mut tr, &mut labels, size, options)?;
+        refined.volume_points += again.volume_points;
+        if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() {
+            eprintln!("refine again: {:?}", again);
+        }
+    }
+    stage("refine", &mut clock);
+    let mut mesh = extract::extract(&tr, &sm, &labels, surface)?;
+    stage("extract", &mut clock);
+    if options.optimize {
+        let opts = crate::mesh3d::optimize::OptimizeOptions::default()
+            .with_min_dihedral(options.min_dihedral)
+            .with_max_radius_edge(options.max_radius_edge.max(2.0));
+        let r = crate::mesh3d::optimize::optimize(&mut mesh, &opts).map_err(|e| MeshingError::Internal(e.to_string()))?;
+        report.optimize = Some(r);
+        stage("optimize", &mut clock);
+    }
+    report.nodes = mesh.vertices.len();
+    report.tets = mesh.tets.len();
+    report.boundary_steiner_points = sm.boundary_steiner_points();
+    report.volume_steiner_points = refined.volume_points;
+    report.regions = labels.regions;
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok((mesh, report))
+}
+
+#[cfg(test)]
+mod tests;

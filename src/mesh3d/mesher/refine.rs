@@ -1,0 +1,199 @@
+//! Delaunay refinement inside the material.
+//!
+//! A tet is bad when its circumradius-to-shortest-edge ratio exceeds the bound, or its
+//! circumradius exceeds 0.75 times the size wanted at its circumcentre. The worst bad tet is
+//! split at its circumcentre. The boundary is never split here (the surface was cut to the
+//! size before, or is kept as given): where the centre lies behind a wall, or inside the
+//! diametral sphere of a subface on its cavity's boundary (which would leave a point too
+//! near the surface), points inside the tet's circumsphere on the material side are tried
+//! instead: above each of its walls at the height of a well-shaped tet, and half-way from
+//! its centroid to the centre. New tets inherit the region of the tet they replace.
+
+use crate::core::SizeField;
+use crate::mesh3d::mesher::carve::Labels;
+use crate::mesh3d::mesher::recover::circumcenter;
+use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
+use crate::mesh3d::mesher::{MeshOptions, MeshingError};
+use crate::mesh3d::delaunay::store::GHOST;
+use glam::DVec3;
+use std::collections::BinaryHeap;
+
+/// What refinement did.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Refined {
+    /// Points inserted in the volume.
+    pub volume_points: usize,
+    /// Bad tets left as they were (keep-surface, or degenerate cases).
+    pub rejected: usize,
+}
+
+/// A queued bad tet: its priority (the radius-edge ratio, ordered by bits), slot and vertices.
+#[derive(PartialEq, Eq, PartialOrd, Ord)]
+struct Bad(u64, u32, [u32; 4]);
+
+/// Circumcentre, circumradius and shortest edge of tet `t`.
+pub(crate) fn tet_sphere(tr: &Tetra, t: u32) -> (DVec3, f64, f64) {
+    let [a, b, c, d] = tr.tets[t as usize].v.map(|v| tr.point(v));
+    let (u, v, w) = (b - a, c - a, d - a);
+    let det = u.dot(v.cross(w));
+    let lmin = [u, v, w, c - b, d - b, d - c].iter().map(|e| e.length_squared()).fold(f64::INFINITY, f64::min).sqrt();
+    if det == 0.0 {
+        return (a, f64::INFINITY, lmin);
+    }
+    let num = u.length_squared() * v.cross(w) + v.length_squared() * w.cross(u) + w.length_squared() * u.cross(v);
+    let off = num / (2.0 * det);
+    (a + off, off.length(), lmin)
+}
+
+/// Points inside bad tet `t`'s circumsphere and, unlike its centre, on the material side of
+/// its walls: for each wall face, the point above the face's centroid at the height of a
+/// well-shaped tet on it; then the midpoint of the centroid and the centre. Points too near
+/// a vertex of `t` (under 0.4 of its shortest edge) are left out.
+fn inside_candidates(tr: &Tetra, t: u32) -> Vec<DVec3> {
+    let (c, r, lmin) = tet_sphere(tr, t);
+    let v = tr.tets[t as usize].v;
+    let p = v.map(|i| tr.point(i));
+    let centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+    let mut out = Vec::new();
+    for (f, fv) in crate::mesh::tet_mesh::TET_FACES.iter().enumerate() {
+        if tr.walls[t as usize] >> f & 1 == 0 {
+            continue;
+        }
+        let [a, b, d] = fv.map(|i| p[i]);
+        let g = (a + b + d) / 3.0;
+        let n = (d - a).cross(b - a); // into t (the faces of TET_FACES turn so that (b-a)x(d-a) leaves it)
+        let len = n.length();
+        if len == 0.0 {
+            continue;
+        }
+        let edge = (a.distance(b) + b.distance(d) + d.distance(a)) / 3.0;
+        for h in [0.8, 0.6] {
+            out.push(g + n / len * (h * edge));
+        }
+    }
+    out.push((centroid + c) * 0.5);
+    out.retain(|q| q.is_finite() && q.distance(c) < r && p.iter().all(|x| x.distance(*q) > 0.4 * lmin));
+    out
+}
+
+/// The priority of tet `t` if it is bad.
+fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions) -> Option<u64> {
+    let (c, r, lmin) = tet_sphere(tr, t);
+    if !r.is_finite() || lmin <= 0.0 {
+        return None;
+    }
+    let ratio = r / lmin;
+    let mut h = size.size_at(c);
+    if let Some(m) = opts.max_size {
+        h = h.min(m);
+    }
+    let too_big = h.is_finite() && h > 0.0 && r > 0.75 * h;
+    if ratio > opts.max_radius_edge || too_big {
+        // worst ratio first; size-driven splits after quality ones of equal ratio
+        Some((ratio.max(if too_big { r / h } else { 0.0 })).to_bits())
+    } else {
+        None
+    }
+}
+
+/// The wall on a cavity's boundary whose equatorial sphere holds `c`, as (tet, face).
+fn encroached_wall(tr: &Tetra, walls: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
+    for &(f, r) in walls {
+        if f.contains(&GHOST) {
+            continue;
+        }
+        let [a, b, d] = f.map(|v| tr.point(v));
+        let cc = circumcenter(a, b, d);
+        if c.distance_squared(cc) < a.distance_squared(cc) * (1.0 - 1e-12) {
+            return Some((r >> 2, (r & 3) as usize));
+        }
+    }
+    None
+}
+
+/// Refines the material tets of `tr`.
+///
+/// # Errors
+/// [`MeshingError::Internal`] when the walls cannot be restored after a boundary split.
+pub(crate) fn refine(
+    tr: &mut Tetra,
+    labels: &mut Labels,
+    size: &dyn SizeField,
+    opts: &MeshOptions,
+) -> Result<Refined, MeshingError> {
+    let mut out = Refined::default();
+    let mut heap = BinaryHeap::new();
+    for t in tr.live().collect::<Vec<_>>() {
+        if labels.get(t) != 0 {
+            if let Some(q) = badness(tr, t, size, opts) {
+                heap.push(Bad(q, t, tr.tets[t as usize].v));
+            }
+        }
+    }
+    // a generous bound on the work, against cascades near tiny input angles
+    let budget = 50 * tr.num_points() + 1_000_000;
+    let mut steps = 0usize;
+    while let Some(Bad(_, t, v)) = heap.pop() {
+        if tr.tets[t as usize].v != v || labels.get(t) == 0 {
+            continue;
+        }
+        steps += 1;
+        if steps > budget {
+            break;
+        }
+        let Some(_) = badness(tr, t, size, opts) else { continue };
+        let (c, _, _) = tet_sphere(tr, t);
+        let p = tr.add_point(c);
+        tr.created.clear();
+        // a point inside a subface's diametral sphere is not inserted: the subface is split
+        // instead, or with keep-surface, the tet is worked on from inside below
+        let res = tr.insert_checked(p, t, |tr, walls| encroached_wall(tr, walls, c));
+        match res {
+            Inserted::Yes(_) => {
+                let region = labels.get(t);
+                for s in tr.created.drain(..).collect::<Vec<_>>() {
+                    labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
+                    if let Some(q) = badness(tr, s, size, opts) {
+                        heap.push(Bad(q, s, tr.tets[s as usize].v));
+                    }
+                }
+                out.volume_points += 1;
+            }
+            _ => {
+                tr.remove_last_point();
+                // the centre lies beyond the boundary: a point inside, in the same sphere,
+                // still breaks the tet up (off-centres towards the tet, then points above its
+                // walls at a good height)
+                let region = labels.get(t);
+                let mut done = false;
+                for q in inside_candidates(tr, t) {
+                    let p = tr.add_point(q);
+                    tr.created.clear();
+                    let res = tr.insert_checked(p, t, |tr, walls| encroached_wall(tr, walls, q));
+                    if let Inserted::Yes(_) = res {
+                        for s in tr.created.drain(..).collect::<Vec<_>>() {
+                            labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
+                            if let Some(q) = badness(tr, s, size, opts) {
+                                heap.push(Bad(q, s, tr.tets[s as usize].v));
+                            }
+                        }
+                        out.volume_points += 1;
+                        done = true;
+                        break;
+                    }
+                    if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() && out.rejected < 8 {
+                        eprintln!("tet {t} walls {:04b} candidate {q} -> {res:?}", tr.walls[t as usize]);
+                    }
+                    tr.remove_last_point();
+                }
+                if !done {
+                    if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() && out.rejected < 8 {
+                        eprintln!("tet {t} walls {:04b}: {} candidates, first res {res:?}", tr.walls[t as usize], inside_candidates(tr, t).len());
+                    }
+                    out.rejected += 1;
+                }
+            }
+        }
+    }
+    Ok(out)
+}

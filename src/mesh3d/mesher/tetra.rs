@@ -1,0 +1,492 @@
+//! The mesher's working tetrahedralization: the Delaunay insertion of
+//! [`crate::mesh3d::delaunay`] on points that grow (Steiner points), with walls (the subfaces
+//! of the boundary, which cavities do not cross once the boundary is recovered), a tet at
+//! every vertex for star queries, and a check that every new tet is positively oriented before
+//! anything is written (cavity correction: tets whose boundary faces do not see the new point
+//! are given back, so insertion stays valid in a mesh that is not exactly Delaunay).
+//!
+//! Tets are `Tet` records (4 vertices, 4 neighbour references `(tet << 2) | face`) with ghost
+//! tets closing the convex hull, as in the Delaunay module. Wall flags are one bit per tet face.
+
+use crate::core::Sign;
+use crate::core::spatial_order::brio_order;
+use crate::mesh::tet_mesh::TET_FACES;
+use crate::mesh3d::delaunay::cavity::{Everything, IN, Located, Marks, OUT, Scratch, Walls, dig_walled, fill, link_star, locate};
+use crate::mesh3d::delaunay::kernel::{FloatKernel, Kernel};
+use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet, TetStore};
+use glam::DVec3;
+
+/// No tet.
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// Wall bits: bit `f` of `walls[t]` is set when face `f` of tet `t` is a subface.
+struct WallBits<'a>(&'a [u8]);
+
+impl Walls for WallBits<'_> {
+    #[inline]
+    fn wall(&self, t: u32, f: usize) -> bool {
+        self.0[t as usize] >> f & 1 != 0
+    }
+}
+
+/// What an insertion did.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Inserted {
+    /// The point is a vertex now; one of its tets.
+    Yes(u32),
+    /// The point coincides with this vertex; nothing changed.
+    Duplicate(u32),
+    /// The point lies behind this wall (tet, face) seen from the start; nothing changed.
+    Blocked(u32, usize),
+    /// The caller's check turned the cavity down (it named this wall: tet, face).
+    Rejected(u32, usize),
+    /// The point could not be inserted without breaking a wall or a tet (nothing changed).
+    Refused,
+}
+
+/// A growing, possibly constrained, Delaunay tetrahedralization.
+pub(crate) struct Tetra {
+    /// Points (input vertices first, then Steiner points); ties broken by index.
+    pub k: FloatKernel,
+    /// Tet slots (slot 0 is scratch, ghosts close the hull, `DEAD` marks free slots).
+    pub tets: Vec<Tet>,
+    /// Wall bits per tet.
+    pub walls: Vec<u8>,
+    mark: Vec<u8>,
+    free: Vec<u32>,
+    sc: Scratch,
+    /// A tet incident to every vertex (kept current by every insertion).
+    pub vtet: Vec<u32>,
+    /// Whether insertions stop at walls.
+    pub walled: bool,
+    /// The last tet created: walks start there by default.
+    hint: u32,
+    /// Tets given back by the cavity correction of the current insertion.
+    dropped: Vec<u32>,
+    /// Slots written by insertions since the caller last cleared it.
+    pub created: Vec<u32>,
+}
+
+impl Tetra {
+    /// The Delaunay tetrahedralization of `points` (all distinct, spanning a tetrahedron).
+    ///
+    /// # Errors
+    /// A message when the points span no tetrahedron or some coincide (the caller checked the
+    /// surface, so this is a bug or degenerate input it could not see).
+    /// `ranks` orders the points for the symbolic perturbation (a permutation of `0..n`).
+    pub fn new(points: Vec<DVec3>, ranks: Vec<u32>, seed: u64) -> Result<Self, String> {
+        let n = points.len();
+        let order = brio_order(&points, seed);
+        let k = FloatKernel { ids: ranks, points };
+        let first = first_tet(&k, &order).ok_or("the surface vertices span no tetrahedron (all coplanar)")?;
+        let mut tr = Tetra {
+            k,
+            tets: Vec::with_capacity(n * 8 + 64),
+            walls: Vec::with_capacity(n * 8 + 64),
+            mark: Vec::with_capacity(n * 8 + 64),
+            free: Vec::new(),
+            sc: Scratch::new(seed),
+            vtet: vec![NONE; n],
+            walled: false,
+            hint: 1,
+            dropped: Vec::new(),
+            created: Vec::new(),
+        };
+        tr.push([DEAD; 4]);
+        let t0 = tr.push(first);
+        let mut ghosts = [0u32; 4];
+        for (f, fv) in TET_FACES.iter().enumerate() {
+            let g = tr.push([first[fv[0]], first[fv[1]], first[fv[2]], GHOST]);
+            tr.tets[t0 as usize].n[f] = (g << 2) | 3;
+            tr.tets[g as usize].n[3] = (t0 << 2) | f as u32;
+            ghosts[f] = g;
+        }
+        link_star(&mut tr.tets, &mut tr.sc, &ghosts, 3);
+        for &v in &first {
+            tr.vtet[v as usize] = t0;
+        }
+        for &p in &order {
+            if first.contains(&p) {
+                continue;
+            }
+            match tr.insert_at(p, NONE) {
+                Inserted::Yes(_) => {}
+                Inserted::Duplicate(v) => return Err(format!("vertices {p} and {v} coincide")),
+                _ => return Err(format!("vertex {p} could not be inserted")),
+            }
+        }
+        Ok(tr)
+    }
+
+    fn push(&mut self, v: [u32; 4]) -> u32 {
+        let t = self.tets.len() as u32;
+        self.tets.push(Tet { v, n: [0; 4] });
+        self.walls.push(0);
+        self.mark.push(0);
+        t
+    }
+
+    /// A live tet to start walks from when nothing nearer is known: the last tet created.
+    fn default_start(&self) -> u32 {
+        if self.tets.get(self.hint as usize).is_some_and(|t| t.v[0] != DEAD) {
+            return self.hint;
+        }
+        (1..self.tets.len() as u32).rev().find(|&t| self.tets[t as usize].v[0] != DEAD).unwrap_or(1)
+    }
+
+    /// Appends a point; returns its index (not yet inserted).
+    pub fn add_point(&mut self, p: DVec3) -> u32 {
+        let i = self.k.points.len() as u32;
+        self.k.points.push(p);
+        self.k.ids.push(i);
+        self.vtet.push(NONE);
+        i
+    }
+
+    /// Removes the last point added if no tet uses it (a candidate that was not inserted).
+    pub fn remove_last_point(&mut self) {
+        if self.vtet.last() == Some(&NONE) {
+            self.k.points.pop();
+            self.k.ids.pop();
+            self.vtet.pop();
+        }
+    }
+
+    /// Number of points.
+    pub fn num_points(&self) -> usize {
+        self.k.points.len()
+    }
+
+    /// Position of point `v`.
+    #[inline]
+    pub fn point(&self, v: u32) -> DVec3 {
+        self.k.points[v as usize]
+    }
+
+    /// True for a live finite tet.
+    #[inline]
+    pub fn finite(&self, t: u32) -> bool {
+        let v = self.tets[t as usize].v;
+        v[0] != DEAD && v[3] != GHOST
+    }
+
+    /// Inserts point `p` (already added), starting the walk at tet `start` (any live tet; a
+    /// tet near `p` makes it fast).
+    pub fn insert_at(&mut self, p: u32, start: u32) -> Inserted {
+        self.insert_checked(p, start, |_, _| None)
+    }
+
+    /// [`Tetra::insert_at`] with a check before anything is written: `check` sees the wall
+    /// faces on the cavity's boundary (as (outside tet, face) references, the face vertices
+    /// oriented towards `p`) and may turn the insertion down by naming one of them.
+    pub fn insert_checked<F>(&mut self, p: u32, start: u32, check: F) -> Inserted
+    where
+        F: FnOnce(&Tetra, &[([u32; 3], u32)]) -> Option<(u32, usize)>,
+    {
+        let start = if start != NONE && (start as usize) < self.tets.len() && self.tets[start as usize].v[0] != DEAD {
+            start
+        } else {
+            self.default_start()
+        };
+        let walls = WallBits(&self.walls);
+        let t0 = match locate_walled(&self.k, &self.tets, &walls, self.walled, &mut self.sc, start, p) {
+            Walk::Found(t) => t,
+            Walk::Duplicate(v) => return Inserted::Duplicate(v),
+            Walk::Wall(t, f) => return Inserted::Blocked(t, f),
+            Walk::Lost => return Inserted::Refused,
+        };
+        let ok = if self.walled {
+            dig_walled(&self.k, &self.tets, &Everything, &walls, &mut self.mark, &mut self.sc, t0, p)
+        } else {
+            dig_walled(&self.k, &self.tets, &Everything, &crate::mesh3d::delaunay::cavity::NoWalls, &mut self.mark, &mut self.sc, t0, p)
+        };
+        debug_assert!(ok);
+        // every tet dig marked, so that all marks get cleared whatever the correction drops
+        self.dropped.extend_from_slice(&self.sc.cavity);
+        self.dropped.extend(self.sc.boundary.iter().map(|&(_, r)| r >> 2));
+        let visible = self.correct_cavity(t0, p);
+        self.clear_marks();
+        if !visible {
+            return Inserted::Refused;
+        }
+        let walls_on_boundary: Vec<([u32; 3], u32)> = self
+            .sc
+            .boundary
+            .iter()
+            .copied()
+            .filter(|&(_, r)| self.walls[(r >> 2) as usize] >> (r & 3) & 1 != 0)
+            .collect();
+        if let Some((t, f)) = check(self, &walls_on_boundary) {
+            return Inserted::Rejected(t, f);
+        }
+        // slots: the cavity's own, then free ones, then new ones
+        let m = self.sc.boundary.len();
+        let c = self.sc.cavity.len();
+        // the walls of the boundary faces, read before the cavity slots are reused
+        let mut wall_of: Vec<bool> = Vec::with_capacity(m);
+        for &(_, r) in &self.sc.boundary {
+            wall_of.push(self.walls[(r >> 2) as usize] >> (r & 3) & 1 != 0);
+        }
+        self.sc.slots.clear();
+        self.sc.slots.extend_from_slice(&self.sc.cavity[..c.min(m)]);
+        while self.sc.slots.len() < m {
+            let s = match self.free.pop() {
+                Some(s) => s,
+                None => self.push([DEAD; 4]),
+            };
+            self.sc.slots.push(s);
+        }
+        for i in m..c {
+            let t = self.sc.cavity[i];
+            self.tets[t as usize].v = [DEAD; 4];
+            self.walls[t as usize] = 0;
+            self.free.push(t);
+        }
+        let sc = &mut self.sc;
+        let last = fill(&mut self.tets, &mut sc.edges, &sc.boundary, &sc.slots, p);
+        // walls: a new tet's face opposite p is the old boundary face, a wall if it was one
+        for (i, &t) in self.sc.slots.iter().enumerate() {
+            let ip = self.tets[t as usize].v.iter().position(|&v| v == p).unwrap_or(3);
+            self.walls[t as usize] = if wall_of[i] { 1 << ip } else { 0 };
+            for v in self.tets[t as usize].v {
+                if v != GHOST {
+                    self.vtet[v as usize] = t;
+                }
+            }
+        }
+        self.created.extend_from_slice(&self.sc.slots);
+        self.hint = last;
+        Inserted::Yes(last)
+    }
+
+    /// Gives back cavity tets whose boundary faces `p` does not see strictly (their new tet
+    /// would be flat or inverted), until every boundary face is visible or the tet holding `p`
+    /// itself would go. Rebuilds the boundary list. Returns false in the latter case.
+    fn correct_cavity(&mut self, t0: u32, p: u32) -> bool {
+        loop {
+            let mut bad: Option<u32> = None;
+            for &(f, r) in &self.sc.boundary {
+                if f.contains(&GHOST) {
+                    continue;
+                }
+                if self.k.orient(f[0], f[1], f[2], p) != Sign::Positive {
+                    // the cavity tet on the inner side of this face (found by its vertices: the
+                    // outside may be slot 0, which many faces share once the exterior is gone)
+                    let inner = self.sc.cavity.iter().copied().find(|&c| f.iter().all(|x| self.tets[c as usize].v.contains(x)));
+                    bad = Some(inner.unwrap_or(t0));
+                    let _ = r;
+                    break;
+                }
+            }
+            // a wall must never end up inside the cavity
+            if bad.is_none() {
+                for &t in &self.sc.cavity {
+                    for f in 0..4 {
+                        if self.walls[t as usize] >> f & 1 != 0 && self.mark[(self.tets[t as usize].n[f] >> 2) as usize] == IN {
+                            bad = Some(t);
+                        }
+                    }
+                }
+            }
+            let Some(b) = bad else { return true };
+            if b == t0 {
+                return false;
+            }
+            self.mark[b as usize] = OUT;
+            self.sc.cavity.retain(|&t| t != b);
+            // keep the part of the cavity connected to t0 only
+            let mut keep = vec![t0];
+            let mut i = 0;
+            while i < keep.len() {
+                let t = keep[i];
+                for f in 0..4 {
+                    let n = self.tets[t as usize].n[f] >> 2;
+                    if self.mark[n as usize] == IN && !keep.contains(&n) && self.walls[t as usize] >> f & 1 == 0 {
+                        keep.push(n);
+                    }
+                }
+                i += 1;
+            }
+            for &t in &self.sc.cavity {
+                if !keep.contains(&t) {
+                    self.mark[t as usize] = OUT;
+                }
+            }
+            // tets dropped from the cavity are remembered so that their marks get cleared
+            self.dropped.push(b);
+            self.dropped.extend(self.sc.cavity.iter().copied().filter(|t| !keep.contains(t)));
+            self.sc.cavity = keep;
+            // rebuild the boundary from the cavity
+            self.sc.boundary.clear();
+            for i in 0..self.sc.cavity.len() {
+                let t = self.sc.cavity[i];
+                let w = self.tets[t as usize].v;
+                for (f, fv) in TET_FACES.iter().enumerate() {
+                    let r = self.tets[t as usize].n[f];
+                    if self.mark[(r >> 2) as usize] != IN {
+                        self.sc.boundary.push(([w[fv[0]], w[fv[2]], w[fv[1]]], r));
+                    }
+                }
+            }
+        }
+    }
+
+    fn clear_marks(&mut self) {
+        for &t in &self.sc.cavity {
+            self.mark.set(t, 0);
+        }
+        for &(_, r) in &self.sc.boundary {
+            self.mark.set(r >> 2, 0);
+        }
+        for &t in &self.dropped {
+            self.mark.set(t, 0);
+        }
+        self.dropped.clear();
+    }
+
+    /// The tets incident to vertex `v` (finite and ghost), by a walk around it.
+    pub fn star(&self, v: u32, out: &mut Vec<u32>) {
+        out.clear();
+        let t0 = self.vtet[v as usize];
+        if t0 == NONE {
+            return;
+        }
+        out.push(t0);
+        let mut i = 0;
+        while i < out.len() {
+            let t = out[i];
+            let tv = self.tets[t as usize].v;
+            for f in 0..4 {
+                if tv[f] == v {
+                    continue; // the face opposite v does not contain it
+                }
+                let n = self.tets[t as usize].n[f] >> 2;
+                if n != 0 && !out.contains(&n) {
+                    out.push(n);
+                }
+            }
+            i += 1;
+        }
+    }
+
+    /// A tet holding edge `(a, b)`, if it is an edge of the tetrahedralization.
+    pub fn edge_tet(&self, a: u32, b: u32, buf: &mut Vec<u32>) -> Option<u32> {
+        self.star(a, buf);
+        buf.iter().copied().find(|&t| self.tets[t as usize].v.contains(&b))
+    }
+
+    /// The tet and face index of face `(a, b, c)`, if it is a face of the tetrahedralization
+    /// (one of the two sides).
+    pub fn face_of(&self, a: u32, b: u32, c: u32, buf: &mut Vec<u32>) -> Option<(u32, usize)> {
+        self.star(a, buf);
+        for &t in buf.iter() {
+            let v = self.tets[t as usize].v;
+            if v.contains(&b) && v.contains(&c) {
+                let f = (0..4).find(|&i| v[i] != a && v[i] != b && v[i] != c)?;
+                return Some((t, f));
+            }
+        }
+        None
+    }
+
+    /// Sets or clears the wall flag of face `f` of tet `t` and of the same face seen from its
+    /// neighbour.
+    pub fn set_wall(&mut self, t: u32, f: usize, on: bool) {
+        let r = self.tets[t as usize].n[f];
+        let (n, g) = ((r >> 2) as usize, (r & 3) as usize);
+        if on {
+            self.walls[t as usize] |= 1 << f;
+            self.walls[n] |= 1 << g;
+        } else {
+            self.walls[t as usize] &= !(1 << f);
+            self.walls[n] &= !(1 << g);
+        }
+    }
+
+    /// Frees slot `t` (its tet is gone; nothing may refer to it any more).
+    pub fn free_slot(&mut self, t: u32) {
+        self.tets[t as usize].v = [DEAD; 4];
+        self.walls[t as usize] = 0;
+        self.free.push(t);
+    }
+
+    /// The live finite tets.
+    pub fn live(&self) -> impl Iterator<Item = u32> + '_ {
+        (1..self.tets.len() as u32).filter(|&t| self.finite(t))
+    }
+}
+
+/// Where a walk ended.
+enum Walk {
+    /// In this tet (or the ghost beyond whose hull face the point lies).
+    Found(u32),
+    /// On this vertex.
+    Duplicate(u32),
+    /// At this wall (tet, face): the point lies behind it.
+    Wall(u32, usize),
+    /// Nowhere (a walk that would not end: a bug).
+    Lost,
+}
+
+/// The walk of [`locate`], stopping at walls when `walled`.
+fn locate_walled(k: &FloatKernel, s: &Vec<Tet>, walls: &WallBits<'_>, walled: bool, sc: &mut Scratch, start: u32, p: u32) -> Walk {
+    if !walled {
+        return match locate(k, s, &Everything, &mut sc.rng, start, p) {
+            Located::Conflict(t) => Walk::Found(t),
+            Located::Duplicate(v) => Walk::Duplicate(v),
+            Located::Blocked => Walk::Lost,
+        };
+    }
+    let mut t = start;
+    if s.v(t)[3] == GHOST {
+        t = s.n(t, 3) >> 2;
+    }
+    let mut came_from = 4usize;
+    for _ in 0..(4 * s.len() + 16) {
+        let w = s.v(t);
+        let r = (sc.rng.next_u64() >> 62) as usize;
+        let mut next = None;
+        for j in 0..4 {
+            let f = (r + j) & 3;
+            if f == came_from {
+                continue;
+            }
+            let mut q = w;
+            q[f] = p;
+            if k.orient(q[0], q[1], q[2], q[3]) == Sign::Negative {
+                next = Some(f);
+                break;
+            }
+        }
+        match next {
+            Some(f) => {
+                if walls.wall(t, f) {
+                    return Walk::Wall(t, f);
+                }
+                let r = s.n(t, f);
+                let n = r >> 2;
+                if s.v(n)[3] == GHOST {
+                    return Walk::Found(n);
+                }
+                came_from = (r & 3) as usize;
+                t = n;
+            }
+            None => {
+                if let Some(&v) = w.iter().find(|&&v| k.same(v, p)) {
+                    return Walk::Duplicate(v);
+                }
+                return Walk::Found(t);
+            }
+        }
+    }
+    Walk::Lost
+}
+
+/// Four points spanning a positive tet, in insertion order.
+fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
+    let a = *order.first()?;
+    let b = *order.iter().find(|&&i| !k.same(i, a))?;
+    let c = *order.iter().find(|&&i| !k.collinear(a, b, i))?;
+    let d = *order.iter().find(|&&i| !k.orient(a, b, c, i).is_zero())?;
+    Some(if k.orient(a, b, c, d) == Sign::Positive { [a, b, c, d] } else { [b, a, c, d] })
+}
