@@ -255,7 +255,8 @@ pub fn mesh_surface(
     if options.optimize {
         let opts = crate::mesh3d::optimize::OptimizeOptions::default()
             .with_min_dihedral(options.min_dihedral)
-            .with_max_radius_edge(options.max_radius_edge.max(2.0));
+            .with_max_radius_edge(options.max_radius_edge.max(2.0))
+            .with_max_passes(16);
         let r = crate::mesh3d::optimize::optimize(&mut mesh, &opts).map_err(|e| MeshingError::Internal(e.to_string()))?;
         report.optimize = Some(r);
         stage("optimize", &mut clock);

@@ -49,12 +49,29 @@ pub(crate) fn tet_sphere(tr: &Tetra, t: u32) -> (DVec3, f64, f64) {
 /// its walls: for each wall face, the point above the face's centroid at the height of a
 /// well-shaped tet on it; then the midpoint of the centroid and the centre. Points too near
 /// a vertex of `t` (under 0.4 of its shortest edge) are left out.
-fn inside_candidates(tr: &Tetra, t: u32) -> Vec<DVec3> {
+fn inside_candidates(tr: &Tetra, t: u32, wall: Option<(u32, usize)>) -> Vec<DVec3> {
     let (c, r, lmin) = tet_sphere(tr, t);
     let v = tr.tets[t as usize].v;
     let p = v.map(|i| tr.point(i));
     let centroid = (p[0] + p[1] + p[2] + p[3]) / 4.0;
     let mut out = Vec::new();
+    // the wall whose diametral sphere the centre fell in: points above it, on t's side
+    if let Some((wt, wk)) = wall {
+        let w = tr.tets[wt as usize].v;
+        let face = crate::mesh::tet_mesh::TET_FACES[wk].map(|i| w[i]);
+        if !face.contains(&GHOST) && !face.contains(&crate::mesh3d::delaunay::store::DEAD) {
+            let [a, b, d] = face.map(|i| tr.point(i));
+            let g = (a + b + d) / 3.0;
+            let mut n = (b - a).cross(d - a).normalize_or_zero();
+            if n.dot(centroid - g) < 0.0 {
+                n = -n;
+            }
+            let edge = (a.distance(b) + b.distance(d) + d.distance(a)) / 3.0;
+            for h in [0.8, 0.6] {
+                out.push(g + n * (h * edge));
+            }
+        }
+    }
     for (f, fv) in crate::mesh::tet_mesh::TET_FACES.iter().enumerate() {
         if tr.walls[t as usize] >> f & 1 == 0 {
             continue;
@@ -97,9 +114,9 @@ fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions) -> Opti
 }
 
 /// The wall on a cavity's boundary whose equatorial sphere holds `c`, as (tet, face).
-fn encroached_wall(tr: &Tetra, walls: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
-    for &(f, r) in walls {
-        if f.contains(&GHOST) {
+fn encroached_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
+    for &(f, r) in boundary {
+        if f.contains(&GHOST) || tr.walls[(r >> 2) as usize] >> (r & 3) & 1 == 0 {
             continue;
         }
         let [a, b, d] = f.map(|v| tr.point(v));
@@ -165,11 +182,16 @@ pub(crate) fn refine(
                 // still breaks the tet up (off-centres towards the tet, then points above its
                 // walls at a good height)
                 let region = labels.get(t);
+                let lmin = tet_sphere(tr, t).2;
                 let mut done = false;
-                for q in inside_candidates(tr, t) {
+                for q in inside_candidates(tr, t, if let Inserted::Rejected(wt, wk) = res { Some((wt, wk)) } else { None }) {
                     let p = tr.add_point(q);
                     tr.created.clear();
-                    let res = tr.insert_checked(p, t, |tr, walls| encroached_wall(tr, walls, q));
+                    let res = tr.insert_checked(p, t, |tr, faces| {
+                        // not too near any vertex it would join (no cascade of ever shorter edges)
+                        let near = faces.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(q) < 0.5 * lmin);
+                        if near { Some((0, 0)) } else { encroached_wall(tr, faces, q) }
+                    });
                     if let Inserted::Yes(_) = res {
                         for s in tr.created.drain(..).collect::<Vec<_>>() {
                             labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
@@ -188,7 +210,7 @@ pub(crate) fn refine(
                 }
                 if !done {
                     if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() && out.rejected < 8 {
-                        eprintln!("tet {t} walls {:04b}: {} candidates, first res {res:?}", tr.walls[t as usize], inside_candidates(tr, t).len());
+                        eprintln!("tet {t} walls {:04b}: {} candidates, first res {res:?}", tr.walls[t as usize], inside_candidates(tr, t, None).len());
                     }
                     out.rejected += 1;
                 }

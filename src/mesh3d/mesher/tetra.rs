@@ -176,9 +176,9 @@ impl Tetra {
         self.insert_checked(p, start, |_, _| None)
     }
 
-    /// [`Tetra::insert_at`] with a check before anything is written: `check` sees the wall
-    /// faces on the cavity's boundary (as (outside tet, face) references, the face vertices
-    /// oriented towards `p`) and may turn the insertion down by naming one of them.
+    /// [`Tetra::insert_at`] with a check before anything is written: `check` sees the faces
+    /// on the cavity's boundary (as (outside tet, face) references, the face vertices oriented
+    /// towards `p`) and may turn the insertion down by naming one of them.
     pub fn insert_checked<F>(&mut self, p: u32, start: u32, check: F) -> Inserted
     where
         F: FnOnce(&Tetra, &[([u32; 3], u32)]) -> Option<(u32, usize)>,
@@ -209,14 +209,10 @@ impl Tetra {
         if !visible {
             return Inserted::Refused;
         }
-        let walls_on_boundary: Vec<([u32; 3], u32)> = self
-            .sc
-            .boundary
-            .iter()
-            .copied()
-            .filter(|&(_, r)| self.walls[(r >> 2) as usize] >> (r & 3) & 1 != 0)
-            .collect();
-        if let Some((t, f)) = check(self, &walls_on_boundary) {
+        let boundary = std::mem::take(&mut self.sc.boundary);
+        let verdict = check(self, &boundary);
+        self.sc.boundary = boundary;
+        if let Some((t, f)) = verdict {
             return Inserted::Rejected(t, f);
         }
         // slots: the cavity's own, then free ones, then new ones
