@@ -133,7 +133,7 @@ impl Smoother {
         }
         w.pts[v as usize] = x;
         for &t in &self.star {
-            w.q[t as usize] = w.score_of(&w.tets[t as usize]);
+            w.rescore(t);
         }
         true
     }
@@ -211,7 +211,7 @@ impl Smoother {
         }
         w.pts[v as usize] = x;
         for &t in &self.star {
-            w.q[t as usize] = w.score_of(&w.tets[t as usize]);
+            w.rescore(t);
         }
         true
     }

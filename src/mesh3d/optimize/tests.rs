@@ -7,6 +7,7 @@ use crate::core::{FaceId, RegionId};
 use crate::mesh::shapes::kuhn_cube;
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh3d::delaunay::{DelaunayOptions, tetrahedralize};
+use crate::quality::tetrahedron::tet_min_max_dihedral;
 use glam::DVec3;
 use std::collections::BTreeMap;
 

@@ -12,7 +12,7 @@ use crate::core::{RegionId, Sign};
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TetMesh};
-use crate::mesh3d::optimize::measure::{Targets, score};
+use crate::mesh3d::optimize::measure::{Judged, Targets};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -36,6 +36,8 @@ pub(crate) struct Work {
     pub region: Vec<RegionId>,
     /// Cached score of each live tet.
     pub q: Vec<f64>,
+    /// Cached judged measures of each live tet (the score's inputs).
+    pub judged: Vec<Judged>,
     /// Dead slots, reused last-in first-out.
     free: Vec<u32>,
     /// One live tet at each vertex.
@@ -82,6 +84,109 @@ pub(crate) fn local(t: &[u32; 4], v: u32) -> Option<usize> {
     t.iter().position(|&x| x == v)
 }
 
+/// A face record of [`adjacency`], in the bucket of the face's smallest vertex: the other two
+/// vertices (`b << 32 | c`, `b < c`), the face as `tet << 2 | face`, and whether its outward
+/// orientation is an even permutation of the sorted vertices.
+#[derive(Copy, Clone, Default)]
+struct Rec {
+    bc: u64,
+    code: u32,
+    even: bool,
+}
+
+/// Face adjacency (`tet << 2 | face` codes, [`NONE`] on the hull) and constrained-face bits of
+/// `mesh`, whose indices are already checked: face records are bucketed by their smallest vertex
+/// (a counting sort) and each small bucket is sorted on its own.
+///
+/// # Errors
+/// [`MeshError::NonManifold`] for a face of more than two tets, [`MeshError::Overlap`] for two
+/// tets on the same side of a face, [`MeshError::BoundaryNotAFace`].
+fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
+    let (nt, nv) = (mesh.tets.len(), mesh.vertices.len());
+    let mut start = vec![0usize; nv + 1];
+    for tet in &mesh.tets {
+        for f in TET_FACES {
+            start[tet[f[0]].min(tet[f[1]]).min(tet[f[2]]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut rec = vec![Rec::default(); 4 * nt];
+    let mut fill = start.clone();
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        for (k, f) in TET_FACES.iter().enumerate() {
+            let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+            let i = &mut fill[key[0] as usize];
+            rec[*i] = Rec { bc: u64::from(key[1]) << 32 | u64::from(key[2]), code: (t as u32) << 2 | k as u32, even };
+            *i += 1;
+        }
+    }
+    drop(fill);
+    let mut buckets = Vec::with_capacity(nv);
+    let mut rest = rec.as_mut_slice();
+    for v in 0..nv {
+        let (b, r) = rest.split_at_mut(start[v + 1] - start[v]);
+        buckets.push(b);
+        rest = r;
+    }
+    buckets.par_iter_mut().with_min_len(512).for_each(|b| b.sort_unstable_by_key(|r| (r.bc, r.code)));
+    drop(buckets);
+    let key_of = |a: usize, r: &Rec| [a as u32, (r.bc >> 32) as u32, r.bc as u32];
+    // the first record of each listed face
+    let mut listed = vec![false; rec.len()];
+    for (i, tri) in mesh.boundary.iter().enumerate() {
+        let key = sorted3(*tri).0;
+        let (lo, hi) = (start[key[0] as usize], start[key[0] as usize + 1]);
+        let bc = u64::from(key[1]) << 32 | u64::from(key[2]);
+        let first = lo + rec[lo..hi].partition_point(|r| r.bc < bc);
+        if first == hi || rec[first].bc != bc {
+            return Err(MeshError::BoundaryNotAFace { triangle: i, vertices: *tri });
+        }
+        listed[first] = true;
+    }
+    let mut nbr = vec![[NONE; 4]; nt];
+    let mut cons = vec![0u8; nt];
+    for a in 0..nv {
+        let (mut i, hi) = (start[a], start[a + 1]);
+        while i < hi {
+            let mut j = i + 1;
+            while j < hi && rec[j].bc == rec[i].bc {
+                j += 1;
+            }
+            let r = rec[i];
+            let (t0, k0) = ((r.code >> 2) as usize, (r.code & 3) as usize);
+            if j - i > 2 {
+                return Err(MeshError::NonManifold {
+                    entity: key_of(a, &r).to_vec(),
+                    elements: rec[i..j].iter().map(|r| Element::Tet((r.code >> 2) as usize)).collect(),
+                });
+            }
+            if j - i == 2 {
+                let s = rec[i + 1];
+                let (t1, k1) = ((s.code >> 2) as usize, (s.code & 3) as usize);
+                if r.even == s.even {
+                    return Err(MeshError::Overlap {
+                        entity: key_of(a, &r).to_vec(),
+                        first: Element::Tet(t0),
+                        second: Element::Tet(t1),
+                    });
+                }
+                nbr[t0][k0] = s.code;
+                nbr[t1][k1] = r.code;
+                if listed[i] || mesh.region_tags[t0] != mesh.region_tags[t1] {
+                    cons[t0] |= 1 << k0;
+                    cons[t1] |= 1 << k1;
+                }
+            } else {
+                cons[t0] |= 1 << k0;
+            }
+            i = j;
+        }
+    }
+    Ok((nbr, cons))
+}
+
 impl Work {
     /// Builds the working mesh, checking what the optimiser relies on: array lengths, finite
     /// coordinates, indices, exact positive orientation of every tet, at most two tets per face
@@ -121,65 +226,16 @@ impl Work {
                 orientation: orient(&mesh.tets[t]),
             });
         }
-        // sorted face records: (key, tet << 2 | face, even)
-        let mut rec: Vec<([u32; 3], u32, bool)> = Vec::with_capacity(4 * nt);
-        for (t, tet) in mesh.tets.iter().enumerate() {
-            for (k, f) in TET_FACES.iter().enumerate() {
-                let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
-                rec.push((key, (t as u32) << 2 | k as u32, even));
-            }
-        }
-        rec.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut bkeys: Vec<[u32; 3]> = mesh.boundary.iter().map(|&t| sorted3(t).0).collect();
-        bkeys.par_sort_unstable();
-        bkeys.dedup();
-        for (i, tri) in mesh.boundary.iter().enumerate() {
-            let key = sorted3(*tri).0;
-            if rec.binary_search_by(|r| r.0.cmp(&key)).is_err() {
-                return Err(MeshError::BoundaryNotAFace { triangle: i, vertices: *tri });
-            }
-        }
-        let mut nbr = vec![[NONE; 4]; nt];
-        let mut cons = vec![0u8; nt];
-        let mut i = 0;
-        while i < rec.len() {
-            let mut j = i + 1;
-            while j < rec.len() && rec[j].0 == rec[i].0 {
-                j += 1;
-            }
-            let key = rec[i].0;
-            let (t0, k0) = ((rec[i].1 >> 2) as usize, (rec[i].1 & 3) as usize);
-            if j - i > 2 {
-                return Err(MeshError::NonManifold {
-                    entity: key.to_vec(),
-                    elements: rec[i..j].iter().map(|r| Element::Tet((r.1 >> 2) as usize)).collect(),
-                });
-            }
-            let listed = bkeys.binary_search(&key).is_ok();
-            if j - i == 2 {
-                let (t1, k1) = ((rec[i + 1].1 >> 2) as usize, (rec[i + 1].1 & 3) as usize);
-                if rec[i].2 == rec[i + 1].2 {
-                    return Err(MeshError::Overlap { entity: key.to_vec(), first: Element::Tet(t0), second: Element::Tet(t1) });
-                }
-                nbr[t0][k0] = rec[i + 1].1;
-                nbr[t1][k1] = rec[i].1;
-                if listed || mesh.region_tags[t0] != mesh.region_tags[t1] {
-                    cons[t0] |= 1 << k0;
-                    cons[t1] |= 1 << k1;
-                }
-            } else {
-                cons[t0] |= 1 << k0;
-            }
-            i = j;
-        }
-        drop(rec);
+        let (nbr, cons) = adjacency(mesh)?;
         let mut fixed = vec![false; nv];
         let mut v2t = vec![NONE; nv];
         for (t, tet) in mesh.tets.iter().enumerate() {
-            for (k, f) in TET_FACES.iter().enumerate() {
-                if cons[t] & (1 << k) != 0 {
-                    for &l in f {
-                        fixed[tet[l] as usize] = true;
+            if cons[t] != 0 {
+                for (k, f) in TET_FACES.iter().enumerate() {
+                    if cons[t] & (1 << k) != 0 {
+                        for &l in f {
+                            fixed[tet[l] as usize] = true;
+                        }
                     }
                 }
             }
@@ -187,7 +243,9 @@ impl Work {
                 v2t[v as usize] = t as u32;
             }
         }
-        let q = mesh.tets.par_iter().map(|t| score(&t.map(|i| pts[i as usize]), &tg)).collect();
+        let judged: Vec<Judged> =
+            mesh.tets.par_iter().with_min_len(1024).map(|t| Judged::of(&t.map(|i| pts[i as usize]))).collect();
+        let q = judged.par_iter().with_min_len(4096).map(|j| j.score(&tg)).collect();
         Ok(Work {
             pts,
             tets: mesh.tets.clone(),
@@ -195,6 +253,7 @@ impl Work {
             cons,
             region: mesh.region_tags.clone(),
             q,
+            judged,
             free: Vec::new(),
             v2t,
             fixed,
@@ -245,7 +304,20 @@ impl Work {
     /// Score of the vertex quadruple `t` (assumed positively oriented).
     #[inline]
     pub(crate) fn score_of(&self, t: &[u32; 4]) -> f64 {
-        score(&self.corners(t), &self.tg)
+        Judged::of(&self.corners(t)).score(&self.tg)
+    }
+
+    /// Recomputes the cached measures and score of live tet `t` (after it or a vertex changed).
+    #[inline]
+    pub(crate) fn rescore(&mut self, t: u32) {
+        let j = Judged::of(&self.corners(&self.tets[t as usize]));
+        self.q[t as usize] = j.score(&self.tg);
+        self.judged[t as usize] = j;
+    }
+
+    /// The worst judged measures over the live tets.
+    pub(crate) fn worst(&self) -> Judged {
+        self.live_slots().map(|t| self.judged[t as usize]).fold(Judged { lo: 180.0, hi: 0.0, re: 0.0 }, Judged::worst)
     }
 
     /// Whether face `k` of live tet `t` is constrained.
@@ -397,6 +469,7 @@ impl Work {
                     self.cons.push(0);
                     self.region.push(region);
                     self.q.push(0.0);
+                    self.judged.push(Judged::default());
                     self.mark.push(0);
                     (self.tets.len() - 1) as u32
                 }
@@ -406,7 +479,7 @@ impl Work {
             self.nbr[su] = [NONE; 4];
             self.cons[su] = 0;
             self.region[su] = region;
-            self.q[su] = self.score_of(tet);
+            self.rescore(s);
             for &v in tet {
                 self.v2t[v as usize] = s;
             }
@@ -471,6 +544,7 @@ impl Work {
     }
 
     /// Number of live tets.
+    #[cfg(test)]
     pub(crate) fn live(&self) -> usize {
         self.tets.len() - self.free.len()
     }
