@@ -215,6 +215,8 @@ struct Optimizer<'a> {
     sm: Smoother,
     ins: Inserter,
     report: OptimizeReport,
+    /// Per tet slot, the [`Work::clock`] when [`Optimizer::improve`] last failed on it.
+    failed: Vec<u32>,
 }
 
 impl Optimizer<'_> {
@@ -285,27 +287,42 @@ impl Optimizer<'_> {
     fn run(&mut self, start: Instant) {
         let out_of_time = |opts: &OptimizeOptions| opts.time_budget.is_some_and(|b| start.elapsed() >= b);
         let mut insert_now = false;
+        // every bad tet is tried in the first pass and when insertion is first allowed; later,
+        // only those that are new or had a tet at a vertex change since they last failed
+        let mut try_all = true;
         for _ in 0..self.opts.max_passes {
             let bad = self.bad_tets();
             if bad.is_empty() || out_of_time(self.opts) {
                 break;
             }
             self.report.passes += 1;
+            if self.failed.len() < self.w.tets.len() {
+                self.failed.resize(self.w.tets.len(), 0);
+            }
             let mut changed = false;
             for &(_, t) in &bad {
                 if !self.w.alive(t) || self.w.q[t as usize] >= 1.0 {
                     continue;
                 }
+                if !try_all && !self.w.touched_after(t, self.failed[t as usize]) {
+                    continue;
+                }
                 if out_of_time(self.opts) {
                     break;
                 }
-                changed |= self.improve(t, insert_now);
+                if self.improve(t, insert_now) {
+                    changed = true;
+                } else {
+                    self.failed[t as usize] = self.w.clock;
+                }
             }
+            try_all = false;
             if !changed {
                 if insert_now || !self.opts.insert {
                     break;
                 }
                 insert_now = true;
+                try_all = true;
             }
         }
     }
@@ -334,7 +351,15 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
         ..Default::default()
     };
     let nv = mesh.vertices.len();
-    let mut o = Optimizer { w, opts, er: EdgeRemoval::default(), sm: Smoother::default(), ins: Inserter::default(), report };
+    let mut o = Optimizer {
+        w,
+        opts,
+        er: EdgeRemoval::default(),
+        sm: Smoother::default(),
+        ins: Inserter::default(),
+        report,
+        failed: Vec::new(),
+    };
     o.run(start);
     let mut report = o.report;
     report.bad_after = o.w.live_slots().filter(|&t| o.w.q[t as usize] < 1.0).count();

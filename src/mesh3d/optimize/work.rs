@@ -44,6 +44,10 @@ pub(crate) struct Work {
     pub v2t: Vec<u32>,
     /// Vertices of constrained faces: they never move.
     pub fixed: Vec<bool>,
+    /// Per vertex, the [`Work::clock`] of the last change of a tet at it.
+    pub touched: Vec<u32>,
+    /// Counts the changes (topological or moves), from 1.
+    pub clock: u32,
     /// Visit marks per tet slot, compared with `stamp`.
     mark: Vec<u32>,
     stamp: u32,
@@ -256,6 +260,8 @@ impl Work {
             judged,
             free: Vec::new(),
             v2t,
+            touched: vec![0; nv],
+            clock: 1,
             fixed,
             mark: vec![0; nt],
             stamp: 0,
@@ -313,6 +319,29 @@ impl Work {
         let j = Judged::of(&self.corners(&self.tets[t as usize]));
         self.q[t as usize] = j.score(&self.tg);
         self.judged[t as usize] = j;
+    }
+
+    /// Counts a move of a vertex: call before [`Work::touch`]ing the tets it changed.
+    #[inline]
+    pub(crate) fn tick(&mut self) {
+        self.clock += 1;
+    }
+
+    /// Marks the vertices of live tet `t` as touched now (its shape changed).
+    #[inline]
+    pub(crate) fn touch(&mut self, t: u32) {
+        for v in self.tets[t as usize] {
+            self.touched[v as usize] = self.clock;
+        }
+    }
+
+    /// Whether a tet at a vertex of live tet `t` changed after clock `since`. Every operation
+    /// on `t` (edge removal around its edges, flips of its faces, moves of its vertices) depends
+    /// only on tets that share a vertex with it, so one that failed at `since` fails again unless
+    /// this holds.
+    #[inline]
+    pub(crate) fn touched_after(&self, t: u32, since: u32) -> bool {
+        self.tets[t as usize].iter().any(|&v| self.touched[v as usize] > since)
     }
 
     /// The worst judged measures over the live tets.
@@ -454,6 +483,7 @@ impl Work {
             return false;
         }
         // commit: free the old slots, then take slots for the new tets
+        self.clock += 1;
         for &t in old {
             self.tets[t as usize] = [NONE; 4];
             self.free.push(t);
@@ -482,6 +512,7 @@ impl Work {
             self.rescore(s);
             for &v in tet {
                 self.v2t[v as usize] = s;
+                self.touched[v as usize] = self.clock;
             }
             slots.push(s);
         }
@@ -518,6 +549,7 @@ impl Work {
     pub(crate) fn push_vertex(&mut self, p: DVec3) -> u32 {
         self.pts.push(p);
         self.v2t.push(NONE);
+        self.touched.push(self.clock);
         self.fixed.push(false);
         (self.pts.len() - 1) as u32
     }
@@ -527,6 +559,7 @@ impl Work {
         if v as usize + 1 == self.pts.len() && self.v2t[v as usize] == NONE {
             self.pts.pop();
             self.v2t.pop();
+            self.touched.pop();
             self.fixed.pop();
         }
     }
