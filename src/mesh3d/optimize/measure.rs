@@ -78,7 +78,7 @@ pub(crate) fn normals(p: &[DVec3; 4]) -> [DVec3; 4] {
 #[inline]
 pub(crate) fn cosines(n: &[DVec3; 4]) -> Option<[f64; 6]> {
     let l2 = n.map(|v| v.length_squared());
-    if l2.iter().any(|&x| !(x > 0.0) || !x.is_finite()) {
+    if l2.iter().any(|&x| x.is_nan() || x <= 0.0 || !x.is_finite()) {
         return None;
     }
     let inv = l2.map(|x| 1.0 / x.sqrt());
@@ -149,8 +149,8 @@ pub(crate) struct Term {
 pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, mut f: impl FnMut(Term)) {
     let n = normals(p);
     let Some(c) = cosines(&n) else { return };
-    for e in 0..6 {
-        let th = angle(c[e]);
+    for (e, &ce) in c.iter().enumerate() {
+        let th = angle(ce);
         let small = th * tg.inv_min;
         let large = (180.0 - th) * tg.inv_max;
         if small >= limit && large >= limit {

@@ -20,19 +20,25 @@
 //! # Method
 //! After Klingner and Shewchuk ("Aggressive tetrahedral mesh improvement", 2007), with a
 //! score per tet that is at least 1 when both dihedral targets and the radius-edge bound are met
-//! ([`measure`]; the three measures are bitwise those of the quality judge, so a tet the
-//! optimiser counts as good is good by [`crate::quality`] too). Passes go over the tets below target, worst first (ties by slot), and for each
-//! try, keeping the first that raises the least score of the tets it changes:
+//! (`min(θ_min / θ_target_min, (180° − θ_max) / (180° − θ_target_max), ρ / (R / l_min))`; the
+//! three measures are bitwise those of [`crate::quality`], so a tet the optimiser counts as good
+//! is good by the quality judge too). Passes go over the tets below target, worst first (ties by
+//! slot), and for each try, keeping the first that raises the least score of the tets it
+//! changes:
 //! 1. edge removal for each of its six edges (3-2 and 4-4 flips and their generalisation to
-//!    rings of up to [`edge_removal::MAX_RING`] tets, best ring triangulation by dynamic
-//!    programming);
+//!    rings of up to 12 tets, best ring triangulation by dynamic programming);
 //! 2. the 2-3 flip of each of its four faces;
 //! 3. smoothing of each of its free vertices (non-smooth steepest ascent of the star's least
 //!    score);
 //! 4. vertex insertion at its circumcentre or centroid, with the new vertex smoothed.
 //!
 //! No change makes a tet's radius-edge ratio exceed [`OptimizeOptions::max_radius_edge`] unless
-//! one of the tets it replaces already did by more. Passes stop when one changes nothing, after
+//! one of the tets it replaces already did by more. After the first pass, a bad tet is tried
+//! again only if a tet at one of its vertices changed since it last failed (its flips and the
+//! smoothing of its vertices depend only on those tets), and a vertex is smoothed again only if
+//! a tet at it changed.
+//! Insertion is allowed once a pass changes nothing; then every bad tet is tried once more.
+//! Passes stop when one changes nothing, after
 //! [`OptimizeOptions::max_passes`], or when the time budget is spent.
 //!
 //! The defaults aim a little above the usual acceptance figures (smallest dihedral angle 16°,

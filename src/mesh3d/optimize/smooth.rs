@@ -184,7 +184,7 @@ impl Smoother {
             }
             let d = min_norm(&self.grads);
             let dd = d.length_squared();
-            if !(dd > 0.0) || !dd.is_finite() {
+            if dd.is_nan() || dd <= 0.0 || !dd.is_finite() {
                 break;
             }
             let mut alpha = 0.2 * scale / dd.sqrt();

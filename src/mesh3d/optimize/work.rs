@@ -454,7 +454,7 @@ impl Work {
                 inner.push(FaceRec { key, even, link: (i as u32) << 2 | k as u32, constrained: false });
             }
         }
-        outer.sort_unstable_by(|a, b| a.key.cmp(&b.key));
+        outer.sort_unstable_by_key(|a| a.key);
         inner.sort_unstable_by(|a, b| a.key.cmp(&b.key).then(a.link.cmp(&b.link)));
         // check: new faces pair up among themselves or with exactly one outer face
         let mut ok = outer.windows(2).all(|w| w[0].key != w[1].key);
