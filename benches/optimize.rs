@@ -28,12 +28,12 @@ fn random_box(n: usize) -> TetMesh {
 }
 
 fn bench(c: &mut Criterion) {
-    let m = random_box(5_000);
+    let m = random_box(3_000);
     let mut group = c.benchmark_group("optimize");
     group.sample_size(10);
     for (name, opts) in [
-        ("random_box_5k", OptimizeOptions::default()),
-        ("random_box_5k_no_insertion", OptimizeOptions::default().with_insertion(false)),
+        ("random_box_3k", OptimizeOptions::default()),
+        ("random_box_3k_no_insertion", OptimizeOptions::default().with_insertion(false)),
     ] {
         group.bench_function(name, |b| {
             b.iter_batched(|| m.clone(), |mut mesh| optimize(&mut mesh, &opts).expect("a valid mesh"), BatchSize::LargeInput)
