@@ -2,13 +2,15 @@
 //! the optimised mesh stays valid with the same boundary triangles, tags and volume, and its
 //! quality (the judge's definitions, through `fepre::quality::tet_mesh_quality`) is reported
 //! before and after. Run in release to see meaningful times:
-//! `cargo test --release --test optimize_tetgen -- --nocapture`.
+//! `cargo test --release --test optimize_tetgen -- --nocapture --test-threads 1`. With
+//! `FEPRE_OPT_OUT=DIR` the meshes before and after are written to `DIR` as Medit files for the
+//! judge (`shared/tools/cgal_ref/tetquality DIR/plc.optimised.mesh`).
 
 mod common;
 
 use common::shared_data;
 use common::tools::{require, run_ok, tetgen};
-use fepre::io::{MeshData, ReadOptions, read};
+use fepre::io::{MeshData, ReadOptions, WriteOptions, read, write};
 use fepre::mesh::TetMesh;
 use fepre::mesh3d::optimize::{OptimizeOptions, optimize};
 use fepre::quality::{TetQualityReport, tet_mesh_quality};
@@ -71,6 +73,14 @@ fn optimise_and_check(name: &str, mut m: TetMesh, volume: f64) -> TetQualityRepo
     let seconds = t0.elapsed().as_secs_f64();
     println!("{name}: {}", serde_json::to_string(&report).unwrap_or_default());
     let after = tet_mesh_quality(&m);
+    if let Some(dir) = std::env::var_os("FEPRE_OPT_OUT") {
+        // for the judge: `tetquality DIR/NAME.tetgen.mesh` and `DIR/NAME.optimised.mesh`
+        let dir = std::path::PathBuf::from(dir);
+        for (tag, mesh) in [("tetgen", &original), ("optimised", &m)] {
+            let path = dir.join(format!("{name}.{tag}.mesh"));
+            write(&path, &MeshData::Volume(mesh.clone()), &WriteOptions::default()).expect("write the mesh");
+        }
+    }
     line("TetGen", &before, None);
     line("optimised", &after, Some(seconds));
     assert_eq!(m.validate(), Ok(()), "{name}: the optimised mesh is invalid");

@@ -3,10 +3,12 @@
 //! A tet's *score* combines its smallest and largest dihedral angles, each normalised by its
 //! target, and its radius-edge ratio `R / l_min` normalised by its bound `ρ`:
 //! `min(θ_min / θ_target_min, (180° − θ_max) / (180° − θ_target_max), ρ l_min / R)`. A tet meets
-//! all targets exactly when its score is at least 1; the score is 0 for a flat tet. Smoothing
-//! follows the gradients of the angle terms only; the radius-edge term just limits its steps. The angles are
-//! the judge's (`shared/tools/cgal_ref/tet_quality.h`): the interior dihedral angle at an edge is
-//! `180° − acos(n̂_k · n̂_l)` with `n_k`, `n_l` the outward normals of the two faces at the edge.
+//! all targets exactly when its score is at least 1; the score is 0 for a flat tet. The three
+//! measures are computed bitwise as the judge (`shared/tools/cgal_ref/tet_quality.h`) computes
+//! them, so the optimiser's idea of a bad tet is the judge's: the interior dihedral angle at an
+//! edge is `180° − acos(n̂_k · n̂_l)` with `n_k`, `n_l` the outward normals of the two faces at
+//! the edge. Smoothing follows the gradients of the angle terms only (from normals computed
+//! here, equal to the judge's up to rounding); the radius-edge term just limits its steps.
 //!
 //! The score is only ever evaluated on tets already known to be positively oriented (decided
 //! exactly with [`orient3d`](crate::core::predicates::orient3d) by the caller); it is a
@@ -22,7 +24,7 @@
 //!   the roles of `p` and `q` exchanged.
 
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::quality::tetrahedron::{TET_EDGES, tet_radius_edge};
+use crate::quality::tetrahedron::{TET_EDGES, tet_min_max_dihedral_radius_edge};
 use glam::DVec3;
 
 /// The faces at each edge of [`TET_EDGES`]: the faces opposite the edge's two other vertices.
@@ -40,6 +42,10 @@ pub(crate) struct Targets {
     pub inv_max: f64,
     /// The radius-edge bound `ρ` (`+∞`: none); the score's third term is `ρ / (R / l_min)`.
     pub max_re: f64,
+    /// `θ_target_min` (degrees).
+    pub min_deg: f64,
+    /// `180° − θ_target_max` (degrees).
+    pub max_gap: f64,
 }
 
 impl Targets {
@@ -48,7 +54,7 @@ impl Targets {
     pub(crate) fn new(min_deg: f64, max_deg: f64) -> Targets {
         let lo = if min_deg.is_finite() { min_deg.clamp(1e-3, 179.0) } else { 15.0 };
         let hi = if max_deg.is_finite() { max_deg.clamp(1.0, 180.0 - 1e-3) } else { 160.0 };
-        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi), max_re: f64::INFINITY }
+        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi), max_re: f64::INFINITY, min_deg: lo, max_gap: 180.0 - hi }
     }
 
     /// The same targets with the radius-edge bound `ratio` (ignored unless positive).
@@ -72,7 +78,7 @@ pub(crate) fn normals(p: &[DVec3; 4]) -> [DVec3; 4] {
 #[inline]
 pub(crate) fn cosines(n: &[DVec3; 4]) -> Option<[f64; 6]> {
     let l2 = n.map(|v| v.length_squared());
-    if l2.iter().any(|&x| !(x > 0.0) || !x.is_finite()) {
+    if l2.iter().any(|&x| x.is_nan() || x <= 0.0 || !x.is_finite()) {
         return None;
     }
     let inv = l2.map(|x| 1.0 / x.sqrt());
@@ -85,16 +91,46 @@ pub(crate) fn angle(c: f64) -> f64 {
     180.0 - c.acos() * DEG
 }
 
-/// The score of a positively oriented tet (see the module documentation): at least 1 when all
-/// targets are met, 0 for a tet degenerate in floating point.
+/// A tet's judged measures: smallest and largest dihedral angle (degrees) and radius-edge
+/// ratio, bitwise the judge's ([`tet_min_max_dihedral_radius_edge`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub(crate) struct Judged {
+    /// Smallest dihedral angle.
+    pub lo: f64,
+    /// Largest dihedral angle.
+    pub hi: f64,
+    /// Radius-edge ratio.
+    pub re: f64,
+}
+
+impl Judged {
+    /// The measures of the tet `p`.
+    #[inline]
+    pub(crate) fn of(p: &[DVec3; 4]) -> Judged {
+        let (lo, hi, re) = tet_min_max_dihedral_radius_edge(p);
+        Judged { lo, hi, re }
+    }
+
+    /// The score (see the module documentation): at least 1 when all targets are met, 0 for a
+    /// tet degenerate in floating point.
+    #[inline]
+    pub(crate) fn score(&self, tg: &Targets) -> f64 {
+        // divisions, so that a measure meeting its target exactly scores at least 1
+        let s = (self.lo / tg.min_deg).min((180.0 - self.hi) / tg.max_gap).max(0.0);
+        if tg.max_re.is_finite() { s.min(tg.max_re / self.re) } else { s }
+    }
+
+    /// Componentwise extremes: least `lo`, largest `hi` and `re`.
+    #[inline]
+    pub(crate) fn worst(self, o: Judged) -> Judged {
+        Judged { lo: self.lo.min(o.lo), hi: self.hi.max(o.hi), re: self.re.max(o.re) }
+    }
+}
+
+/// The score of a positively oriented tet: [`Judged::score`] of its [`Judged`] measures.
 #[inline]
 pub(crate) fn score(p: &[DVec3; 4], tg: &Targets) -> f64 {
-    let Some(c) = cosines(&normals(p)) else {
-        return 0.0;
-    };
-    let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-    let s = (angle(lo) * tg.inv_min).min((180.0 - angle(hi)) * tg.inv_max).max(0.0);
-    if tg.max_re.is_finite() { s.min(tg.max_re / tet_radius_edge(p)) } else { s }
+    Judged::of(p).score(tg)
 }
 
 /// One term of a tet's score: the normalised small-angle or large-angle measure of one edge,
@@ -113,8 +149,8 @@ pub(crate) struct Term {
 pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, mut f: impl FnMut(Term)) {
     let n = normals(p);
     let Some(c) = cosines(&n) else { return };
-    for e in 0..6 {
-        let th = angle(c[e]);
+    for (e, &ce) in c.iter().enumerate() {
+        let th = angle(ce);
         let small = th * tg.inv_min;
         let large = (180.0 - th) * tg.inv_max;
         if small >= limit && large >= limit {
@@ -165,7 +201,7 @@ pub(crate) fn angle_gradient(p: &[DVec3; 4], n: &[DVec3; 4], e: usize, m: usize)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::quality::tetrahedron::{tet_dihedral_angles, tet_min_max_dihedral};
+    use crate::quality::tetrahedron::{tet_dihedral_angles, tet_min_max_dihedral, tet_radius_edge};
 
     fn tet() -> [DVec3; 4] {
         [DVec3::new(0.1, -0.2, 0.05), DVec3::new(1.2, 0.1, -0.1), DVec3::new(0.3, 0.9, 0.2), DVec3::new(0.4, 0.35, 1.1)]
@@ -183,6 +219,29 @@ mod tests {
         let (lo, hi) = tet_min_max_dihedral(&p);
         let s = score(&p, &tg);
         assert!((s - (lo / 15.0).min((180.0 - hi) / 20.0)).abs() < 1e-12);
+        let tg = tg.with_radius_edge(0.5);
+        assert_eq!(score(&p, &tg), 0.5 / tet_radius_edge(&p));
+    }
+
+    #[test]
+    fn judged_measures_are_bitwise_the_judges() {
+        let mut state = 12345u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for i in 0..20000 {
+            let mut p = [0; 4].map(|_| DVec3::new(rnd(), rnd(), rnd()));
+            if i % 3 == 0 {
+                // slivers and needles
+                p[3] = (p[0] + p[1] + p[2]) / 3.0 + DVec3::new(rnd(), rnd(), rnd()) * 1e-6;
+            }
+            let j = Judged::of(&p);
+            assert_eq!((j.lo, j.hi), tet_min_max_dihedral(&p), "{p:?}");
+            assert_eq!(j.re.to_bits(), tet_radius_edge(&p).to_bits(), "{p:?}");
+        }
     }
 
     #[test]

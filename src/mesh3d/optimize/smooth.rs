@@ -43,6 +43,8 @@ pub(crate) struct Smoother {
     at: Vec<u8>,
     terms: Vec<Term>,
     grads: Vec<DVec3>,
+    /// Per vertex, the [`Work::clock`] when smoothing it last failed (0: never).
+    failed: Vec<u32>,
 }
 
 /// The point of least norm in the convex hull of `g` (Gilbert's algorithm, approximately).
@@ -110,6 +112,22 @@ impl Smoother {
     /// Moves free vertex `v` to raise the least score of its star; true if it moved. New tets
     /// keep radius-edge ratios within `max(max_re, the star's worst before)`.
     pub(crate) fn try_smooth(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {
+        let vi = v as usize;
+        if w.fixed[vi] || self.failed.get(vi).is_some_and(|&f| f != 0 && w.touched[vi] <= f) {
+            // fixed, or failed before and no tet at it changed since: it would fail again
+            return false;
+        }
+        let moved = self.smooth_free(w, v, max_re);
+        if !moved {
+            if self.failed.len() <= vi {
+                self.failed.resize(vi + 1, 0);
+            }
+            self.failed[vi] = w.clock;
+        }
+        moved
+    }
+
+    fn smooth_free(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {
         if !self.load(w, v) {
             return false;
         }
@@ -132,8 +150,10 @@ impl Smoother {
             }
         }
         w.pts[v as usize] = x;
+        w.tick();
         for &t in &self.star {
-            w.q[t as usize] = w.score_of(&w.tets[t as usize]);
+            w.rescore(t);
+            w.touch(t);
         }
         true
     }
@@ -164,7 +184,7 @@ impl Smoother {
             }
             let d = min_norm(&self.grads);
             let dd = d.length_squared();
-            if !(dd > 0.0) || !dd.is_finite() {
+            if dd.is_nan() || dd <= 0.0 || !dd.is_finite() {
                 break;
             }
             let mut alpha = 0.2 * scale / dd.sqrt();
@@ -210,8 +230,10 @@ impl Smoother {
             return false;
         }
         w.pts[v as usize] = x;
+        w.tick();
         for &t in &self.star {
-            w.q[t as usize] = w.score_of(&w.tets[t as usize]);
+            w.rescore(t);
+            w.touch(t);
         }
         true
     }

@@ -12,7 +12,7 @@ use crate::core::{RegionId, Sign};
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TetMesh};
-use crate::mesh3d::optimize::measure::{Targets, score};
+use crate::mesh3d::optimize::measure::{Judged, Targets};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -36,12 +36,18 @@ pub(crate) struct Work {
     pub region: Vec<RegionId>,
     /// Cached score of each live tet.
     pub q: Vec<f64>,
+    /// Cached judged measures of each live tet (the score's inputs).
+    pub judged: Vec<Judged>,
     /// Dead slots, reused last-in first-out.
     free: Vec<u32>,
     /// One live tet at each vertex.
     pub v2t: Vec<u32>,
     /// Vertices of constrained faces: they never move.
     pub fixed: Vec<bool>,
+    /// Per vertex, the [`Work::clock`] of the last change of a tet at it.
+    pub touched: Vec<u32>,
+    /// Counts the changes (topological or moves), from 1.
+    pub clock: u32,
     /// Visit marks per tet slot, compared with `stamp`.
     mark: Vec<u32>,
     stamp: u32,
@@ -80,6 +86,109 @@ pub(crate) fn even_perm(p: [usize; 4]) -> bool {
 #[inline]
 pub(crate) fn local(t: &[u32; 4], v: u32) -> Option<usize> {
     t.iter().position(|&x| x == v)
+}
+
+/// A face record of [`adjacency`], in the bucket of the face's smallest vertex: the other two
+/// vertices (`b << 32 | c`, `b < c`), the face as `tet << 2 | face`, and whether its outward
+/// orientation is an even permutation of the sorted vertices.
+#[derive(Copy, Clone, Default)]
+struct Rec {
+    bc: u64,
+    code: u32,
+    even: bool,
+}
+
+/// Face adjacency (`tet << 2 | face` codes, [`NONE`] on the hull) and constrained-face bits of
+/// `mesh`, whose indices are already checked: face records are bucketed by their smallest vertex
+/// (a counting sort) and each small bucket is sorted on its own.
+///
+/// # Errors
+/// [`MeshError::NonManifold`] for a face of more than two tets, [`MeshError::Overlap`] for two
+/// tets on the same side of a face, [`MeshError::BoundaryNotAFace`].
+fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
+    let (nt, nv) = (mesh.tets.len(), mesh.vertices.len());
+    let mut start = vec![0usize; nv + 1];
+    for tet in &mesh.tets {
+        for f in TET_FACES {
+            start[tet[f[0]].min(tet[f[1]]).min(tet[f[2]]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut rec = vec![Rec::default(); 4 * nt];
+    let mut fill = start.clone();
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        for (k, f) in TET_FACES.iter().enumerate() {
+            let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+            let i = &mut fill[key[0] as usize];
+            rec[*i] = Rec { bc: u64::from(key[1]) << 32 | u64::from(key[2]), code: (t as u32) << 2 | k as u32, even };
+            *i += 1;
+        }
+    }
+    drop(fill);
+    let mut buckets = Vec::with_capacity(nv);
+    let mut rest = rec.as_mut_slice();
+    for v in 0..nv {
+        let (b, r) = rest.split_at_mut(start[v + 1] - start[v]);
+        buckets.push(b);
+        rest = r;
+    }
+    buckets.par_iter_mut().with_min_len(512).for_each(|b| b.sort_unstable_by_key(|r| (r.bc, r.code)));
+    drop(buckets);
+    let key_of = |a: usize, r: &Rec| [a as u32, (r.bc >> 32) as u32, r.bc as u32];
+    // the first record of each listed face
+    let mut listed = vec![false; rec.len()];
+    for (i, tri) in mesh.boundary.iter().enumerate() {
+        let key = sorted3(*tri).0;
+        let (lo, hi) = (start[key[0] as usize], start[key[0] as usize + 1]);
+        let bc = u64::from(key[1]) << 32 | u64::from(key[2]);
+        let first = lo + rec[lo..hi].partition_point(|r| r.bc < bc);
+        if first == hi || rec[first].bc != bc {
+            return Err(MeshError::BoundaryNotAFace { triangle: i, vertices: *tri });
+        }
+        listed[first] = true;
+    }
+    let mut nbr = vec![[NONE; 4]; nt];
+    let mut cons = vec![0u8; nt];
+    for a in 0..nv {
+        let (mut i, hi) = (start[a], start[a + 1]);
+        while i < hi {
+            let mut j = i + 1;
+            while j < hi && rec[j].bc == rec[i].bc {
+                j += 1;
+            }
+            let r = rec[i];
+            let (t0, k0) = ((r.code >> 2) as usize, (r.code & 3) as usize);
+            if j - i > 2 {
+                return Err(MeshError::NonManifold {
+                    entity: key_of(a, &r).to_vec(),
+                    elements: rec[i..j].iter().map(|r| Element::Tet((r.code >> 2) as usize)).collect(),
+                });
+            }
+            if j - i == 2 {
+                let s = rec[i + 1];
+                let (t1, k1) = ((s.code >> 2) as usize, (s.code & 3) as usize);
+                if r.even == s.even {
+                    return Err(MeshError::Overlap {
+                        entity: key_of(a, &r).to_vec(),
+                        first: Element::Tet(t0),
+                        second: Element::Tet(t1),
+                    });
+                }
+                nbr[t0][k0] = s.code;
+                nbr[t1][k1] = r.code;
+                if listed[i] || mesh.region_tags[t0] != mesh.region_tags[t1] {
+                    cons[t0] |= 1 << k0;
+                    cons[t1] |= 1 << k1;
+                }
+            } else {
+                cons[t0] |= 1 << k0;
+            }
+            i = j;
+        }
+    }
+    Ok((nbr, cons))
 }
 
 impl Work {
@@ -121,65 +230,16 @@ impl Work {
                 orientation: orient(&mesh.tets[t]),
             });
         }
-        // sorted face records: (key, tet << 2 | face, even)
-        let mut rec: Vec<([u32; 3], u32, bool)> = Vec::with_capacity(4 * nt);
-        for (t, tet) in mesh.tets.iter().enumerate() {
-            for (k, f) in TET_FACES.iter().enumerate() {
-                let (key, even) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
-                rec.push((key, (t as u32) << 2 | k as u32, even));
-            }
-        }
-        rec.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut bkeys: Vec<[u32; 3]> = mesh.boundary.iter().map(|&t| sorted3(t).0).collect();
-        bkeys.par_sort_unstable();
-        bkeys.dedup();
-        for (i, tri) in mesh.boundary.iter().enumerate() {
-            let key = sorted3(*tri).0;
-            if rec.binary_search_by(|r| r.0.cmp(&key)).is_err() {
-                return Err(MeshError::BoundaryNotAFace { triangle: i, vertices: *tri });
-            }
-        }
-        let mut nbr = vec![[NONE; 4]; nt];
-        let mut cons = vec![0u8; nt];
-        let mut i = 0;
-        while i < rec.len() {
-            let mut j = i + 1;
-            while j < rec.len() && rec[j].0 == rec[i].0 {
-                j += 1;
-            }
-            let key = rec[i].0;
-            let (t0, k0) = ((rec[i].1 >> 2) as usize, (rec[i].1 & 3) as usize);
-            if j - i > 2 {
-                return Err(MeshError::NonManifold {
-                    entity: key.to_vec(),
-                    elements: rec[i..j].iter().map(|r| Element::Tet((r.1 >> 2) as usize)).collect(),
-                });
-            }
-            let listed = bkeys.binary_search(&key).is_ok();
-            if j - i == 2 {
-                let (t1, k1) = ((rec[i + 1].1 >> 2) as usize, (rec[i + 1].1 & 3) as usize);
-                if rec[i].2 == rec[i + 1].2 {
-                    return Err(MeshError::Overlap { entity: key.to_vec(), first: Element::Tet(t0), second: Element::Tet(t1) });
-                }
-                nbr[t0][k0] = rec[i + 1].1;
-                nbr[t1][k1] = rec[i].1;
-                if listed || mesh.region_tags[t0] != mesh.region_tags[t1] {
-                    cons[t0] |= 1 << k0;
-                    cons[t1] |= 1 << k1;
-                }
-            } else {
-                cons[t0] |= 1 << k0;
-            }
-            i = j;
-        }
-        drop(rec);
+        let (nbr, cons) = adjacency(mesh)?;
         let mut fixed = vec![false; nv];
         let mut v2t = vec![NONE; nv];
         for (t, tet) in mesh.tets.iter().enumerate() {
-            for (k, f) in TET_FACES.iter().enumerate() {
-                if cons[t] & (1 << k) != 0 {
-                    for &l in f {
-                        fixed[tet[l] as usize] = true;
+            if cons[t] != 0 {
+                for (k, f) in TET_FACES.iter().enumerate() {
+                    if cons[t] & (1 << k) != 0 {
+                        for &l in f {
+                            fixed[tet[l] as usize] = true;
+                        }
                     }
                 }
             }
@@ -187,7 +247,9 @@ impl Work {
                 v2t[v as usize] = t as u32;
             }
         }
-        let q = mesh.tets.par_iter().map(|t| score(&t.map(|i| pts[i as usize]), &tg)).collect();
+        let judged: Vec<Judged> =
+            mesh.tets.par_iter().with_min_len(1024).map(|t| Judged::of(&t.map(|i| pts[i as usize]))).collect();
+        let q = judged.par_iter().with_min_len(4096).map(|j| j.score(&tg)).collect();
         Ok(Work {
             pts,
             tets: mesh.tets.clone(),
@@ -195,8 +257,11 @@ impl Work {
             cons,
             region: mesh.region_tags.clone(),
             q,
+            judged,
             free: Vec::new(),
             v2t,
+            touched: vec![0; nv],
+            clock: 1,
             fixed,
             mark: vec![0; nt],
             stamp: 0,
@@ -245,7 +310,43 @@ impl Work {
     /// Score of the vertex quadruple `t` (assumed positively oriented).
     #[inline]
     pub(crate) fn score_of(&self, t: &[u32; 4]) -> f64 {
-        score(&self.corners(t), &self.tg)
+        Judged::of(&self.corners(t)).score(&self.tg)
+    }
+
+    /// Recomputes the cached measures and score of live tet `t` (after it or a vertex changed).
+    #[inline]
+    pub(crate) fn rescore(&mut self, t: u32) {
+        let j = Judged::of(&self.corners(&self.tets[t as usize]));
+        self.q[t as usize] = j.score(&self.tg);
+        self.judged[t as usize] = j;
+    }
+
+    /// Counts a move of a vertex: call before [`Work::touch`]ing the tets it changed.
+    #[inline]
+    pub(crate) fn tick(&mut self) {
+        self.clock += 1;
+    }
+
+    /// Marks the vertices of live tet `t` as touched now (its shape changed).
+    #[inline]
+    pub(crate) fn touch(&mut self, t: u32) {
+        for v in self.tets[t as usize] {
+            self.touched[v as usize] = self.clock;
+        }
+    }
+
+    /// Whether a tet at a vertex of live tet `t` changed after clock `since`. Every operation
+    /// on `t` (edge removal around its edges, flips of its faces, moves of its vertices) depends
+    /// only on tets that share a vertex with it, so one that failed at `since` fails again unless
+    /// this holds.
+    #[inline]
+    pub(crate) fn touched_after(&self, t: u32, since: u32) -> bool {
+        self.tets[t as usize].iter().any(|&v| self.touched[v as usize] > since)
+    }
+
+    /// The worst judged measures over the live tets.
+    pub(crate) fn worst(&self) -> Judged {
+        self.live_slots().map(|t| self.judged[t as usize]).fold(Judged { lo: 180.0, hi: 0.0, re: 0.0 }, Judged::worst)
     }
 
     /// Whether face `k` of live tet `t` is constrained.
@@ -353,7 +454,7 @@ impl Work {
                 inner.push(FaceRec { key, even, link: (i as u32) << 2 | k as u32, constrained: false });
             }
         }
-        outer.sort_unstable_by(|a, b| a.key.cmp(&b.key));
+        outer.sort_unstable_by_key(|a| a.key);
         inner.sort_unstable_by(|a, b| a.key.cmp(&b.key).then(a.link.cmp(&b.link)));
         // check: new faces pair up among themselves or with exactly one outer face
         let mut ok = outer.windows(2).all(|w| w[0].key != w[1].key);
@@ -382,6 +483,7 @@ impl Work {
             return false;
         }
         // commit: free the old slots, then take slots for the new tets
+        self.clock += 1;
         for &t in old {
             self.tets[t as usize] = [NONE; 4];
             self.free.push(t);
@@ -397,6 +499,7 @@ impl Work {
                     self.cons.push(0);
                     self.region.push(region);
                     self.q.push(0.0);
+                    self.judged.push(Judged::default());
                     self.mark.push(0);
                     (self.tets.len() - 1) as u32
                 }
@@ -406,9 +509,10 @@ impl Work {
             self.nbr[su] = [NONE; 4];
             self.cons[su] = 0;
             self.region[su] = region;
-            self.q[su] = self.score_of(tet);
+            self.rescore(s);
             for &v in tet {
                 self.v2t[v as usize] = s;
+                self.touched[v as usize] = self.clock;
             }
             slots.push(s);
         }
@@ -445,6 +549,7 @@ impl Work {
     pub(crate) fn push_vertex(&mut self, p: DVec3) -> u32 {
         self.pts.push(p);
         self.v2t.push(NONE);
+        self.touched.push(self.clock);
         self.fixed.push(false);
         (self.pts.len() - 1) as u32
     }
@@ -454,6 +559,7 @@ impl Work {
         if v as usize + 1 == self.pts.len() && self.v2t[v as usize] == NONE {
             self.pts.pop();
             self.v2t.pop();
+            self.touched.pop();
             self.fixed.pop();
         }
     }
@@ -471,6 +577,7 @@ impl Work {
     }
 
     /// Number of live tets.
+    #[cfg(test)]
     pub(crate) fn live(&self) -> usize {
         self.tets.len() - self.free.len()
     }
