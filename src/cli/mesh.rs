@@ -15,7 +15,7 @@ use std::time::Instant;
 /// Examples shown by `fepre mesh --help`.
 pub const EXAMPLES: &str = "\
 Examples:
-  fepre mesh part.stl -o part.mesh                      quality tets (radius-edge 1.5, dihedral 15° aimed at)
+  fepre mesh part.stl -o part.mesh                      quality tets (radius-edge 1.5, dihedral 18° aimed at)
   fepre mesh plc.poly -o plc.vtu --size 0.16            edge length about 0.16 everywhere; holes and regions from the .poly
   fepre mesh part.obj -o part.msh --keep-surface        the boundary triangles exactly as given (no Steiner points on them)
   fepre mesh part.stl -o part.1.ele --json              TetGen files; one JSON report on standard output
@@ -38,7 +38,7 @@ pub struct Args {
     #[arg(long, value_name = "R", default_value_t = 1.5, value_parser = radius_edge)]
     pub max_radius_edge: f64,
     /// Smallest dihedral angle (degrees) the optimisation works towards (0 to 35).
-    #[arg(long, value_name = "D", default_value_t = 15.0, value_parser = dihedral)]
+    #[arg(long, value_name = "D", default_value_t = 18.0, value_parser = dihedral)]
     pub min_dihedral: f64,
     /// Keep the input surface exactly: no Steiner point on the boundary.
     #[arg(long)]

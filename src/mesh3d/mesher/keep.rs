@@ -211,19 +211,6 @@ pub(crate) fn keep_surface(tr: &mut Tetra, sm: &mut SurfaceModel) -> usize {
             }
         }
         if merged == 0 {
-            if std::env::var_os("FEPRE_DEBUG_KEEP").is_some() {
-                let mut why = [0usize; 6];
-                for v in 0..sm.location.len() as u32 {
-                    let seg = match sm.location[v as usize] { Location::Segment(_) => 0, Location::Facet(_) => 3, _ => continue };
-                    star(tr, v, &mut sv);
-                    for w in sm.merge_targets(v) {
-                        star(tr, w, &mut sw);
-                        let orient_ok = sv.iter().all(|&t| { let q = tr.tets[t as usize].v; q.contains(&w) || { let m = q.map(|x| if x == v { w } else { x }); tr.k.orient(m[0], m[1], m[2], m[3]) == Sign::Positive } });
-                        why[seg + if !orient_ok { 0 } else if check(tr, v, w, &sv, &sw).is_none() { 1 } else { 2 }] += 1;
-                    }
-                }
-                eprintln!("keep: left {}; segment targets: orient {} link {} ok {}; facet targets: orient {} link {} ok {}", sm.boundary_steiner_points(), why[0], why[1], why[2], why[3], why[4], why[5]);
-            }
             return sm.boundary_steiner_points();
         }
     }

@@ -24,7 +24,6 @@ mod carve;
 mod extract;
 mod input;
 mod keep;
-mod presize;
 mod recover;
 mod refine;
 mod surface_model;
@@ -57,7 +56,7 @@ pub struct MeshOptions {
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { max_radius_edge: 1.5, min_dihedral: 15.0, max_size: None, keep_surface: false, seed: 0x5eed, optimize: true }
+        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, max_size: None, keep_surface: false, seed: 0x5eed, optimize: true }
     }
 }
 
@@ -118,6 +117,9 @@ pub struct MeshReport {
     pub boundary_steiner_points: usize,
     /// Steiner points inserted in the volume.
     pub volume_steiner_points: usize,
+    /// Refinement reached its point budget before every tet met the radius-edge bound (input
+    /// angles too small for Delaunay refinement to end); the optimisation still ran.
+    pub refinement_stopped: bool,
     /// Regions.
     pub regions: usize,
     /// Seconds per stage: delaunay, recovery, carve, refine, keep, optimize, extract.
@@ -213,25 +215,38 @@ pub fn mesh_surface(
     let mut clock = Instant::now();
     input::check(surface)?;
     stage("check", &mut clock);
-    // the boundary may change: cut its triangles to the size first
-    let sized = if options.keep_surface { None } else { presize::presize(surface, size, options.max_size) };
-    let surface = sized.as_ref().unwrap_or(surface);
-    if sized.is_some() {
+    let mut points = surface.vertices.clone();
+    let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
+    if !options.keep_surface {
+        // the boundary may change: cut it to the size, and its thin triangles into better ones
+        let h = |p: DVec3| {
+            let s = size.size_at(p).min(options.max_size.unwrap_or(f64::INFINITY));
+            if s > 0.0 { s } else { f64::INFINITY }
+        };
+        let scale = feature_scale(surface, options.seed);
+        sm.presize(&mut points, &h, &scale);
         stage("presize", &mut clock);
     }
-    let ranks = ties::ranks(&surface.vertices, &surface.triangles);
-    let mut tr = tetra::Tetra::new(surface.vertices.clone(), ranks, options.seed).map_err(MeshingError::Degenerate)?;
+    let mut ranks = ties::ranks(&surface.vertices, &surface.triangles);
+    ranks.extend(surface.vertices.len() as u32..points.len() as u32);
+    let mut tr = tetra::Tetra::new(points, ranks, options.seed).map_err(MeshingError::Degenerate)?;
     stage("delaunay", &mut clock);
-    let mut sm = surface_model::SurfaceModel::new(surface.vertices.len(), &surface.triangles, &surface.face_tags);
     let budget = 50 * surface.triangles.len() + 10_000;
     let rec = recover::recover(&mut tr, &mut sm, budget)?;
     stage("recovery", &mut clock);
     let mut labels = carve::carve(&mut tr, &sm, seeds)?;
     stage("carve", &mut clock);
-    let mut refined = refine::refine(&mut tr, &mut labels, size, options)?;
-    if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() {
-        eprintln!("refine: {:?}", refined);
-    }
+    // a tenth of the shortest boundary edge: the smallest tet refinement splits
+    let r_min = 0.1 * sm.all_subsegments().map(|(_, [a, b])| tr.point(a).distance(tr.point(b))).fold(f64::INFINITY, f64::min);
+    // a budget of points: four times the boundary's for quality, plus what the size asks for
+    let max_points = {
+        let (lo, hi) = surface.vertices.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+        let d = hi - lo;
+        let h = size.size_at((lo + hi) * 0.5).min(options.max_size.unwrap_or(f64::INFINITY));
+        let by_size = if h.is_finite() && h > 0.0 { 3.0 * d.x * d.y * d.z / (0.118 * h * h * h) / 5.0 } else { 0.0 };
+        4 * tr.num_points() + 10_000 + by_size.min(5e7) as usize
+    };
+    let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points)?;
     stage("refine", &mut clock);
     keep::drop_exterior(&mut tr, &labels);
     if options.keep_surface {
@@ -243,11 +258,9 @@ pub fn mesh_surface(
         stage("keep", &mut clock);
     }
     {
-        let again = refine::refine(&mut tr, &mut labels, size, options)?;
+        let again = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points)?;
         refined.volume_points += again.volume_points;
-        if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() {
-            eprintln!("refine again: {:?}", again);
-        }
+        refined.stopped |= again.stopped;
     }
     stage("refine", &mut clock);
     let mut mesh = extract::extract(&tr, &sm, &labels, surface)?;
@@ -256,7 +269,10 @@ pub fn mesh_surface(
         let opts = crate::mesh3d::optimize::OptimizeOptions::default()
             .with_min_dihedral(options.min_dihedral)
             .with_max_radius_edge(options.max_radius_edge.max(2.0))
-            .with_max_passes(16);
+            .with_max_passes(16)
+            // hopeless inputs (tiny input angles) must not take forever: half the time so far,
+            // or a second
+            .with_time_budget(Some(std::time::Duration::from_secs_f64((0.5 * start.elapsed().as_secs_f64()).max(1.0))));
         let r = crate::mesh3d::optimize::optimize(&mut mesh, &opts).map_err(|e| MeshingError::Internal(e.to_string()))?;
         report.optimize = Some(r);
         stage("optimize", &mut clock);
@@ -265,9 +281,40 @@ pub fn mesh_surface(
     report.tets = mesh.tets.len();
     report.boundary_steiner_points = sm.boundary_steiner_points();
     report.volume_steiner_points = refined.volume_points;
+    report.refinement_stopped = refined.stopped;
     report.regions = labels.regions;
     report.seconds = start.elapsed().as_secs_f64();
     Ok((mesh, report))
+}
+
+/// A local feature size at every input vertex: 0.7 times the distance to the nearest vertex
+/// it is joined to in the Delaunay tetrahedralization of the surface vertices without being
+/// joined on the surface (across a thin wall, a slot, a hole), infinite where there is none.
+fn feature_scale(surface: &TriSurface, seed: u64) -> Vec<f64> {
+    let n = surface.vertices.len();
+    let mut scale = vec![f64::INFINITY; n];
+    let ranks = ties::ranks(&surface.vertices, &surface.triangles);
+    let Ok(tr) = tetra::Tetra::new(surface.vertices.clone(), ranks, seed) else { return scale };
+    let mut on_surface: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
+    for t in &surface.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            on_surface.insert((a.min(b), a.max(b)));
+        }
+    }
+    for t in tr.live() {
+        let v = tr.tets[t as usize].v;
+        for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            let (a, b) = (v[i].min(v[j]), v[i].max(v[j]));
+            if on_surface.contains(&(a, b)) {
+                continue;
+            }
+            let d = 0.7 * tr.point(a).distance(tr.point(b));
+            scale[a as usize] = scale[a as usize].min(d);
+            scale[b as usize] = scale[b as usize].min(d);
+        }
+    }
+    scale
 }
 
 #[cfg(test)]

@@ -74,18 +74,6 @@ pub(crate) fn circumcenter(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     a + (v.length_squared() * n.cross(u) + u.length_squared() * v.cross(n)) / d
 }
 
-/// Barycentric coordinates of `p` in triangle `(a, b, c)` (projected to its plane).
-fn barycentric(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [f64; 3] {
-    let n = (b - a).cross(c - a);
-    let d = n.length_squared();
-    if d == 0.0 {
-        return [-1.0; 3];
-    }
-    let wa = (c - b).cross(p - b).dot(n) / d;
-    let wb = (a - c).cross(p - c).dot(n) / d;
-    [wa, wb, 1.0 - wa - wb]
-}
-
 /// The subsegment of facet `f` whose diametral sphere holds `p` (the one whose midpoint is
 /// nearest), if any.
 pub(crate) fn encroached_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, p: DVec3) -> Option<(u32, [u32; 2])> {
@@ -109,13 +97,11 @@ pub(crate) fn encroached_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, p: DV
 pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u32; 3], stats: &mut Recovery) -> Result<bool, String> {
     let [pa, pb, pc] = t.map(|v| tr.point(v));
     let cc = circumcenter(pa, pb, pc);
-    let [fa, fb, fc] = sm.facets[f as usize].corners.map(|v| tr.point(v));
-    let w = barycentric(cc, fa, fb, fc);
     if let Some((s, [u, v])) = encroached_subsegment(tr, sm, f, cc) {
         stats.segment_points += 1;
         return split_subsegment(tr, sm, s, u, v);
     }
-    if w.iter().any(|&x| x <= 0.0) {
+    if !sm.inside(f, cc, &tr.k.points) {
         // outside the facet without encroaching its sides' subsegments: cannot happen in exact
         // arithmetic; split the longest edge of the subface instead
         let e = [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]]

@@ -25,6 +25,8 @@ pub(crate) struct Refined {
     pub volume_points: usize,
     /// Bad tets left as they were (keep-surface, or degenerate cases).
     pub rejected: usize,
+    /// Refinement stopped at its point budget (near input angles too small for it to end).
+    pub stopped: bool,
 }
 
 /// A queued bad tet: its priority (the radius-edge ratio, ordered by bits), slot and vertices.
@@ -94,9 +96,9 @@ fn inside_candidates(tr: &Tetra, t: u32, wall: Option<(u32, usize)>) -> Vec<DVec
 }
 
 /// The priority of tet `t` if it is bad.
-fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions) -> Option<u64> {
+fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions, r_min: f64) -> Option<u64> {
     let (c, r, lmin) = tet_sphere(tr, t);
-    if !r.is_finite() || lmin <= 0.0 {
+    if !r.is_finite() || lmin <= 0.0 || r <= r_min {
         return None;
     }
     let ratio = r / lmin;
@@ -128,7 +130,9 @@ fn encroached_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option
     None
 }
 
-/// Refines the material tets of `tr`.
+/// Refines the material tets of `tr`, up to `max_points` points in all. Tets with a circumradius at most `r_min` are left as
+/// they are: every point inserted is then at least about `r_min` from the others, which bounds
+/// the work near small input angles, where refinement alone would not end.
 ///
 /// # Errors
 /// [`MeshingError::Internal`] when the walls cannot be restored after a boundary split.
@@ -137,8 +141,11 @@ pub(crate) fn refine(
     labels: &mut Labels,
     size: &dyn SizeField,
     opts: &MeshOptions,
+    r_min: f64,
+    max_points: usize,
 ) -> Result<Refined, MeshingError> {
     let mut out = Refined::default();
+    let badness = |tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions| badness(tr, t, size, opts, r_min);
     let mut heap = BinaryHeap::new();
     for t in tr.live().collect::<Vec<_>>() {
         if labels.get(t) != 0 {
@@ -155,7 +162,8 @@ pub(crate) fn refine(
             continue;
         }
         steps += 1;
-        if steps > budget {
+        if steps > budget || tr.num_points() >= max_points {
+            out.stopped = true;
             break;
         }
         let Some(_) = badness(tr, t, size, opts) else { continue };
@@ -182,7 +190,7 @@ pub(crate) fn refine(
                 // still breaks the tet up (off-centres towards the tet, then points above its
                 // walls at a good height)
                 let region = labels.get(t);
-                let lmin = tet_sphere(tr, t).2;
+                let lmin = tet_sphere(tr, t).2.max(2.0 * r_min);
                 let mut done = false;
                 for q in inside_candidates(tr, t, if let Inserted::Rejected(wt, wk) = res { Some((wt, wk)) } else { None }) {
                     let p = tr.add_point(q);
@@ -203,15 +211,9 @@ pub(crate) fn refine(
                         done = true;
                         break;
                     }
-                    if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() && out.rejected < 8 {
-                        eprintln!("tet {t} walls {:04b} candidate {q} -> {res:?}", tr.walls[t as usize]);
-                    }
                     tr.remove_last_point();
                 }
                 if !done {
-                    if std::env::var_os("FEPRE_DEBUG_REFINE").is_some() && out.rejected < 8 {
-                        eprintln!("tet {t} walls {:04b}: {} candidates, first res {res:?}", tr.walls[t as usize], inside_candidates(tr, t, None).len());
-                    }
                     out.rejected += 1;
                 }
             }

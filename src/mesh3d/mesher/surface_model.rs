@@ -11,7 +11,8 @@
 use crate::core::FaceId;
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
-use spade::{DelaunayTriangulation, Point2, Triangulation};
+use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
+use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
 
 /// Where a vertex of the mesh lies.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -28,25 +29,32 @@ pub(crate) enum Location {
     Gone,
 }
 
-/// An input triangle.
+/// A facet: one input triangle, or (when merging) a maximal set of edge-connected, coplanar
+/// input triangles with one tag, which may then be retriangulated freely inside.
 #[derive(Clone, Debug)]
 pub(crate) struct Facet {
-    /// Its three corners (input vertex ids), as given.
-    pub corners: [u32; 3],
+    /// The input triangles it is made of, as given (they tile it).
+    pub triangles: Vec<[u32; 3]>,
     /// Its tag.
     pub tag: FaceId,
-    /// Its three sides as segment ids: side `i` joins corners `i` and `i + 1`.
-    pub sides: [u32; 3],
-    /// Steiner points strictly inside it.
+    /// Its sides (the segments on its boundary).
+    pub sides: Vec<u32>,
+    /// Its boundary as (segment, forward): forward when the segment's points run in the
+    /// facet's counter-clockwise direction (the facet on their left).
+    pub loops: Vec<(u32, bool)>,
+    /// Points strictly inside it: input vertices inside a merged facet, and Steiner points.
     pub inner: Vec<u32>,
     /// Current subfaces, oriented like the facet.
     pub subfaces: Vec<[u32; 3]>,
+    /// Its plane: an origin and two orthonormal directions (counter-clockwise about the
+    /// outward normal of its triangles).
+    frame: [DVec3; 3],
 }
 
-/// An input edge.
+/// An edge between two facets (every input edge, when facets are not merged).
 #[derive(Clone, Debug)]
 pub(crate) struct Segment {
-    /// Its endpoints and Steiner points, in order from one end to the other.
+    /// Its endpoints and Steiner points, in order from its smaller endpoint to its larger.
     pub points: Vec<u32>,
     /// The facets having it as a side.
     pub facets: Vec<u32>,
@@ -64,31 +72,152 @@ pub(crate) struct SurfaceModel {
     index: FxHashMap<[u32; 3], u32>,
 }
 
+/// Two input triangles sharing an edge belong to one merged facet when their tags agree and
+/// the sine of the angle between their normals is below this.
+const COPLANAR_SINE: f64 = 1e-6;
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        parent[x as usize] = parent[parent[x as usize] as usize];
+        x = parent[x as usize];
+    }
+    x
+}
+
 impl SurfaceModel {
-    /// The model of `triangles` (vertex indices below `n`) with their tags.
-    pub fn new(n: usize, triangles: &[[u32; 3]], tags: &[FaceId]) -> Self {
-        let mut seg_of: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-        let mut segments: Vec<Segment> = Vec::new();
-        let mut facets = Vec::with_capacity(triangles.len());
-        for (i, (t, &tag)) in triangles.iter().zip(tags).enumerate() {
-            let mut sides = [0u32; 3];
+    /// The model of `triangles` (vertex indices into `points`) with their tags; with `merge`,
+    /// coplanar neighbours with one tag form one facet.
+    pub fn new(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId], merge: bool) -> Self {
+        let n = points.len();
+        let normal = |t: &[u32; 3]| {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            (b - a).cross(c - a)
+        };
+        // the triangles on each edge
+        let mut on_edge: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
+        for (i, t) in triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
-                let key = (a.min(b), a.max(b));
-                let s = *seg_of.entry(key).or_insert_with(|| {
-                    segments.push(Segment { points: vec![key.0, key.1], facets: Vec::new() });
-                    (segments.len() - 1) as u32
-                });
-                segments[s as usize].facets.push(i as u32);
-                sides[k] = s;
+                on_edge.entry((a.min(b), a.max(b))).or_default().push(i as u32);
             }
-            facets.push(Facet { corners: *t, tag, sides, inner: Vec::new(), subfaces: vec![*t] });
+        }
+        let mut parent: Vec<u32> = (0..triangles.len() as u32).collect();
+        if merge {
+            let mut edges: Vec<(&(u32, u32), &Vec<u32>)> = on_edge.iter().collect();
+            edges.sort_unstable_by_key(|e| *e.0);
+            for (_, ts) in edges {
+                let &[x, y] = ts.as_slice() else { continue };
+                if tags[x as usize] != tags[y as usize] {
+                    continue;
+                }
+                let (nx, ny) = (normal(&triangles[x as usize]), normal(&triangles[y as usize]));
+                let scale = nx.length() * ny.length();
+                if scale > 0.0 && nx.dot(ny) > 0.0 && nx.cross(ny).length() <= COPLANAR_SINE * scale {
+                    let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
+                    if rx != ry {
+                        parent[rx.max(ry) as usize] = rx.min(ry);
+                    }
+                }
+            }
+        }
+        let mut facet_of_root: FxHashMap<u32, u32> = FxHashMap::default();
+        let mut facet_of_tri = vec![0u32; triangles.len()];
+        let mut facets: Vec<Facet> = Vec::new();
+        for i in 0..triangles.len() as u32 {
+            let r = find(&mut parent, i);
+            let f = *facet_of_root.entry(r).or_insert_with(|| {
+                facets.push(Facet {
+                    triangles: Vec::new(),
+                    tag: tags[i as usize],
+                    sides: Vec::new(),
+                    loops: Vec::new(),
+                    inner: Vec::new(),
+                    subfaces: Vec::new(),
+                    frame: [DVec3::ZERO; 3],
+                });
+                (facets.len() - 1) as u32
+            });
+            facet_of_tri[i as usize] = f;
+            facets[f as usize].triangles.push(triangles[i as usize]);
+        }
+        // segments: edges between different facets
+        let mut segments: Vec<Segment> = Vec::new();
+        let mut keys: Vec<(u32, u32)> = on_edge.keys().copied().collect();
+        keys.sort_unstable();
+        let mut seg_of: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+        for key in keys {
+            let ts = &on_edge[&key];
+            let mut fs: Vec<u32> = ts.iter().map(|&t| facet_of_tri[t as usize]).collect();
+            fs.sort_unstable();
+            let interior = fs.len() == 2 && fs[0] == fs[1];
+            if interior {
+                continue;
+            }
+            fs.dedup();
+            segments.push(Segment { points: vec![key.0, key.1], facets: fs.clone() });
+            let s = (segments.len() - 1) as u32;
+            seg_of.insert(key, s);
+            for f in fs {
+                facets[f as usize].sides.push(s);
+            }
+        }
+        for (f, fc) in facets.iter_mut().enumerate() {
+            let _ = f;
+            let mut on_side: Vec<u32> = Vec::new();
+            for t in &fc.triangles {
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    if let Some(&s) = seg_of.get(&(a.min(b), a.max(b))) {
+                        fc.loops.push((s, a < b));
+                        on_side.push(a);
+                        on_side.push(b);
+                    }
+                }
+            }
+            on_side.sort_unstable();
+            on_side.dedup();
+            let mut inner: Vec<u32> = fc.triangles.iter().flatten().copied().filter(|v| on_side.binary_search(v).is_err()).collect();
+            inner.sort_unstable();
+            inner.dedup();
+            fc.inner = inner;
+            fc.subfaces = fc.triangles.clone();
+            // the frame: the area-weighted normal, the first edge of the largest triangle
+            let sum: DVec3 = fc.triangles.iter().map(normal).sum();
+            let big = fc.triangles.iter().max_by(|x, y| normal(x).length_squared().total_cmp(&normal(y).length_squared())).copied();
+            if let Some(t) = big {
+                let o = points[t[0] as usize];
+                let nrm = sum.normalize_or_zero();
+                let e1 = (points[t[1] as usize] - o).reject_from_normalized(nrm).normalize_or_zero();
+                fc.frame = [o, e1, nrm.cross(e1)];
+            }
         }
         let mut index = FxHashMap::default();
-        for (i, t) in triangles.iter().enumerate() {
-            index.insert(sorted(*t), i as u32);
+        for (f, fc) in facets.iter().enumerate() {
+            for t in &fc.subfaces {
+                index.insert(sorted(*t), f as u32);
+            }
         }
         SurfaceModel { facets, segments, location: vec![Location::Input; n], index }
+    }
+
+    /// Point `p` in facet `f`'s plane coordinates.
+    fn to_plane(&self, f: u32, p: DVec3) -> DVec2 {
+        let [o, e1, e2] = self.facets[f as usize].frame;
+        let d = p - o;
+        DVec2::new(d.dot(e1), d.dot(e2))
+    }
+
+    /// True if `p` (near the facet's plane) lies in facet `f`: in or on one of its input
+    /// triangles, seen in its plane.
+    pub fn inside(&self, f: u32, p: DVec3, points: &[DVec3]) -> bool {
+        let q = self.to_plane(f, p);
+        self.facets[f as usize].triangles.iter().any(|t| {
+            let [a, b, c] = t.map(|i| self.to_plane(f, points[i as usize]));
+            let cross = |u: DVec2, v: DVec2, w: DVec2| (v - u).perp_dot(w - u);
+            let area = cross(a, b, c);
+            let tol = -1e-12 * area.abs();
+            area != 0.0 && cross(a, b, q) * area.signum() >= tol && cross(b, c, q) * area.signum() >= tol && cross(c, a, q) * area.signum() >= tol
+        })
     }
 
     /// Records a new vertex's location.
@@ -126,65 +255,191 @@ impl SurfaceModel {
         self.retriangulate(f, points);
     }
 
-    /// All points of facet `f`: its sides' points and its inner points, each once, with
-    /// for every side point the side it lies on (corners on two sides: reported with one).
-    fn facet_points(&self, f: u32) -> Vec<(u32, Option<u8>)> {
+    /// All points of facet `f`: its sides' points and its inner points, each once.
+    fn facet_points(&self, f: u32) -> Vec<u32> {
         let fc = &self.facets[f as usize];
-        let mut out: Vec<(u32, Option<u8>)> = Vec::new();
-        for (k, &s) in fc.sides.iter().enumerate() {
-            for &v in &self.segments[s as usize].points {
-                if !out.iter().any(|e| e.0 == v) {
-                    out.push((v, Some(k as u8)));
-                }
-            }
+        let mut out: Vec<u32> = Vec::new();
+        for &s in &fc.sides {
+            out.extend_from_slice(&self.segments[s as usize].points);
         }
-        out.extend(fc.inner.iter().map(|&v| (v, None)));
+        out.sort_unstable();
+        out.dedup();
+        out.extend(fc.inner.iter().copied());
         out
     }
 
-    /// Recomputes the subfaces of facet `f`: the 2D Delaunay triangulation of its points in
-    /// its plane, without the slivers whose three points lie on one side.
+    /// Recomputes the subfaces of facet `f`: the constrained Delaunay triangulation of its
+    /// points in its plane, its sides' subsegments as constraints, the triangles inside it
+    /// found by a flood from the inner side of its boundary. Keeps the old subfaces if the
+    /// plane mapping degenerates.
     pub fn retriangulate(&mut self, f: u32, points: &[DVec3]) {
-        let fc = &self.facets[f as usize];
-        let [a, b, c] = fc.corners.map(|v| points[v as usize]);
-        let normal = (b - a).cross(c - a);
-        let e1 = (b - a).normalize_or_zero();
-        let e2 = normal.normalize_or_zero().cross(e1);
         let pts = self.facet_points(f);
-        let side_sets: [Vec<u32>; 3] = fc.sides.map(|s| self.segments[s as usize].points.clone());
-        let on_side = |v: u32| -> u8 { (0..3).filter(|&k| side_sets[k].contains(&v)).fold(0u8, |m, k| m | 1 << k) };
-        let mut dt: DelaunayTriangulation<Point2<f64>> = DelaunayTriangulation::new();
+        let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
+        let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
         let mut ids: Vec<u32> = Vec::with_capacity(pts.len());
-        for &(v, _) in &pts {
-            let d = points[v as usize] - a;
-            let q = DVec2::new(d.dot(e1), d.dot(e2));
-            match dt.insert(Point2::new(q.x, q.y)) {
-                Ok(h) => {
-                    if h.index() == ids.len() {
-                        ids.push(v);
+        for &v in &pts {
+            let q = self.to_plane(f, points[v as usize]);
+            match cdt.insert(Point2::new(q.x, q.y)) {
+                Ok(h) if h.index() == ids.len() => {
+                    ids.push(v);
+                    handle.insert(v, h);
+                }
+                _ => return, // two points on one spot in the plane, or not finite
+            }
+        }
+        let fc = &self.facets[f as usize];
+        let mut seeds: Vec<(FixedVertexHandle, FixedVertexHandle)> = Vec::new();
+        for &(s, forward) in &fc.loops {
+            let p = &self.segments[s as usize].points;
+            for w in p.windows(2) {
+                let (a, b) = if forward { (w[0], w[1]) } else { (w[1], w[0]) };
+                let (ha, hb) = (handle[&a], handle[&b]);
+                if !cdt.can_add_constraint(ha, hb) {
+                    return;
+                }
+                cdt.add_constraint(ha, hb);
+                seeds.push((ha, hb));
+            }
+        }
+        // flood from the left of every boundary subsegment, never across a constraint
+        let mut inside: FxHashMap<FixedFaceHandle<InnerTag>, ()> = FxHashMap::default();
+        let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
+        for (a, b) in seeds {
+            if let Some(e) = cdt.get_edge_from_neighbors(a, b) {
+                if let Some(face) = e.face().as_inner() {
+                    if inside.insert(face.fix(), ()).is_none() {
+                        stack.push(face.fix());
                     }
                 }
-                Err(_) => return, // non-finite: keep the previous subfaces
             }
         }
-        let mut subfaces = Vec::with_capacity(2 * pts.len());
-        for face in dt.inner_faces() {
-            let [p, q, r] = face.vertices().map(|h| ids[h.fix().index()]);
-            // a sliver along one side (points of one segment only) is outside the facet
-            if on_side(p) & on_side(q) & on_side(r) != 0 {
+        while let Some(fh) = stack.pop() {
+            for e in cdt.face(fh).adjacent_edges() {
+                if e.is_constraint_edge() {
+                    continue;
+                }
+                if let Some(n) = e.rev().face().as_inner() {
+                    if inside.insert(n.fix(), ()).is_none() {
+                        stack.push(n.fix());
+                    }
+                }
+            }
+        }
+        let side_sets: Vec<&Vec<u32>> = fc.sides.iter().map(|&s| &self.segments[s as usize].points).collect();
+        let one_side = |t: [u32; 3]| side_sets.iter().any(|p| t.iter().all(|v| p.contains(v)));
+        let mut subfaces = Vec::with_capacity(inside.len());
+        let mut faces: Vec<FixedFaceHandle<InnerTag>> = inside.into_keys().collect();
+        faces.sort_unstable_by_key(|h| h.index());
+        for fh in faces {
+            let t = cdt.face(fh).vertices().map(|h| ids[h.fix().index()]);
+            // a sliver along one side (points of one segment only) is no part of the facet
+            if one_side(t) {
                 continue;
             }
-            // spade's faces turn counter-clockwise in (e1, e2), i.e. like the facet
-            subfaces.push([p, q, r]);
+            subfaces.push(t);
         }
-        if !subfaces.is_empty() {
-            for old in std::mem::take(&mut self.facets[f as usize].subfaces) {
-                self.index.remove(&sorted(old));
+        if subfaces.is_empty() {
+            return;
+        }
+        for old in std::mem::take(&mut self.facets[f as usize].subfaces) {
+            self.index.remove(&sorted(old));
+        }
+        for &t in &subfaces {
+            self.index.insert(sorted(t), f);
+        }
+        self.facets[f as usize].subfaces = subfaces;
+    }
+
+    /// Cuts the surface to the size wanted before meshing (when the boundary may change):
+    /// every segment into equal pieces no longer than the size at its midpoint nor, next to a
+    /// facet that is a single input triangle, 1.5 times that triangle's smallest altitude, nor
+    /// near a thin feature the local feature size (these two cut an edge into 4 pieces at
+    /// most: thin input triangles come out better shaped); then every facet refined in its plane by
+    /// spade's constrained Delaunay refinement (angle limit 25°, area from the size), its
+    /// sides kept. New points are appended to `points` as Steiner points.
+    ///
+    /// `scale` bounds the size near every input vertex (a local feature size: how near the
+    /// surface comes to itself there).
+    pub fn presize(&mut self, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64, scale: &[f64]) {
+        const MAX_PIECES: f64 = 4096.0;
+        for s in 0..self.segments.len() {
+            let (a, b) = (self.segments[s].points[0], self.segments[s].points[1]);
+            let (pa, pb) = (points[a as usize], points[b as usize]);
+            // the size wanted, and the shape of thin neighbours (at most 4 pieces for that:
+            // a fillet's long strips would otherwise explode into tiny triangles)
+            let length = pa.distance(pb);
+            let mut shape = f64::INFINITY;
+            for &f in &self.segments[s].facets {
+                let fc = &self.facets[f as usize];
+                if let [t] = fc.triangles.as_slice() {
+                    shape = shape.min(1.5 * min_altitude(t.map(|i| points[i as usize])));
+                }
             }
-            for &t in &subfaces {
-                self.index.insert(sorted(t), f);
+            let shape = shape.min(scale[a as usize]).min(scale[b as usize]).max(length / 4.0);
+            let len = size((pa + pb) * 0.5).min(shape);
+            let n = (pa.distance(pb) / len).ceil();
+            let n = if n.is_finite() && n > 1.0 { n.min(MAX_PIECES) as usize } else { 1 };
+            if n > 1 {
+                let mut pts = vec![a];
+                for k in 1..n {
+                    points.push(pa + (pb - pa) * (k as f64 / n as f64));
+                    let v = (points.len() - 1) as u32;
+                    self.locate_vertex(v, Location::Segment(s as u32));
+                    pts.push(v);
+                }
+                pts.push(b);
+                self.segments[s].points = pts;
             }
-            self.facets[f as usize].subfaces = subfaces;
+        }
+        for f in 0..self.facets.len() as u32 {
+            let local = self.facets[f as usize].triangles.iter().flatten().map(|&v| scale[v as usize]).fold(f64::INFINITY, f64::min);
+            self.refine_facet(f, points, &|p| size(p).min(local));
+            self.retriangulate(f, points);
+        }
+    }
+
+    /// Spade's refinement of facet `f` in its plane (sides kept): the new points go inside it.
+    fn refine_facet(&mut self, f: u32, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64) {
+        let pts = self.facet_points(f);
+        let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
+        let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
+        for &v in &pts {
+            let q = self.to_plane(f, points[v as usize]);
+            match cdt.insert(Point2::new(q.x, q.y)) {
+                Ok(h) if h.index() == handle.len() => {
+                    handle.insert(v, h);
+                }
+                _ => return,
+            }
+        }
+        for &(s, _) in &self.facets[f as usize].loops {
+            for w in self.segments[s as usize].points.windows(2) {
+                let (ha, hb) = (handle[&w[0]], handle[&w[1]]);
+                if !cdt.can_add_constraint(ha, hb) {
+                    return;
+                }
+                cdt.add_constraint(ha, hb);
+            }
+        }
+        let centre = self.facets[f as usize].triangles.iter().flatten().map(|&i| points[i as usize]).sum::<DVec3>()
+            / (3 * self.facets[f as usize].triangles.len()) as f64;
+        let h = size(centre);
+        let mut params = RefinementParameters::<f64>::new()
+            .with_angle_limit(AngleLimit::from_deg(25.0))
+            .keep_constraint_edges()
+            .exclude_outer_faces(true)
+            .with_max_additional_vertices(2 * pts.len() + 50);
+        if h.is_finite() && h > 0.0 {
+            params = params.with_max_allowed_area(0.5 * h * h);
+        }
+        cdt.refine(params);
+        let [o, e1, e2] = self.facets[f as usize].frame;
+        for vh in cdt.vertices().skip(handle.len()) {
+            let p = vh.position();
+            points.push(o + e1 * p.x + e2 * p.y);
+            let v = (points.len() - 1) as u32;
+            self.facets[f as usize].inner.push(v);
+            self.locate_vertex(v, Location::Facet(f));
         }
     }
 
@@ -266,6 +521,13 @@ impl SurfaceModel {
     }
 }
 
+/// The smallest altitude of a triangle (twice its area over its longest side).
+fn min_altitude(p: [DVec3; 3]) -> f64 {
+    let longest = p[0].distance(p[1]).max(p[1].distance(p[2])).max(p[2].distance(p[0]));
+    let area2 = (p[1] - p[0]).cross(p[2] - p[0]).length();
+    if longest > 0.0 { area2 / longest } else { f64::INFINITY }
+}
+
 /// `t` sorted.
 fn sorted(mut t: [u32; 3]) -> [u32; 3] {
     t.sort_unstable();
@@ -279,10 +541,11 @@ mod tests {
     #[test]
     fn splitting_keeps_facets_tiled() {
         let points = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.5, 0.5, 0.0), DVec3::new(0.3, 0.3, 0.0)];
-        let mut m = SurfaceModel::new(4, &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(2)]);
+        let mut m = SurfaceModel::new(&points[..4], &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(2)], false);
         assert_eq!(m.segments.len(), 5);
         // split the shared diagonal (1, 2) at its midpoint (vertex 4)
-        let s = m.facets[0].sides[1];
+        let s = m.segments.iter().position(|g| g.points == [1, 2]).unwrap() as u32;
+        assert_eq!(m.segments[s as usize].facets, [0, 1]);
         assert!(m.split_segment(s, 1, 2, 4, &points));
         assert_eq!(m.facets[0].subfaces.len(), 2);
         assert_eq!(m.facets[1].subfaces.len(), 2);
@@ -299,5 +562,29 @@ mod tests {
         }).sum();
         assert!((area - 1.0).abs() < 1e-12);
         assert_eq!(m.boundary_steiner_points(), 2);
+    }
+
+    #[test]
+    fn coplanar_triangles_with_one_tag_merge() {
+        let points = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.5, 0.5, 0.0)];
+        let mut m = SurfaceModel::new(&points[..4], &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(1)], true);
+        // one facet, four sides; the diagonal is no segment any more
+        assert_eq!(m.facets.len(), 1);
+        assert_eq!(m.segments.len(), 4);
+        assert_eq!(m.facets[0].sides.len(), 4);
+        assert!(m.inside(0, DVec3::new(0.9, 0.9, 0.0), &points));
+        assert!(!m.inside(0, DVec3::new(1.1, 0.5, 0.0), &points));
+        m.add_to_facet(0, 4, &points);
+        assert_eq!(m.facets[0].subfaces.len(), 4);
+        let area: f64 = m.subfaces().map(|(_, t)| {
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            let n = (b - a).cross(c - a);
+            assert!(n.z > 0.0);
+            0.5 * n.length()
+        }).sum();
+        assert!((area - 1.0).abs() < 1e-12);
+        // a different tag keeps them apart
+        let m = SurfaceModel::new(&points[..4], &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(2)], true);
+        assert_eq!(m.facets.len(), 2);
     }
 }

@@ -65,6 +65,9 @@ pub(crate) struct Tetra {
     dropped: Vec<u32>,
     /// Slots written by insertions since the caller last cleared it.
     pub created: Vec<u32>,
+    /// Visit stamps per slot for the cavity correction, and the current stamp.
+    seen: Vec<u32>,
+    stamp: u32,
 }
 
 impl Tetra {
@@ -91,6 +94,8 @@ impl Tetra {
             hint: 1,
             dropped: Vec::new(),
             created: Vec::new(),
+            seen: Vec::new(),
+            stamp: 0,
         };
         tr.push([DEAD; 4]);
         let t0 = tr.push(first);
@@ -260,8 +265,10 @@ impl Tetra {
     /// itself would go. Rebuilds the boundary list. Returns false in the latter case.
     fn correct_cavity(&mut self, t0: u32, p: u32) -> bool {
         loop {
-            let mut bad: Option<u32> = None;
-            for &(f, r) in &self.sc.boundary {
+            // every cavity tet behind a boundary face that p does not see strictly, and every
+            // cavity tet with a wall to another cavity tet, goes (all at once)
+            let mut bad: Vec<u32> = Vec::new();
+            for &(f, _) in &self.sc.boundary {
                 if f.contains(&GHOST) {
                     continue;
                 }
@@ -269,48 +276,52 @@ impl Tetra {
                     // the cavity tet on the inner side of this face (found by its vertices: the
                     // outside may be slot 0, which many faces share once the exterior is gone)
                     let inner = self.sc.cavity.iter().copied().find(|&c| f.iter().all(|x| self.tets[c as usize].v.contains(x)));
-                    bad = Some(inner.unwrap_or(t0));
-                    let _ = r;
-                    break;
+                    bad.push(inner.unwrap_or(t0));
                 }
             }
-            // a wall must never end up inside the cavity
-            if bad.is_none() {
-                for &t in &self.sc.cavity {
-                    for f in 0..4 {
-                        if self.walls[t as usize] >> f & 1 != 0 && self.mark[(self.tets[t as usize].n[f] >> 2) as usize] == IN {
-                            bad = Some(t);
-                        }
+            for &t in &self.sc.cavity {
+                for f in 0..4 {
+                    if self.walls[t as usize] >> f & 1 != 0 && self.mark[(self.tets[t as usize].n[f] >> 2) as usize] == IN {
+                        bad.push(t);
                     }
                 }
             }
-            let Some(b) = bad else { return true };
-            if b == t0 {
+            if bad.is_empty() {
+                return true;
+            }
+            if bad.contains(&t0) {
                 return false;
             }
-            self.mark[b as usize] = OUT;
-            self.sc.cavity.retain(|&t| t != b);
-            // keep the part of the cavity connected to t0 only
+            for &b in &bad {
+                self.mark[b as usize] = OUT;
+            }
+            // keep the part of the cavity connected to t0 only (through non-wall faces)
+            self.stamp = self.stamp.wrapping_add(1);
+            if self.seen.len() < self.tets.len() {
+                self.seen.resize(self.tets.len(), 0);
+            }
+            let stamp = self.stamp;
             let mut keep = vec![t0];
+            self.seen[t0 as usize] = stamp;
             let mut i = 0;
             while i < keep.len() {
                 let t = keep[i];
                 for f in 0..4 {
                     let n = self.tets[t as usize].n[f] >> 2;
-                    if self.mark[n as usize] == IN && !keep.contains(&n) && self.walls[t as usize] >> f & 1 == 0 {
+                    if self.mark[n as usize] == IN && self.seen[n as usize] != stamp && self.walls[t as usize] >> f & 1 == 0 {
+                        self.seen[n as usize] = stamp;
                         keep.push(n);
                     }
                 }
                 i += 1;
             }
             for &t in &self.sc.cavity {
-                if !keep.contains(&t) {
+                if self.seen[t as usize] != stamp {
                     self.mark[t as usize] = OUT;
+                    // tets dropped from the cavity are remembered so that their marks get cleared
+                    self.dropped.push(t);
                 }
             }
-            // tets dropped from the cavity are remembered so that their marks get cleared
-            self.dropped.push(b);
-            self.dropped.extend(self.sc.cavity.iter().copied().filter(|t| !keep.contains(t)));
             self.sc.cavity = keep;
             // rebuild the boundary from the cavity
             self.sc.boundary.clear();
