@@ -89,3 +89,71 @@ fn open_and_crossing_surfaces_are_refused() {
     let e = mesh_surface(&two, &Seeds::default(), &UniformSize(1.0), &MeshOptions::default()).unwrap_err();
     assert!(matches!(e, MeshingError::SelfIntersecting { .. }), "{e}");
 }
+
+mod generated {
+    //! Robustness on generated closed polyhedra: `validate()` passes and the volume is kept,
+    //! or a clean error comes back; never a panic.
+    use super::*;
+    use proptest::prelude::*;
+
+    fn rotate(s: &mut TriSurface, angles: [f64; 3]) {
+        let r = glam::DMat3::from_euler(glam::EulerRot::XYZ, angles[0], angles[1], angles[2]);
+        for v in &mut s.vertices {
+            *v = r * *v;
+        }
+    }
+
+    fn run(s: &TriSurface, keep: bool) {
+        let opts = MeshOptions::default().with_keep_surface(keep);
+        match mesh_surface(s, &Seeds::default(), &UniformSize(f64::INFINITY), &opts) {
+            Ok((m, _)) => {
+                assert_eq!(m.validate(), Ok(()));
+                let vol = crate::mesh::topology::surface_report(s, &Default::default()).volume;
+                assert!((m.volume() - vol).abs() <= 1e-9 * vol.abs(), "volume {} vs {vol}", m.volume());
+            }
+            Err(e) => {
+                // a clean error, with a message
+                assert!(!e.to_string().is_empty());
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+        /// Rotated grids, stretched into thin slabs.
+        #[test]
+        fn rotated_slabs(n in 1usize..4, sx in 0.01f64..10.0, sy in 0.1f64..10.0, a in proptest::array::uniform3(-3.2f64..3.2), keep in any::<bool>()) {
+            let mut s = cube(n);
+            for v in &mut s.vertices {
+                v.x *= sx;
+                v.y *= sy;
+            }
+            rotate(&mut s, a);
+            run(&s, keep);
+        }
+
+        /// Plates with a hole (a through hole: genus 1), rotated.
+        #[test]
+        fn plates_with_holes(k in 1usize..3, r in 0.5f64..9.0, thick in 0.3f64..10.0, a in proptest::array::uniform3(-3.2f64..3.2)) {
+            let mut s = plate_with_hole(8 * k, 20.0, thick, r);
+            rotate(&mut s, a);
+            run(&s, false);
+        }
+
+        /// Near-coplanar facets: the top of a subdivided cube bent by tiny amounts.
+        #[test]
+        fn near_coplanar(n in 2usize..4, eps in proptest::collection::vec(-1e-9f64..1e-9, 16)) {
+            let mut s = cube(n);
+            let mut k = 0;
+            for v in &mut s.vertices {
+                if v.z == 1.0 && v.x > 0.0 && v.x < 1.0 && v.y > 0.0 && v.y < 1.0 {
+                    v.z += eps[k % eps.len()];
+                    k += 1;
+                }
+            }
+            run(&s, false);
+            run(&s, true);
+        }
+    }
+}
