@@ -10,6 +10,7 @@
 //! - layer 3 [`io`]: mesh file formats;
 //! - layer 6 [`cli`]: the command line, one file per subcommand.
 
+pub mod cad;
 pub mod cli;
 pub mod core;
 pub mod io;

@@ -1,0 +1,83 @@
+//! `fepre cad-info FILE`: what fepre reads from a STEP file: solids, shells, faces, edges and
+//! vertices (assembly instances expanded), units, faces per surface kind, and every item it
+//! left out with the reason.
+
+use crate::cad::brep::{Dropped, Summary};
+use crate::cad::step;
+use anyhow::Result;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Examples shown by `fepre cad-info --help`.
+pub const EXAMPLES: &str = "\
+Examples:
+  fepre cad-info part.step                 counts, units, surface kinds, dropped items
+  fepre cad-info assembly.stp --json       the same as one JSON object";
+
+/// Arguments of `fepre cad-info`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// STEP file (.step, .stp; AP203, AP214, AP242).
+    pub file: PathBuf,
+    /// Print one JSON object on standard output instead of the text report.
+    #[arg(long)]
+    pub json: bool,
+    /// List at most N dropped items in the text report (the JSON lists them all).
+    #[arg(long, value_name = "N", default_value_t = 20)]
+    pub max_listed: usize,
+}
+
+/// The JSON object `fepre cad-info --json` prints.
+#[derive(Debug, Serialize)]
+struct Report {
+    file: String,
+    #[serde(flatten)]
+    summary: Summary,
+    dropped: Vec<Dropped>,
+    seconds: f64,
+}
+
+/// Runs `fepre cad-info`.
+///
+/// # Errors
+/// When the file cannot be read as STEP (the message names the line or `#id`).
+pub fn run(args: &Args) -> Result<()> {
+    let t0 = Instant::now();
+    let model = step::read(&args.file)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", text(&report, args.max_listed));
+    }
+    Ok(())
+}
+
+fn text(r: &Report, max_listed: usize) -> String {
+    let s = &r.summary;
+    let mut out = String::new();
+    let _ = writeln!(out, "file       {}", r.file);
+    let _ = writeln!(out, "units      {} (x{} to mm), angles in {}", s.units.length, s.units.to_mm, s.units.angle);
+    let _ = writeln!(out, "solids     {}", s.solids);
+    let _ = writeln!(out, "shells     {}", s.shells);
+    let _ = writeln!(out, "faces      {}", s.faces);
+    let _ = writeln!(out, "edges      {} ({} closed, {} seam, {} degenerate)", s.edges, s.closed_edges, s.seam_edges, s.degenerate_edges);
+    let _ = writeln!(out, "vertices   {}", s.vertices);
+    if let Some([lo, hi]) = s.bounds {
+        let _ = writeln!(out, "extent mm  {:.6} x {:.6} x {:.6}", hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    }
+    let kinds: Vec<String> = s.faces_by_surface.iter().map(|(k, n)| format!("{k} {n}")).collect();
+    let _ = writeln!(out, "surfaces   {}", kinds.join(", "));
+    let _ = writeln!(out, "dropped    {}", r.dropped.len());
+    for d in r.dropped.iter().take(max_listed) {
+        let _ = writeln!(out, "  {} {}: {}", d.id, d.kind, d.why);
+    }
+    if r.dropped.len() > max_listed {
+        let _ = writeln!(out, "  ... {} more (--json lists all)", r.dropped.len() - max_listed);
+    }
+    let _ = writeln!(out, "seconds    {:.3}", r.seconds);
+    out
+}
