@@ -11,7 +11,9 @@
 mod edge_flags;
 mod model;
 mod summary;
+mod validate;
 
 pub use model::{Coedge, Dropped, Edge, EntityRef, Face, Loop, Model, Shell, Solid, Units, Vertex};
 pub use edge_flags::DEGENERATE_RELATIVE;
 pub use summary::Summary;
+pub use validate::VERTEX_ON_CURVE_RELATIVE;
