@@ -17,3 +17,4 @@ pub mod io;
 pub mod mesh;
 pub mod mesh3d;
 pub mod quality;
+pub mod tessellate;

@@ -27,6 +27,27 @@ pub struct Args {
     /// List at most N dropped items in the text report (the JSON lists them all).
     #[arg(long, value_name = "N", default_value_t = 20)]
     pub max_listed: usize,
+    /// Also tessellate the faces and report the surface: triangles, closed, volume.
+    #[arg(long)]
+    pub mesh: bool,
+    /// Chord tolerance of `--mesh`, as a fraction of the model size.
+    #[arg(long, value_name = "REL", default_value_t = 1e-3, value_parser = crate::cli::parse_fraction)]
+    pub chord: f64,
+}
+
+/// What `--mesh` adds.
+#[derive(Debug, Serialize)]
+struct MeshInfo {
+    triangles: usize,
+    vertices: usize,
+    closed: bool,
+    manifold: bool,
+    oriented: bool,
+    open_edges: usize,
+    volume_mm3: f64,
+    area_mm2: f64,
+    failed_faces: Vec<crate::tessellate::FailedFace>,
+    seconds: f64,
 }
 
 /// The JSON object `fepre cad-info --json` prints.
@@ -37,6 +58,8 @@ struct Report {
     summary: Summary,
     dropped: Vec<Dropped>,
     seconds: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mesh: Option<MeshInfo>,
 }
 
 /// Runs `fepre cad-info`.
@@ -47,7 +70,24 @@ pub fn run(args: &Args) -> Result<()> {
     let t0 = Instant::now();
     let model = step::read(&args.file)?;
     let seconds = t0.elapsed().as_secs_f64();
-    let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds };
+    let mesh = args.mesh.then(|| {
+        let t1 = Instant::now();
+        let t = crate::tessellate::tessellate(&model, &crate::tessellate::TessellateOptions::default().with_chord_relative(args.chord));
+        let r = crate::mesh::topology::surface_report(&t.surface, &crate::mesh::topology::ReportOptions::default().with_self_intersections(false));
+        MeshInfo {
+            triangles: t.surface.triangles.len(),
+            vertices: t.surface.vertices.len(),
+            closed: r.closed,
+            manifold: r.manifold,
+            oriented: r.oriented,
+            open_edges: r.open_edges,
+            volume_mm3: r.shells.iter().map(|s| s.volume).sum(),
+            area_mm2: r.shells.iter().map(|s| s.area).sum(),
+            failed_faces: t.failed,
+            seconds: t1.elapsed().as_secs_f64(),
+        }
+    });
+    let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds, mesh };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
@@ -79,5 +119,13 @@ fn text(r: &Report, max_listed: usize) -> String {
         let _ = writeln!(out, "  ... {} more (--json lists all)", r.dropped.len() - max_listed);
     }
     let _ = writeln!(out, "seconds    {:.3}", r.seconds);
+    if let Some(m) = &r.mesh {
+        let _ = writeln!(out, "mesh       {} triangles, {} vertices, closed {}, manifold {}, oriented {}, {} open edges", m.triangles, m.vertices, m.closed, m.manifold, m.oriented, m.open_edges);
+        let _ = writeln!(out, "volume mm3 {:.6}  area mm2 {:.6}  ({:.3} s)", m.volume_mm3, m.area_mm2, m.seconds);
+        let _ = writeln!(out, "failed     {} faces", m.failed_faces.len());
+        for f in m.failed_faces.iter().take(max_listed) {
+            let _ = writeln!(out, "  {} {}: {}", f.face, f.source, f.why);
+        }
+    }
     out
 }

@@ -1,0 +1,396 @@
+//! Meshing one face in its parameter domain with spade's constrained Delaunay triangulation.
+//!
+//! Parameters are scaled by the surface's mean speeds (`|∂S/∂u|`, `|∂S/∂v|`) so that the
+//! triangulation sees roughly isometric coordinates (radians against millimetres otherwise).
+
+use super::TessellateOptions;
+use super::edge_points::EdgePoints;
+use crate::cad::brep::Model;
+use crate::cad::geom::Surface;
+use crate::core::FaceId;
+use glam::{DVec2, DVec3};
+use spade::handles::FixedVertexHandle;
+use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+
+#[derive(Clone, Copy, Debug)]
+struct V {
+    p: Point2<f64>,
+    /// Global vertex index, or `None` for an interior point not yet lifted.
+    id: Option<u32>,
+    uv: DVec2,
+}
+
+impl HasPosition for V {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.p
+    }
+}
+
+/// A loop in parameter space: `(u, v)` and global vertex index per point (not repeated at
+/// the end).
+type UvLoop = Vec<(DVec2, u32)>;
+
+/// A loop in `(u, v)` and, when it goes once around a surface periodic in `u` (closed edges
+/// without a seam), the `u` shift from its start to its end.
+struct Mapped {
+    pts: UvLoop,
+    wrap: Option<f64>,
+    /// True when the face lies to the left of the loop in `(u, v)`.
+    face_left: bool,
+}
+
+/// The loops of face `fid` in `(u, v)`.
+fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3]) -> Result<Vec<Mapped>, String> {
+    let face = model.face(fid);
+    let surf = model.surface(face.surface);
+    let dom = surf.domain();
+    let mut loops: Vec<Mapped> = Vec::new();
+    for &li in &face.loops {
+        let lp = &model.loops[li as usize];
+        if lp.coedges.is_empty() {
+            continue; // a vertex loop: a pole or apex, nothing to bound
+        }
+        let mut pts: UvLoop = Vec::new();
+        let mut prev: Option<DVec2> = None;
+        let mut last_id = None;
+        for c in &lp.coedges {
+            let ep = &edges[c.edge as usize];
+            let ids: Vec<u32> = if c.forward { ep.ids.clone() } else { ep.ids.iter().rev().copied().collect() };
+            for (k, &id) in ids.iter().enumerate() {
+                if k + 1 == ids.len() {
+                    last_id = Some(id);
+                    break;
+                }
+                let p = vertices[id as usize];
+                let uv = match prev {
+                    None => surf.project(p),
+                    Some(q) => surf.project_near(p, q),
+                };
+                pts.push((uv, id));
+                prev = Some(uv);
+            }
+        }
+        if pts.len() < 2 {
+            return Err(format!("loop {} has fewer than two points", lp.source));
+        }
+        // closure: the last point comes back to the first, or a period away
+        let mut wrap = None;
+        if let (Some(id), Some(q)) = (last_id, prev) {
+            let end = surf.project_near(vertices[id as usize], q);
+            let gap = end - pts[0].0;
+            let wraps = |g: f64, per: Option<f64>| per.is_some_and(|p| (g.abs() - p).abs() < 0.25 * p);
+            if wraps(gap.y, dom.v_period) {
+                return Err(format!("loop {} goes once around the surface in v: not supported yet", lp.source));
+            }
+            if wraps(gap.x, dom.u_period) {
+                wrap = Some(gap.x.signum() * dom.u_period.unwrap_or(0.0));
+            }
+        }
+        loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
+    }
+    if loops.is_empty() {
+        return Err("no edge loop (a face bounded only by vertex loops): not supported yet".into());
+    }
+    Ok(loops)
+}
+
+/// Signed area of a polygon (positive counter-clockwise).
+fn signed_area(p: &[DVec2]) -> f64 {
+    let n = p.len();
+    (0..n).map(|i| p[i].perp_dot(p[(i + 1) % n])).sum::<f64>() / 2.0
+}
+
+/// Closed polygons in `(u, v)` for the face: loops as they are, and loops that go around a
+/// periodic surface joined into one polygon by a cut between them (two such loops: a band
+/// such as a cylinder between two circles) or to a pole line (one such loop: a cone up to
+/// its apex, a spherical cap). The cut runs between existing boundary vertices, so no vertex
+/// is added on an edge and the surface stays watertight.
+fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &mut Vec<DVec3>) -> Result<Vec<UvLoop>, String> {
+    let face = model.face(fid);
+    let surf = model.surface(face.surface);
+    let dom = surf.domain();
+    let mapped = map_loops(model, fid, edges, vertices)?;
+    let (wrapping, plain): (Vec<Mapped>, Vec<Mapped>) = mapped.into_iter().partition(|m| m.wrap.is_some());
+    let mut loops: Vec<UvLoop> = Vec::new();
+    let period = dom.u_period.unwrap_or(0.0);
+    match wrapping.len() {
+        0 => {}
+        2 => {
+            let (a, b) = (&wrapping[0], &wrapping[1]);
+            let ga = a.wrap.unwrap_or(0.0);
+            let gb = b.wrap.unwrap_or(0.0);
+            // the cut starts at a's point farthest (in u) from every hole
+            let holes: Vec<(f64, f64)> = plain
+                .iter()
+                .map(|m| m.pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (p, _)| (lo.min(p.x), hi.max(p.x))))
+                .collect();
+            let clearance = |u: f64| {
+                holes
+                    .iter()
+                    .map(|&(lo, hi)| {
+                        let mid = 0.5 * (lo + hi);
+                        let d = crate::cad::geom::unwrap_near(u, mid, period) - mid;
+                        d.abs() - 0.5 * (hi - lo)
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let ia = (0..a.pts.len()).max_by(|&i, &j| clearance(a.pts[i].0.x).total_cmp(&clearance(a.pts[j].0.x))).unwrap_or(0);
+            // a unwrapped from ia
+            let mut pa: UvLoop = Vec::with_capacity(a.pts.len() + 1);
+            for k in 0..a.pts.len() {
+                let i = (ia + k) % a.pts.len();
+                let (p, id) = a.pts[i];
+                let shift = if i < ia { ga } else { 0.0 };
+                pa.push((p + DVec2::new(shift, 0.0), id));
+            }
+            let a0 = pa[0];
+            // b's point nearest to a0 in u, b unwrapped near it
+            let jb = (0..b.pts.len())
+                .min_by(|&i, &j| {
+                    let di = (crate::cad::geom::unwrap_near(b.pts[i].0.x, a0.0.x, period) - a0.0.x).abs();
+                    let dj = (crate::cad::geom::unwrap_near(b.pts[j].0.x, a0.0.x, period) - a0.0.x).abs();
+                    di.total_cmp(&dj)
+                })
+                .unwrap_or(0);
+            let bj_shift = crate::cad::geom::unwrap_near(b.pts[jb].0.x, a0.0.x, period) - b.pts[jb].0.x;
+            let mut pb: UvLoop = Vec::with_capacity(b.pts.len() + 1);
+            for k in 0..b.pts.len() {
+                let i = (jb + k) % b.pts.len();
+                let (p, id) = b.pts[i];
+                let shift = bj_shift + if i < jb { gb } else { 0.0 };
+                pb.push((p + DVec2::new(shift, 0.0), id));
+            }
+            // b must run back by ga: traverse it so its total change is -ga
+            let b_seq: UvLoop = if (gb + ga).abs() < 0.5 * period {
+                // natural order ends at b0 + gb = b0 - ga
+                let mut v = pb.clone();
+                v.push((pb[0].0 + DVec2::new(gb, 0.0), pb[0].1));
+                v
+            } else {
+                let mut v = vec![pb[0]];
+                v.extend(pb[1..].iter().rev().copied());
+                v.push((pb[0].0 - DVec2::new(gb, 0.0), pb[0].1));
+                v
+            };
+            // b_seq runs from b0 to b0 - ga; shifted by +ga it runs from b0 + ga to b0
+            let mut poly = pa.clone();
+            poly.push((a0.0 + DVec2::new(ga, 0.0), a0.1));
+            poly.extend(b_seq.iter().map(|&(p, id)| (p + DVec2::new(ga, 0.0), id)));
+            // the last point equals b0 (unshifted start of b_seq + ga - ga)
+            loops.push(poly);
+        }
+        1 => {
+            let a = &wrapping[0];
+            let ga = a.wrap.unwrap_or(0.0);
+            // candidate pole lines: bounded ends of v, and a cone's apex
+            let mut poles: Vec<f64> = Vec::new();
+            if dom.v.min.is_finite() {
+                poles.push(dom.v.min);
+            }
+            if dom.v.max.is_finite() {
+                poles.push(dom.v.max);
+            }
+            if let crate::cad::geom::Surface::Cone(c) = surf {
+                poles.push(-c.radius / c.semi_angle.tan());
+            }
+            let a0 = a.pts[0];
+            let mut chosen = None;
+            for vp in poles {
+                // a pole: the surface collapses to a point along v = vp
+                let (p0, p1) = (surf.point(a0.0.x, vp), surf.point(a0.0.x + 0.5 * period, vp));
+                if (p0 - p1).length() > 1e-9 * (1.0 + p0.length()) {
+                    continue;
+                }
+                let mut poly: Vec<DVec2> = a.pts.iter().map(|(p, _)| *p).collect();
+                poly.push(a0.0 + DVec2::new(ga, 0.0));
+                poly.push(DVec2::new(a0.0.x + ga, vp));
+                poly.push(DVec2::new(a0.0.x, vp));
+                if (signed_area(&poly) > 0.0) == a.face_left {
+                    chosen = Some((vp, p0));
+                    break;
+                }
+            }
+            let Some((vp, pole)) = chosen else {
+                return Err("a loop goes once around a periodic surface that has no pole on the face's side: not supported yet".into());
+            };
+            // the pole vertex: an existing vertex there, else a new one
+            let pid = match model.vertices.iter().position(|v| (v.point - pole).length() <= 1e-9 * (1.0 + pole.length())) {
+                Some(k) => k as u32,
+                None => {
+                    vertices.push(pole);
+                    vertices.len() as u32 - 1
+                }
+            };
+            let mut poly = a.pts.clone();
+            poly.push((a0.0 + DVec2::new(ga, 0.0), a0.1));
+            // points along the pole line (all the same 3D point) keep the triangles there thin
+            let n = 16;
+            for k in 0..=n {
+                poly.push((DVec2::new(a0.0.x + ga * (1.0 - k as f64 / n as f64), vp), pid));
+            }
+            loops.push(poly);
+        }
+        n => return Err(format!("{n} loops go around a periodic surface: not supported yet")),
+    }
+    let outer_mean = loops.first().map(|l| l.iter().fold(DVec2::ZERO, |s, (p, _)| s + *p) / l.len() as f64);
+    for m in plain {
+        loops.push(m.pts);
+    }
+    // other loops into the first loop's period window
+    let mean = |l: &UvLoop| l.iter().fold(DVec2::ZERO, |s, (p, _)| s + *p) / l.len() as f64;
+    let m0 = outer_mean.unwrap_or_else(|| mean(&loops[0]));
+    for l in loops.iter_mut().skip(1) {
+        let m = mean(l);
+        let shift = DVec2::new(
+            dom.u_period.map_or(0.0, |p| ((m0.x - m.x) / p).round() * p),
+            dom.v_period.map_or(0.0, |p| ((m0.y - m.y) / p).round() * p),
+        );
+        if shift != DVec2::ZERO {
+            l.iter_mut().for_each(|(p, _)| *p += shift);
+        }
+    }
+    Ok(loops)
+}
+
+/// Even-odd test of `p` against all loops.
+fn inside(loops: &[Vec<DVec2>], p: DVec2) -> bool {
+    let mut odd = false;
+    for l in loops {
+        let n = l.len();
+        for i in 0..n {
+            let (a, b) = (l[i], l[(i + 1) % n]);
+            if (a.y > p.y) != (b.y > p.y) {
+                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if p.x < x {
+                    odd = !odd;
+                }
+            }
+        }
+    }
+    odd
+}
+
+/// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` and the largest normal curvature-like term, over a
+/// sample grid of the box `lo..hi`.
+fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
+    let n = 6;
+    let (mut su, mut sv, mut cnt) = (0.0, 0.0, 0.0);
+    let mut samples = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            let u = lo.x + (hi.x - lo.x) * i as f64 / n as f64;
+            let v = lo.y + (hi.y - lo.y) * j as f64 / n as f64;
+            let d = surf.derivs(u, v);
+            su += d.du.length();
+            sv += d.dv.length();
+            cnt += 1.0;
+            samples.push(d);
+        }
+    }
+    let (su, sv) = ((su / cnt).max(1e-300), (sv / cnt).max(1e-300));
+    // second derivatives against the scaled parameters, normal part only (tangential parts
+    // do not bend the surface)
+    let mut k: f64 = 0.0;
+    for d in &samples {
+        let Some(nrm) = d.normal() else { continue };
+        let kuu = d.duu.dot(nrm).abs() / (su * su);
+        let kvv = d.dvv.dot(nrm).abs() / (sv * sv);
+        let kuv = d.duv.dot(nrm).abs() / (su * sv);
+        k = k.max(kuu).max(kvv).max(kuv);
+    }
+    (su, sv, k)
+}
+
+/// The triangles of one face, with global vertex indices (new interior vertices appended to
+/// `vertices`), oriented outward by the face's sense.
+///
+/// # Errors
+/// A message saying why the face could not be meshed.
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, vertices: &mut Vec<DVec3>) -> Result<Vec<[u32; 3]>, String> {
+    let face = model.face(fid);
+    let surf = model.surface(face.surface);
+    let loops = uv_loops(model, fid, edges, vertices)?;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for (p, _) in loops.iter().flatten() {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return Err("parameters of the boundary are not finite".into());
+    }
+    let (su, sv, k) = surface_scales(surf, lo, hi);
+    let scale = |p: DVec2| DVec2::new(p.x * su, p.y * sv);
+    let scaled: Vec<Vec<DVec2>> = loops.iter().map(|l| l.iter().map(|(p, _)| scale(*p)).collect()).collect();
+
+    let mut cdt: ConstrainedDelaunayTriangulation<V> = ConstrainedDelaunayTriangulation::new();
+    let mut handles: Vec<Vec<FixedVertexHandle>> = Vec::new();
+    for (l, sl) in loops.iter().zip(&scaled) {
+        let mut hs = Vec::with_capacity(l.len());
+        for ((uv, id), s) in l.iter().zip(sl) {
+            let h = cdt.insert(V { p: Point2::new(s.x, s.y), id: Some(*id), uv: *uv }).map_err(|e| format!("cannot insert a boundary point: {e:?}"))?;
+            hs.push(h);
+        }
+        handles.push(hs);
+    }
+    for hs in &handles {
+        let n = hs.len();
+        for i in 0..n {
+            let (a, b) = (hs[i], hs[(i + 1) % n]);
+            if a == b {
+                continue;
+            }
+            if cdt.try_add_constraint(a, b).is_empty() && !cdt.exists_constraint(a, b) {
+                return Err("boundary segments cross in parameter space".into());
+            }
+        }
+    }
+    // interior grid where the surface bends
+    if k > 0.0 {
+        let h = (8.0 * tol / k).sqrt();
+        let (slo, shi) = (scale(lo), scale(hi));
+        let nu = (((shi.x - slo.x) / h).ceil() as usize).min(opts.max_grid);
+        let nv = (((shi.y - slo.y) / h).ceil() as usize).min(opts.max_grid);
+        if nu >= 2 || nv >= 2 {
+            let (nu, nv) = (nu.max(1), nv.max(1));
+            for i in 0..nu {
+                for j in 0..nv {
+                    let s = DVec2::new(slo.x + (shi.x - slo.x) * (i as f64 + 0.5) / nu as f64, slo.y + (shi.y - slo.y) * (j as f64 + 0.5) / nv as f64);
+                    if inside(&scaled, s) {
+                        let uv = DVec2::new(s.x / su, s.y / sv);
+                        cdt.insert(V { p: Point2::new(s.x, s.y), id: None, uv }).map_err(|e| format!("cannot insert an interior point: {e:?}"))?;
+                    }
+                }
+            }
+        }
+    }
+    // lift and keep the triangles inside the loops
+    let mut ids: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
+    for v in cdt.vertices() {
+        let d = v.data();
+        ids.push(match d.id {
+            Some(id) => id,
+            None => {
+                vertices.push(surf.point(d.uv.x, d.uv.y));
+                vertices.len() as u32 - 1
+            }
+        });
+    }
+    let mut tris = Vec::new();
+    for f in cdt.inner_faces() {
+        let vs = f.vertices();
+        let c = vs.iter().fold(DVec2::ZERO, |s, v| s + DVec2::new(v.position().x, v.position().y)) / 3.0;
+        if !inside(&scaled, c) {
+            continue;
+        }
+        let [a, b, cc] = vs.map(|v| ids[v.fix().index()]);
+        if a == b || b == cc || a == cc {
+            continue;
+        }
+        tris.push(if face.same_sense { [a, b, cc] } else { [a, cc, b] });
+    }
+    if tris.is_empty() {
+        return Err("no triangle inside the face's loops".into());
+    }
+    Ok(tris)
+}
