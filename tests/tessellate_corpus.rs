@@ -1,6 +1,7 @@
 //! The tessellator on the shared corpus: for the files it meshes fully, the surface is
 //! closed, manifold and consistently oriented (checked by `mesh::topology`), every triangle is
-//! tagged with a B-rep face, and the enclosed volume is within 2 % of OpenCASCADE's.
+//! tagged with a B-rep face, and the enclosed volume is within 1 % of OpenCASCADE's at a chord
+//! tolerance of 2e-4 times the model size (the error shrinks with the tolerance, as it should).
 
 mod common;
 
@@ -19,6 +20,14 @@ const WATERTIGHT: &[(&str, f64)] = &[
     ("Kurbelwelle.stp", 2133.53),
     ("Zylkopf.stp", 3280.66),
     ("wing_fuselage.step", 1.59124e6),
+    ("part.step", 360940.0),
+    ("t20_data.step", 18388.5),
+    ("abc-0035.step", 4.6863e9),
+    ("mambo_s34.step", 130791.0),
+    ("linkrods.step", 3.847),
+    ("box_sides.STEP", 263542.0),
+    ("abc-0000.step", 3.16628e6),
+    ("bug32745_pmi1.stp", 901.289),
 ];
 
 #[test]
@@ -27,7 +36,7 @@ fn watertight_and_volume_close_to_opencascade() {
     let mut failures = Vec::new();
     for &(name, occ_volume) in WATERTIGHT {
         let model = step::read(&dir.join(name)).unwrap();
-        let t = tessellate(&model, &TessellateOptions::default());
+        let t = tessellate(&model, &TessellateOptions::default().with_chord_relative(2e-4));
         let s = &t.surface;
         s.validate().unwrap();
         let r = surface_report(s, &ReportOptions::default().with_self_intersections(false));
@@ -43,7 +52,7 @@ fn watertight_and_volume_close_to_opencascade() {
         if tags.len() != model.faces.len() {
             failures.push(format!("{name}: {} tags for {} faces", tags.len(), model.faces.len()));
         }
-        if ((volume - occ_volume) / occ_volume).abs() > 0.02 {
+        if ((volume - occ_volume) / occ_volume).abs() > 0.01 {
             failures.push(format!("{name}: volume {volume} vs OpenCASCADE {occ_volume}"));
         }
     }

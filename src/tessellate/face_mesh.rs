@@ -376,13 +376,15 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
             }
         });
     }
+    // inside = an odd number of constraint edges crossed from the outside (exact, unlike a
+    // point-in-polygon test on thin triangles along nearly straight boundaries)
+    let inside_faces = constraint_parity(&cdt);
     let mut tris = Vec::new();
     for f in cdt.inner_faces() {
-        let vs = f.vertices();
-        let c = vs.iter().fold(DVec2::ZERO, |s, v| s + DVec2::new(v.position().x, v.position().y)) / 3.0;
-        if !inside(&scaled, c) {
+        if !inside_faces[f.fix().index()] {
             continue;
         }
+        let vs = f.vertices();
         let [a, b, cc] = vs.map(|v| ids[v.fix().index()]);
         if a == b || b == cc || a == cc {
             continue;
@@ -393,4 +395,47 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         return Err("no triangle inside the face's loops".into());
     }
     Ok(tris)
+}
+
+/// Per face index (outer face included): true when an odd number of constraint edges
+/// separates it from the outer face. A 0-1 breadth-first search over face adjacency.
+fn constraint_parity(cdt: &ConstrainedDelaunayTriangulation<V>) -> Vec<bool> {
+    let n = cdt.num_all_faces();
+    let mut depth = vec![usize::MAX; n];
+    let mut queue = std::collections::VecDeque::new();
+    let outer = cdt.outer_face().fix().index();
+    depth[outer] = 0;
+    // the outer face has no adjacent_edges list of three: seed from the convex hull
+    for e in cdt.convex_hull() {
+        for f in [e.face(), e.rev().face()] {
+            if let Some(inner) = f.as_inner() {
+                let d = usize::from(e.is_constraint_edge());
+                let k = inner.fix().index();
+                if d < depth[k] {
+                    depth[k] = d;
+                    if d == 0 { queue.push_front(k) } else { queue.push_back(k) }
+                }
+            }
+        }
+    }
+    let faces: Vec<_> = cdt.inner_faces().collect();
+    let mut by_index = vec![None; n];
+    for (k, f) in faces.iter().enumerate() {
+        by_index[f.fix().index()] = Some(k);
+    }
+    while let Some(k) = queue.pop_front() {
+        let Some(fi) = by_index[k] else { continue };
+        let f = faces[fi];
+        for e in f.adjacent_edges() {
+            let Some(nb) = e.rev().face().as_inner() else { continue };
+            let j = nb.fix().index();
+            let step = usize::from(e.is_constraint_edge());
+            let d = depth[k] + step;
+            if d < depth[j] {
+                depth[j] = d;
+                if step == 0 { queue.push_front(j) } else { queue.push_back(j) }
+            }
+        }
+    }
+    depth.into_iter().map(|d| d != usize::MAX && d % 2 == 1).collect()
 }

@@ -7,7 +7,8 @@
 //! loop, so seams and closed edges become the two sides of a rectangle), a grid of interior
 //! points is added where the surface curves (spacing from the chord tolerance and the
 //! surface's second derivatives), spade's constrained Delaunay triangulation is built with the
-//! loop segments as constraints, triangles outside the loops are removed, and the rest are
+//! loop segments as constraints, triangles outside the loops are removed (by the parity of constraint edges crossed from
+//! the outside, exact where a point-in-polygon test fails on thin triangles), and the rest are
 //! lifted to 3D, oriented by the face's sense and tagged with its [`FaceId`].
 //!
 //! Faces that cannot be meshed this way (a periodic face bounded by closed edges without a
