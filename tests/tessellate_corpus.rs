@@ -1,5 +1,6 @@
 //! The tessellator on the shared corpus: for the files it meshes fully, the surface is
-//! closed, manifold and consistently oriented (checked by `mesh::topology`), every triangle is
+//! closed, manifold and consistently oriented with every shell enclosing positive volume
+//! (checked by `mesh::topology`), every triangle is
 //! tagged with a B-rep face, and the enclosed volume is within 1 % of OpenCASCADE's at a chord
 //! tolerance of 2e-4 times the model size (the error shrinks with the tolerance, as it should).
 
@@ -28,6 +29,7 @@ const WATERTIGHT: &[(&str, f64)] = &[
     ("box_sides.STEP", 263542.0),
     ("abc-0000.step", 3.16628e6),
     ("bug32745_pmi1.stp", 901.289),
+    ("as1-tu-203.stp", 764519.0),
 ];
 
 #[test]
@@ -46,8 +48,11 @@ fn watertight_and_volume_close_to_opencascade() {
         if !t.failed.is_empty() {
             failures.push(format!("{name}: failed faces {:?}", t.failed));
         }
-        if !(r.closed && r.manifold && r.oriented && r.outward) {
-            failures.push(format!("{name}: closed {} manifold {} oriented {} outward {}", r.closed, r.manifold, r.oriented, r.outward));
+        // every shell encloses positive volume: oriented outward (the report's own `outward`
+        // also judges nesting, which solids placed through each other's holes confuse)
+        let positive = r.shells.iter().all(|sh| sh.volume > 0.0);
+        if !(r.closed && r.manifold && r.oriented && positive) {
+            failures.push(format!("{name}: closed {} manifold {} oriented {} all shells positive {positive}", r.closed, r.manifold, r.oriented));
         }
         if tags.len() != model.faces.len() {
             failures.push(format!("{name}: {} tags for {} faces", tags.len(), model.faces.len()));
@@ -57,4 +62,29 @@ fn watertight_and_volume_close_to_opencascade() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The centroid of the tessellated solids (divergence theorem over the triangles).
+fn centroid(s: &fepre::mesh::TriSurface) -> (f64, glam::DVec3) {
+    let (mut v, mut c) = (0.0, glam::DVec3::ZERO);
+    for t in &s.triangles {
+        let [a, b, d] = t.map(|i| s.vertices[i as usize]);
+        let vol = a.dot(b.cross(d)) / 6.0;
+        v += vol;
+        c += vol * (a + b + d) / 4.0;
+    }
+    (v, c / v)
+}
+
+#[test]
+fn assembly_placements_match_the_files_validation_centroid() {
+    // as1-tu-203.stp carries validation properties: the assembly's centroid is
+    // (90, 75, 18.859468) mm (#2146). Wrong placements of its 18 instances would move it.
+    let Some(path) = common::corpus_file("as1-tu-203.stp") else { return };
+    let model = step::read(&path).unwrap();
+    let t = tessellate(&model, &TessellateOptions::default().with_chord_relative(2e-4));
+    let (v, c) = centroid(&t.surface);
+    let expected = glam::DVec3::new(90.0, 74.999999986, 18.859468252);
+    assert!((v - 764518.031066584).abs() / v < 0.005, "volume {v}");
+    assert!((c - expected).length() < 0.05, "centroid {c} vs {expected}");
 }

@@ -320,7 +320,9 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         return Err("parameters of the boundary are not finite".into());
     }
     let (su, sv, k) = surface_scales(surf, lo, hi);
-    let scale = |p: DVec2| DVec2::new(p.x * su, p.y * sv);
+    // spade refuses coordinates below ~1e-142 in magnitude other than zero: flush them
+    let flush = |x: f64| if x.abs() < 1e-30 { 0.0 } else { x };
+    let scale = |p: DVec2| DVec2::new(flush(p.x * su), flush(p.y * sv));
     let scaled: Vec<Vec<DVec2>> = loops.iter().map(|l| l.iter().map(|(p, _)| scale(*p)).collect()).collect();
 
     let mut cdt: ConstrainedDelaunayTriangulation<V> = ConstrainedDelaunayTriangulation::new();

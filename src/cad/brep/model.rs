@@ -216,8 +216,9 @@ impl Model {
     }
 
     /// A bounding box of the geometry, `(min, max)`: the vertices, 9 points along every edge,
-    /// and a 5 × 5 grid on every surface with a bounded domain (a sphere bounded by a
-    /// vertex loop has a single vertex). `None` for a model without any.
+    /// and a 5 × 5 grid on the surface of every face without edges whose surface has a
+    /// bounded domain (a sphere bounded by a vertex loop has a single vertex). `None` for a
+    /// model without any.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         let mut pts: Vec<DVec3> = self.vertices.iter().map(|v| v.point).collect();
         for e in &self.edges {
@@ -229,6 +230,9 @@ impl Model {
             }
         }
         for f in &self.faces {
+            if f.loops.iter().any(|&l| !self.loops[l as usize].coedges.is_empty()) {
+                continue;
+            }
             let s = &self.surfaces[f.surface as usize];
             let d = s.domain();
             if d.u.is_bounded() && d.v.is_bounded() {
