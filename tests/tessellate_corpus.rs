@@ -14,6 +14,7 @@ use fepre::tessellate::{TessellateOptions, tessellate};
 const WATERTIGHT: &[(&str, f64)] = &[
     ("occt-cube.step", 1000.0),
     ("occt-cylinder.step", 125.664),
+    ("occt-sphere.step", 523.599),
     ("red_cube_blue_cylinder.step", 1785.4),
     ("base_interface_AP214.STEP", 1.25799e6),
     ("Angled.step", 487805.0),
@@ -31,6 +32,20 @@ const WATERTIGHT: &[(&str, f64)] = &[
     ("bug32745_pmi1.stp", 901.289),
     ("as1-tu-203.stp", 764519.0),
 ];
+
+#[test]
+fn self_intersecting_tori_and_far_nappe_cone_at_default_chord() {
+    // screw.step: toroidal surfaces with r > R (inner "lemon" parts) and a cone face past its
+    // apex. Closed at the default chord; at 2e-4 a few open edges remain near the tori's
+    // apexes (known limitation of the first version).
+    let Some(path) = common::corpus_file("screw.step") else { return };
+    let model = step::read(&path).unwrap();
+    let t = tessellate(&model, &TessellateOptions::default());
+    let r = surface_report(&t.surface, &ReportOptions::default().with_self_intersections(false));
+    let volume: f64 = r.shells.iter().map(|sh| sh.volume).sum();
+    assert!(t.failed.is_empty() && r.closed && r.manifold && r.oriented, "{:?} closed {}", t.failed, r.closed);
+    assert!(((volume - 3788.27) / 3788.27).abs() < 0.02, "volume {volume}");
+}
 
 #[test]
 fn watertight_and_volume_close_to_opencascade() {

@@ -89,10 +89,67 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         }
         loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
     }
-    if loops.is_empty() {
-        return Err("no edge loop (a face bounded only by vertex loops): not supported yet".into());
-    }
     Ok(loops)
+}
+
+/// The boundary of a face without edge loops (a whole sphere or torus): the rectangle of the
+/// surface's bounded domain, its periodic sides sharing vertices and its collapsed sides
+/// (poles) a single vertex, so the mesh closes on itself.
+fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut Vec<DVec3>) -> Result<UvLoop, String> {
+    let surf = model.surface(model.face(fid).surface);
+    let dom = surf.domain();
+    if !(dom.u.is_bounded() && dom.v.is_bounded()) {
+        return Err("a face without edge loops on an unbounded surface".into());
+    }
+    let (lo, hi) = (DVec2::new(dom.u.min, dom.v.min), DVec2::new(dom.u.max, dom.v.max));
+    let (su, sv, k) = surface_scales(surf, lo, hi);
+    let h = if k > 0.0 { (8.0 * tol / k).sqrt() } else { f64::INFINITY };
+    let count = |len: f64| ((len / h).ceil() as usize).clamp(8, 200);
+    let (nu, nv) = (count(su * dom.u.length()), count(sv * dom.v.length()));
+    let uv = |i: usize, j: usize| DVec2::new(lo.x + dom.u.length() * i as f64 / nu as f64, lo.y + dom.v.length() * j as f64 / nv as f64);
+    let collapsed = |j: usize| {
+        let (a, b) = (surf.point(uv(0, j).x, uv(0, j).y), surf.point(uv(nu / 2, j).x, uv(nu / 2, j).y));
+        (a - b).length() <= 1e-9 * (1.0 + a.length())
+    };
+    let (pole0, pole1) = (collapsed(0), collapsed(nv));
+    let mut ids: std::collections::HashMap<(usize, usize), u32> = std::collections::HashMap::new();
+    let mut id_of = |i: usize, j: usize, vertices: &mut Vec<DVec3>| -> u32 {
+        let mut key = (i, j);
+        if dom.u_period.is_some() && key.0 == nu {
+            key.0 = 0;
+        }
+        if dom.v_period.is_some() && key.1 == nv {
+            key.1 = 0;
+        }
+        if (pole0 && key.1 == 0) || (pole1 && key.1 == nv) {
+            key.0 = 0;
+        }
+        *ids.entry(key).or_insert_with(|| {
+            let q = uv(key.0, key.1);
+            let p = surf.point(q.x, q.y);
+            match model.vertices.iter().position(|v| (v.point - p).length() <= 1e-9 * (1.0 + p.length())) {
+                Some(k) => k as u32,
+                None => {
+                    vertices.push(p);
+                    vertices.len() as u32 - 1
+                }
+            }
+        })
+    };
+    let mut out: UvLoop = Vec::new();
+    for i in 0..nu {
+        out.push((uv(i, 0), id_of(i, 0, vertices)));
+    }
+    for j in 0..nv {
+        out.push((uv(nu, j), id_of(nu, j, vertices)));
+    }
+    for i in (1..=nu).rev() {
+        out.push((uv(i, nv), id_of(i, nv, vertices)));
+    }
+    for j in (1..=nv).rev() {
+        out.push((uv(0, j), id_of(0, j, vertices)));
+    }
+    Ok(out)
 }
 
 /// Signed area of a polygon (positive counter-clockwise).
@@ -106,11 +163,14 @@ fn signed_area(p: &[DVec2]) -> f64 {
 /// such as a cylinder between two circles) or to a pole line (one such loop: a cone up to
 /// its apex, a spherical cap). The cut runs between existing boundary vertices, so no vertex
 /// is added on an edge and the surface stays watertight.
-fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &mut Vec<DVec3>) -> Result<Vec<UvLoop>, String> {
+fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, vertices: &mut Vec<DVec3>) -> Result<Vec<UvLoop>, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let dom = surf.domain();
     let mapped = map_loops(model, fid, edges, vertices)?;
+    if mapped.is_empty() {
+        return domain_rectangle(model, fid, tol, vertices).map(|l| vec![l]);
+    }
     let (wrapping, plain): (Vec<Mapped>, Vec<Mapped>) = mapped.into_iter().partition(|m| m.wrap.is_some());
     let mut loops: Vec<UvLoop> = Vec::new();
     let period = dom.u_period.unwrap_or(0.0);
@@ -310,7 +370,7 @@ fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
 pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, vertices: &mut Vec<DVec3>) -> Result<Vec<[u32; 3]>, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
-    let loops = uv_loops(model, fid, edges, vertices)?;
+    let loops = uv_loops(model, fid, edges, tol, vertices)?;
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
     for (p, _) in loops.iter().flatten() {
         lo = lo.min(*p);

@@ -67,15 +67,22 @@ impl Cone {
         SurfaceDomain { u: Interval::TURN, v: Interval::ALL, u_period: Some(TAU), v_period: None, u_closed: true, v_closed: false }
     }
 
-    /// Angle in `[0, 2π)` and the height of the closest point on the generator in the
-    /// half-plane of `p` (closed form; exact for points of the nappe `r + v tan α ≥ 0`).
+    /// Angle in `[0, 2π)` and height of the closest point (closed form). STEP cones are whole
+    /// double cones: past the apex (`r + v tan α < 0`) the radius is negative and the point
+    /// lies at the opposite angle, so both half-planes through the axis are tried.
     pub fn project(&self, p: DVec3) -> DVec2 {
         let l = self.frame.to_local(p);
-        let u = if l.x == 0.0 && l.y == 0.0 { 0.0 } else { angle_0_2pi(l.y.atan2(l.x)) };
+        let phi = if l.x == 0.0 && l.y == 0.0 { 0.0 } else { l.y.atan2(l.x) };
         let rho = l.x.hypot(l.y);
         let t = self.tan();
-        let v = ((rho - self.radius) * t + l.z) / (1.0 + t * t);
-        DVec2::new(u, v)
+        let best = |rho_s: f64| {
+            let v = ((rho_s - self.radius) * t + l.z) / (1.0 + t * t);
+            let d = (self.radius + v * t - rho_s).hypot(v - l.z);
+            (v, d)
+        };
+        let (v1, d1) = best(rho);
+        let (v2, d2) = best(-rho);
+        if d2 < d1 { DVec2::new(angle_0_2pi(phi + std::f64::consts::PI), v2) } else { DVec2::new(angle_0_2pi(phi), v1) }
     }
 
     /// The cone moved.

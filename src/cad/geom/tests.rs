@@ -239,3 +239,26 @@ fn curve_domains() {
     assert_eq!(dom("trimmed circle").range, Interval::new(5.0, 7.0));
     assert!(!dom("rational bspline (half circle)").closed);
 }
+
+#[test]
+fn cone_projection_reaches_the_far_nappe() {
+    use crate::cad::geom::{Cone, Frame};
+    let c = Cone { frame: Frame::WORLD, radius: 7.5, semi_angle: std::f64::consts::FRAC_PI_4 };
+    // below the apex (v < -7.5) the radius is negative: the point lies at the opposite angle
+    for &(u, v) in &[(0.3, -12.0), (2.0, -20.0), (4.0, 3.0)] {
+        let p = c.point(u, v);
+        let q = c.project(p);
+        assert!((c.point(q.x, q.y) - p).length() < 1e-9, "({u}, {v}) -> {q:?}");
+    }
+}
+
+#[test]
+fn self_intersecting_full_torus_projects_onto_its_lemon() {
+    use crate::cad::geom::{Frame, Torus, TorusPart};
+    let t = Torus { frame: Frame::WORLD, major: 2.0, minor: 5.0, part: TorusPart::Full };
+    for &(u, v) in &[(0.5, 0.3), (1.0, 2.5), (4.0, 3.6), (5.5, 5.9)] {
+        let p = t.point(u, v);
+        let q = t.project(p);
+        assert!((t.point(q.x, q.y) - p).length() < 1e-9, "({u}, {v}) -> {q:?}");
+    }
+}

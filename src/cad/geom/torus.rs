@@ -100,7 +100,7 @@ impl Torus {
     }
 
     /// Closed form: `u` the angle of `p` about the axis (of the opposite half-plane for the
-    /// inner part), `v` the angle about the tube's centre circle; both in the domain's window.
+    /// inner part, and for points nearer the inner part of a self-intersecting full torus), `v` the angle about the tube's centre circle; both in the domain's window.
     pub fn project(&self, p: DVec3) -> DVec2 {
         let l = self.frame.to_local(p);
         let rho = l.x.hypot(l.y);
@@ -112,7 +112,17 @@ impl Torus {
                 DVec2::new(u, v)
             }
             TorusPart::Outer => DVec2::new(angle_0_2pi(phi), l.z.atan2(rho - self.major)),
-            TorusPart::Full => DVec2::new(angle_0_2pi(phi), angle_0_2pi(l.z.atan2(rho - self.major))),
+            TorusPart::Full => {
+                let apple = DVec2::new(angle_0_2pi(phi), angle_0_2pi(l.z.atan2(rho - self.major)));
+                if self.minor <= self.major {
+                    return apple;
+                }
+                // a self-intersecting torus given as TOROIDAL_SURFACE: the point may lie on the
+                // inner (lemon) part, reached from the opposite half-plane
+                let lemon = DVec2::new(angle_0_2pi(phi + PI), angle_0_2pi(l.z.atan2(-rho - self.major)));
+                let (da, dl) = ((self.point(apple.x, apple.y) - p).length(), (self.point(lemon.x, lemon.y) - p).length());
+                if dl < da { lemon } else { apple }
+            }
         }
     }
 
