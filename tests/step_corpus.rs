@@ -172,3 +172,14 @@ fn cad_info_reports_and_rejects() {
     assert!(v["seconds"].as_f64().unwrap() >= 0.0);
     assert_eq!(v["faces_by_surface"]["plane"], 90);
 }
+
+#[test]
+fn face_colours_from_styled_items() {
+    // a red cube and a blue cylinder
+    let Some(path) = common::corpus_file("red_cube_blue_cylinder.step") else { return };
+    let m = step::read(&path).unwrap();
+    let colours: Vec<[f32; 3]> = m.faces.iter().map(|f| f.colour.expect("every face is styled")).collect();
+    let red = colours.iter().filter(|c| c[0] > c[1] && c[0] > c[2]).count();
+    let blue = colours.iter().filter(|c| c[2] > c[0] && c[2] > c[1]).count();
+    assert_eq!((red, blue), (6, 3), "{colours:?}");
+}

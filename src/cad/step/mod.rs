@@ -17,6 +17,7 @@
 //! Problems confined to one face or curve drop that item and list it.
 
 mod assembly;
+mod colour;
 mod convert;
 pub mod error;
 mod geometry;
@@ -74,5 +75,6 @@ pub fn to_model(file: &StepFile) -> Result<Model, StepError> {
         return Err(StepError::NoShape { path: file.path.clone(), dropped });
     }
     model.mark_edges();
+    colour::assign(file, &mut model);
     Ok(model)
 }
