@@ -18,6 +18,9 @@
 pub mod edge_points;
 pub mod face_mesh;
 
+#[cfg(test)]
+mod tests;
+
 use crate::cad::brep::{EntityRef, Model};
 use crate::core::FaceId;
 use crate::mesh::TriSurface;
