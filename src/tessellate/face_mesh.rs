@@ -415,10 +415,14 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         let nv = (((shi.y - slo.y) / h).ceil() as usize).min(opts.max_grid);
         if nu >= 2 || nv >= 2 {
             let (nu, nv) = (nu.max(1), nv.max(1));
+            let cell = DVec2::new((shi.x - slo.x) / nu as f64, (shi.y - slo.y) / nv as f64);
+            let clear = Clearance::new(&scaled, slo, cell, nu, nv);
             for i in 0..nu {
                 for j in 0..nv {
                     let s = DVec2::new(slo.x + (shi.x - slo.x) * (i as f64 + 0.5) / nu as f64, slo.y + (shi.y - slo.y) * (j as f64 + 0.5) / nv as f64);
-                    if inside(&scaled, s) {
+                    // a grid point on or next to a boundary segment would split it (spade
+                    // splits constraints through inserted points) or make slivers
+                    if inside(&scaled, s) && clear.far(s, 0.3 * cell.min_element()) {
                         let uv = DVec2::new(s.x / su, s.y / sv);
                         cdt.insert(V { p: Point2::new(s.x, s.y), id: None, uv }).map_err(|e| format!("cannot insert an interior point: {e:?}"))?;
                     }
@@ -500,4 +504,51 @@ fn constraint_parity(cdt: &ConstrainedDelaunayTriangulation<V>) -> Vec<bool> {
         }
     }
     depth.into_iter().map(|d| d != usize::MAX && d % 2 == 1).collect()
+}
+
+/// Boundary segments bucketed on the interior grid's cells, for the distance test of grid
+/// points.
+struct Clearance<'a> {
+    loops: &'a [Vec<DVec2>],
+    lo: DVec2,
+    cell: DVec2,
+    nu: usize,
+    nv: usize,
+    /// Per cell: (loop, segment) pairs whose box, grown by one cell, covers it.
+    buckets: Vec<Vec<(u32, u32)>>,
+}
+
+impl<'a> Clearance<'a> {
+    fn new(loops: &'a [Vec<DVec2>], lo: DVec2, cell: DVec2, nu: usize, nv: usize) -> Clearance<'a> {
+        let mut buckets = vec![Vec::new(); nu * nv];
+        let idx = |p: f64, lo: f64, c: f64, n: usize| (((p - lo) / c).floor().max(0.0) as usize).min(n - 1);
+        for (li, l) in loops.iter().enumerate() {
+            let n = l.len();
+            for si in 0..n {
+                let (a, b) = (l[si], l[(si + 1) % n]);
+                let (mn, mx) = (a.min(b) - cell, a.max(b) + cell);
+                let (i0, i1) = (idx(mn.x, lo.x, cell.x, nu), idx(mx.x, lo.x, cell.x, nu));
+                let (j0, j1) = (idx(mn.y, lo.y, cell.y, nv), idx(mx.y, lo.y, cell.y, nv));
+                for i in i0..=i1 {
+                    for j in j0..=j1 {
+                        buckets[i * nv + j].push((li as u32, si as u32));
+                    }
+                }
+            }
+        }
+        Clearance { loops, lo, cell, nu, nv, buckets }
+    }
+
+    /// True when `p` is farther than `d` from every boundary segment.
+    fn far(&self, p: DVec2, d: f64) -> bool {
+        let i = (((p.x - self.lo.x) / self.cell.x).floor().max(0.0) as usize).min(self.nu - 1);
+        let j = (((p.y - self.lo.y) / self.cell.y).floor().max(0.0) as usize).min(self.nv - 1);
+        self.buckets[i * self.nv + j].iter().all(|&(li, si)| {
+            let l = &self.loops[li as usize];
+            let (a, b) = (l[si as usize], l[(si as usize + 1) % l.len()]);
+            let ab = b - a;
+            let t = if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            (a + t * ab - p).length() > d
+        })
+    }
 }

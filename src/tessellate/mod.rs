@@ -6,7 +6,8 @@
 //! ([`face_mesh`]): its loops are mapped to `(u, v)` (periodic parameters unwrapped along the
 //! loop, so seams and closed edges become the two sides of a rectangle), a grid of interior
 //! points is added where the surface curves (spacing from the chord tolerance and the
-//! surface's second derivatives), spade's constrained Delaunay triangulation is built with the
+//! surface's second derivatives; points near a boundary segment are skipped, since spade
+//! would split the constraint through them and break the edge sharing), spade's constrained Delaunay triangulation is built with the
 //! loop segments as constraints, triangles outside the loops are removed (by the parity of constraint edges crossed from
 //! the outside, exact where a point-in-polygon test fails on thin triangles), and the rest are
 //! lifted to 3D, oriented by the face's sense and tagged with its [`FaceId`].
