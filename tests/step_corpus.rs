@@ -183,3 +183,19 @@ fn face_colours_from_styled_items() {
     let blue = colours.iter().filter(|c| c[2] > c[0] && c[2] > c[1]).count();
     assert_eq!((red, blue), (6, 3), "{colours:?}");
 }
+
+#[test]
+fn truncations_anywhere_give_errors_not_panics() {
+    let Some(path) = common::corpus_file("part.step") else { return };
+    let bytes = std::fs::read(path).unwrap();
+    // every 997th byte: inside strings, numbers, lists, keywords and between instances
+    // (cuts inside the first keyword are "not a STEP file", also an error)
+    for cut in (20..bytes.len()).step_by(997) {
+        let r = step::read_bytes(Path::new("cut.step"), &bytes[..cut]);
+        match r {
+            Err(StepError::Truncated { .. }) => {}
+            Err(e) => panic!("cut at {cut}: expected Truncated, got {e}"),
+            Ok(_) => panic!("cut at {cut}: a truncated file was accepted"),
+        }
+    }
+}

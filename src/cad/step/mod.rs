@@ -3,8 +3,8 @@
 //!
 //! Stages: [`parser`] turns bytes into a [`StepFile`] (`#id → records`, with line numbers;
 //! every reference checked), then the converter walks the shape representations
-//! ([`assembly`]), expanding assembly instances with their placements, converting solids,
-//! shells and faces ([`topology`]) and their geometry (`geometry`) into millimetres
+//! (`assembly`), expanding assembly instances with their placements, converting solids,
+//! shells and faces (`topology`) and their geometry (`geometry`) into millimetres
 //! ([`units`]).
 //!
 //! Why not `truck-stepio`: its tokenizer rejects valid files of the corpus (empty lists in
