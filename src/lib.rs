@@ -10,9 +10,11 @@
 //! - layer 3 [`io`]: mesh file formats; [`cad`]: B-rep import (STEP);
 //! - layer 6 [`cli`]: the command line, one file per subcommand.
 
+pub mod cad;
 pub mod cli;
 pub mod core;
 pub mod io;
 pub mod mesh;
 pub mod mesh3d;
 pub mod quality;
+pub mod tessellate;

@@ -2,6 +2,7 @@
 //! and the mapping of outcomes to exit codes: 0 ok, 1 the input could not be processed,
 //! 2 bad usage.
 
+pub mod cad_info;
 pub mod convert;
 pub mod delaunay;
 pub mod inspect;
@@ -20,6 +21,7 @@ Examples:
   fepre convert mesh.mesh boundary.stl     a tet mesh's tagged boundary as a surface
   fepre delaunay points.xyz -o dt.mesh     exact Delaunay tetrahedralization of a point set
   fepre mesh part.stl -o part.mesh         quality tet mesh of a closed surface, boundary tags kept
+  fepre cad-info part.step                 what fepre reads from a STEP file: counts, units, dropped items
 
 Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
 
@@ -52,6 +54,10 @@ pub enum Command {
     /// output format can hold them.
     #[command(after_help = convert::EXAMPLES)]
     Convert(convert::Args),
+    /// Read a STEP file (AP203/AP214/AP242) and report solids, shells, faces, edges, vertices,
+    /// units, surface kinds and every item left out.
+    #[command(after_help = cad_info::EXAMPLES)]
+    CadInfo(cad_info::Args),
 }
 
 /// Parses the arguments, runs the command and returns the process exit code.
@@ -69,6 +75,7 @@ pub fn main() -> ExitCode {
         Command::Convert(a) => convert::run(&a),
         Command::Delaunay(a) => delaunay::run(&a),
         Command::Mesh(a) => mesh::run(&a),
+        Command::CadInfo(a) => cad_info::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

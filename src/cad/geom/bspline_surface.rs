@@ -1,0 +1,199 @@
+//! B-spline surfaces, polynomial or rational (STEP `B_SPLINE_SURFACE_WITH_KNOTS`, and the
+//! complex instance with `RATIONAL_B_SPLINE_SURFACE`), evaluated exactly by Cox–de Boor.
+
+use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, find_span};
+use super::derivs::SurfaceDerivs;
+use super::domain::{Interval, SurfaceDomain};
+use super::frame::Rigid;
+use super::newton::{SurfaceSamples, refine_surface, span_samples};
+use glam::{DVec2, DVec3};
+use std::sync::OnceLock;
+
+/// A tensor-product B-spline surface. Control point `(i, j)` (`i` along `u`, `j` along `v`) is
+/// `control_points()[i * nv + j]`, as STEP lists them (a list of rows of constant `i`).
+#[derive(Clone, Debug)]
+pub struct BSplineSurface {
+    degree: [usize; 2],
+    knots_u: Vec<f64>,
+    knots_v: Vec<f64>,
+    nu: usize,
+    nv: usize,
+    points: Vec<DVec3>,
+    weights: Option<Vec<f64>>,
+    samples: OnceLock<SurfaceSamples>,
+}
+
+impl BSplineSurface {
+    /// A checked surface: `points` holds `nu × nv` control points row by row (`i` slow);
+    /// `knots_u`/`knots_v` are full knot vectors; `weights`, if given, are positive, one per point.
+    pub fn new(
+        degree_u: usize,
+        degree_v: usize,
+        knots_u: Vec<f64>,
+        knots_v: Vec<f64>,
+        nu: usize,
+        nv: usize,
+        points: Vec<DVec3>,
+        weights: Option<Vec<f64>>,
+    ) -> Result<BSplineSurface, String> {
+        if nu.checked_mul(nv) != Some(points.len()) {
+            return Err(format!("{} control points do not form a {nu} × {nv} grid", points.len()));
+        }
+        check_knots(degree_u, &knots_u, nu).map_err(|e| format!("u: {e}"))?;
+        check_knots(degree_v, &knots_v, nv).map_err(|e| format!("v: {e}"))?;
+        if let Some(w) = &weights {
+            if w.len() != points.len() {
+                return Err(format!("{} weights for {} control points", w.len(), points.len()));
+            }
+            if let Some(x) = w.iter().find(|&&x| !(x > 0.0 && x.is_finite())) {
+                return Err(format!("weight {x} is not positive"));
+            }
+        }
+        if points.iter().any(|p| !p.is_finite()) {
+            return Err("a control point is not finite".into());
+        }
+        let weights = weights.filter(|w| w.iter().any(|&x| x != w[0]));
+        Ok(BSplineSurface { degree: [degree_u, degree_v], knots_u, knots_v, nu, nv, points, weights, samples: OnceLock::new() })
+    }
+
+    /// Degrees in `u` and `v`.
+    pub fn degrees(&self) -> [usize; 2] {
+        self.degree
+    }
+
+    /// Full knot vectors in `u` and `v`.
+    pub fn knots(&self) -> [&[f64]; 2] {
+        [&self.knots_u, &self.knots_v]
+    }
+
+    /// Number of control points in `u` and `v`.
+    pub fn counts(&self) -> [usize; 2] {
+        [self.nu, self.nv]
+    }
+
+    /// The control points, row by row (`i` along `u` slow).
+    pub fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// The weights, `None` for a polynomial surface.
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
+    }
+
+    /// Point and derivatives up to second order at `(u, v)`.
+    pub fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        let [pu, pv] = self.degree;
+        let su = find_span(&self.knots_u, pu, self.nu, u);
+        let sv = find_span(&self.knots_v, pv, self.nv, v);
+        let mut bu = [[0.0; MAX_DEGREE + 1]; 3];
+        let mut bv = [[0.0; MAX_DEGREE + 1]; 3];
+        basis_derivatives(&self.knots_u, pu, su, u, 2, &mut bu);
+        basis_derivatives(&self.knots_v, pv, sv, v, 2, &mut bv);
+        // homogeneous sums: a[k][l] = Σ N^(k) M^(l) w P, w[k][l] = Σ N^(k) M^(l) w
+        let mut a = [[DVec3::ZERO; 3]; 3];
+        let mut w = [[0.0f64; 3]; 3];
+        for i in 0..=pu {
+            let row = (su - pu + i) * self.nv + (sv - pv);
+            // inner sums over j for each v-derivative order
+            let mut ra = [DVec3::ZERO; 3];
+            let mut rw = [0.0f64; 3];
+            for j in 0..=pv {
+                let idx = row + j;
+                let (q, wt) = match &self.weights {
+                    Some(ws) => (self.points[idx] * ws[idx], ws[idx]),
+                    None => (self.points[idx], 1.0),
+                };
+                for l in 0..3 {
+                    ra[l] += bv[l][j] * q;
+                    rw[l] += bv[l][j] * wt;
+                }
+            }
+            for k in 0..3 {
+                for l in 0..3 - k {
+                    a[k][l] += bu[k][i] * ra[l];
+                    w[k][l] += bu[k][i] * rw[l];
+                }
+            }
+        }
+        if self.weights.is_none() {
+            return SurfaceDerivs { p: a[0][0], du: a[1][0], dv: a[0][1], duu: a[2][0], duv: a[1][1], dvv: a[0][2] };
+        }
+        // quotient rule for S = A / W
+        let w0 = w[0][0];
+        let s = a[0][0] / w0;
+        let su_ = (a[1][0] - w[1][0] * s) / w0;
+        let sv_ = (a[0][1] - w[0][1] * s) / w0;
+        let suu = (a[2][0] - 2.0 * w[1][0] * su_ - w[2][0] * s) / w0;
+        let svv = (a[0][2] - 2.0 * w[0][1] * sv_ - w[0][2] * s) / w0;
+        let suv = (a[1][1] - w[1][0] * sv_ - w[0][1] * su_ - w[1][1] * s) / w0;
+        SurfaceDerivs { p: s, du: su_, dv: sv_, duu: suu, duv: suv, dvv: svv }
+    }
+
+    /// Point at `(u, v)`.
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        self.derivs(u, v).p
+    }
+
+    fn rows_equal(&self, a: usize, b: usize, along_u: bool) -> bool {
+        let size = self.points.iter().fold(0.0f64, |m, p| m.max(p.length())).max(1e-300);
+        let n = if along_u { self.nv } else { self.nu };
+        (0..n).all(|k| {
+            let (pa, pb) = if along_u { (self.points[a * self.nv + k], self.points[b * self.nv + k]) } else { (self.points[k * self.nv + a], self.points[k * self.nv + b]) };
+            (pa - pb).length() <= 1e-12 * size
+        })
+    }
+
+    /// The knot ranges; `u_closed` / `v_closed` when the first and last rows of control points
+    /// coincide. Never periodic (parameters are not wrapped).
+    pub fn domain(&self) -> SurfaceDomain {
+        let [pu, pv] = self.degree;
+        SurfaceDomain {
+            u: Interval::new(self.knots_u[pu], self.knots_u[self.nu]),
+            v: Interval::new(self.knots_v[pv], self.knots_v[self.nv]),
+            u_period: None,
+            v_period: None,
+            u_closed: self.rows_equal(0, self.nu - 1, true),
+            v_closed: self.rows_equal(0, self.nv - 1, false),
+        }
+    }
+
+    fn samples(&self) -> &SurfaceSamples {
+        self.samples.get_or_init(|| {
+            let [pu, pv] = self.degree;
+            let us = span_samples(&self.knots_u, pu, self.nu, (pu + 1).max(3), 48);
+            let vs = span_samples(&self.knots_v, pv, self.nv, (pv + 1).max(3), 48);
+            SurfaceSamples::grid(&us, &vs, |u, v| self.point(u, v))
+        })
+    }
+
+    /// Parameters of the closest point: Newton from each of the four grid samples nearest to
+    /// `p` (the grid has a few samples per knot span, at most 48 × 48), the best result kept.
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        let dom = self.domain();
+        let mut best = (f64::INFINITY, DVec2::new(dom.u.min, dom.v.min));
+        for start in self.samples().nearest(p, 4) {
+            let q = refine_surface(|u, v| self.derivs(u, v), &dom, p, start);
+            let d = (self.point(q.x, q.y) - p).length_squared();
+            if d < best.0 {
+                best = (d, q);
+            }
+        }
+        best.1
+    }
+
+    /// Parameters of the closest point by Newton from `start` only (for marching; no global
+    /// search).
+    pub fn project_near(&self, p: DVec3, start: DVec2) -> DVec2 {
+        refine_surface(|u, v| self.derivs(u, v), &self.domain(), p, start)
+    }
+
+    /// The surface moved.
+    pub fn transformed(&self, t: &Rigid) -> BSplineSurface {
+        BSplineSurface {
+            points: self.points.iter().map(|&p| t.apply_point(p)).collect(),
+            samples: OnceLock::new(),
+            ..self.clone()
+        }
+    }
+}

@@ -1,0 +1,205 @@
+//! The curve kinds of a B-rep edge, behind one enum: evaluation, natural domain and the inverse
+//! (closest point) of each.
+
+use super::bspline_curve::BSplineCurve;
+use super::circle::Circle;
+use super::derivs::CurveDerivs;
+use super::domain::{CurveDomain, Interval, unwrap_near, wrap_into};
+use super::ellipse::Ellipse;
+use super::frame::Rigid;
+use super::line::Line;
+use super::newton::refine_curve;
+use super::polyline::Polyline;
+use glam::DVec3;
+use std::fmt;
+
+/// A 3D curve in millimetres (also used, with `z = 0`, for the 2D curves of pcurves).
+#[derive(Clone, Debug)]
+pub enum Curve {
+    /// `LINE`.
+    Line(Line),
+    /// `CIRCLE`.
+    Circle(Circle),
+    /// `ELLIPSE`.
+    Ellipse(Ellipse),
+    /// `B_SPLINE_CURVE_WITH_KNOTS` (rational or not) and its special forms.
+    BSpline(BSplineCurve),
+    /// `POLYLINE`.
+    Polyline(Polyline),
+    /// `TRIMMED_CURVE`: a basis curve restricted to a parameter interval (the basis curve's
+    /// parameters, increasing).
+    Trimmed(Box<Curve>, Interval),
+}
+
+/// The kind of a [`Curve`], for summaries.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CurveKind {
+    /// A line.
+    Line,
+    /// A circle.
+    Circle,
+    /// An ellipse.
+    Ellipse,
+    /// A B-spline.
+    BSpline,
+    /// A polyline.
+    Polyline,
+    /// A trimmed curve.
+    Trimmed,
+}
+
+impl CurveKind {
+    /// The name used in reports (`line`, `circle`, `ellipse`, `bspline`, `polyline`, `trimmed`).
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveKind::Line => "line",
+            CurveKind::Circle => "circle",
+            CurveKind::Ellipse => "ellipse",
+            CurveKind::BSpline => "bspline",
+            CurveKind::Polyline => "polyline",
+            CurveKind::Trimmed => "trimmed",
+        }
+    }
+}
+
+impl fmt::Display for CurveKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Curve {
+    /// The kind.
+    pub fn kind(&self) -> CurveKind {
+        match self {
+            Curve::Line(_) => CurveKind::Line,
+            Curve::Circle(_) => CurveKind::Circle,
+            Curve::Ellipse(_) => CurveKind::Ellipse,
+            Curve::BSpline(_) => CurveKind::BSpline,
+            Curve::Polyline(_) => CurveKind::Polyline,
+            Curve::Trimmed(..) => CurveKind::Trimmed,
+        }
+    }
+
+    /// Point and first two derivatives at `t`.
+    pub fn derivs(&self, t: f64) -> CurveDerivs {
+        match self {
+            Curve::Line(c) => c.derivs(t),
+            Curve::Circle(c) => c.derivs(t),
+            Curve::Ellipse(c) => c.derivs(t),
+            Curve::BSpline(c) => c.derivs(t),
+            Curve::Polyline(c) => c.derivs(t),
+            Curve::Trimmed(c, _) => c.derivs(t),
+        }
+    }
+
+    /// Point at `t`.
+    pub fn point(&self, t: f64) -> DVec3 {
+        match self {
+            Curve::Line(c) => c.point(t),
+            Curve::Circle(c) => c.point(t),
+            Curve::Ellipse(c) => c.point(t),
+            Curve::BSpline(c) => c.point(t),
+            Curve::Polyline(c) => c.point(t),
+            Curve::Trimmed(c, _) => c.point(t),
+        }
+    }
+
+    /// First derivative at `t`.
+    pub fn derivative(&self, t: f64) -> DVec3 {
+        self.derivs(t).d1
+    }
+
+    /// The natural parameter domain: lines unbounded, conics `[0, 2π]` periodic, B-splines
+    /// their knot range, polylines `[0, n-1]`, trimmed curves their trimming interval.
+    pub fn domain(&self) -> CurveDomain {
+        match self {
+            Curve::Line(c) => c.domain(),
+            Curve::Circle(c) => c.domain(),
+            Curve::Ellipse(c) => c.domain(),
+            Curve::BSpline(c) => c.domain(),
+            Curve::Polyline(c) => c.domain(),
+            Curve::Trimmed(c, range) => {
+                let base = c.domain();
+                let closed = base.period.is_some_and(|p| (range.length() - p).abs() <= 1e-12 * p);
+                CurveDomain { range: *range, period: None, closed }
+            }
+        }
+    }
+
+    /// Parameter of the point of the curve closest to `p`: closed form for lines and circles,
+    /// Newton from the eccentric angle for ellipses, Newton from the nearest sample for
+    /// B-splines. Periodic parameters come back in `[0, 2π)`; trimmed curves' in their
+    /// interval.
+    pub fn project(&self, p: DVec3) -> f64 {
+        match self {
+            Curve::Line(c) => c.project(p),
+            Curve::Circle(c) => c.project(p),
+            Curve::Ellipse(c) => c.project(p),
+            Curve::BSpline(c) => c.project(p),
+            Curve::Polyline(c) => c.project(p),
+            Curve::Trimmed(c, range) => {
+                let t = c.project(p);
+                match c.domain().period {
+                    Some(per) => {
+                        let w = wrap_into(t, range.min, per);
+                        // past the end of the trim: the nearer end
+                        if w > range.max {
+                            let (da, db) = ((c.point(range.min) - p).length(), (c.point(range.max) - p).length());
+                            if da < db { range.min } else { range.max }
+                        } else {
+                            w
+                        }
+                    }
+                    None => range.clamp(t),
+                }
+            }
+        }
+    }
+
+    /// Like [`Curve::project`], but near `t0`: periodic parameters are unwrapped to within half
+    /// a period of `t0`, and B-splines refine from `t0` (for marching along an edge).
+    pub fn project_near(&self, p: DVec3, t0: f64) -> f64 {
+        match self {
+            Curve::BSpline(c) => {
+                let t = refine_curve(|t| c.derivs(t), &c.domain(), p, t0);
+                // a poor local minimum: fall back to the global answer
+                let g = c.project(p);
+                if (c.point(g) - p).length() < (c.point(t) - p).length() * (1.0 - 1e-12) { g } else { t }
+            }
+            _ => {
+                let t = self.project(p);
+                match self.domain().period {
+                    Some(per) => unwrap_near(t, t0, per),
+                    None => t,
+                }
+            }
+        }
+    }
+
+    /// The curve moved.
+    pub fn transformed(&self, t: &Rigid) -> Curve {
+        match self {
+            Curve::Line(c) => Curve::Line(c.transformed(t)),
+            Curve::Circle(c) => Curve::Circle(c.transformed(t)),
+            Curve::Ellipse(c) => Curve::Ellipse(c.transformed(t)),
+            Curve::BSpline(c) => Curve::BSpline(c.transformed(t)),
+            Curve::Polyline(c) => Curve::Polyline(c.transformed(t)),
+            Curve::Trimmed(c, r) => Curve::Trimmed(Box::new(c.transformed(t)), *r),
+        }
+    }
+
+    /// Approximate length of the curve over `[a, b]` (a 64-segment chord sum; for telling
+    /// degenerate edges).
+    pub fn chord_length(&self, a: f64, b: f64) -> f64 {
+        let n = 64;
+        let mut len = 0.0;
+        let mut prev = self.point(a);
+        for k in 1..=n {
+            let q = self.point(a + (b - a) * k as f64 / n as f64);
+            len += (q - prev).length();
+            prev = q;
+        }
+        len
+    }
+}

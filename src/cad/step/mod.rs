@@ -1,0 +1,80 @@
+//! STEP (ISO 10303-21) import: a reader of our own, tolerant of what real AP203, AP214 and
+//! AP242 files contain, and the conversion of their B-rep entities into a [`Model`].
+//!
+//! Stages: [`parser`] turns bytes into a [`StepFile`] (`#id → records`, with line numbers;
+//! every reference checked), then the converter walks the shape representations
+//! (`assembly`), expanding assembly instances with their placements, converting solids,
+//! shells and faces (`topology`) and their geometry (`geometry`) into millimetres
+//! ([`units`]).
+//!
+//! Why not `truck-stepio`: its tokenizer rejects valid files of the corpus (empty lists in
+//! AP242), it drops unsupported entities silently, ignores assembly placements and units,
+//! and its types are not our `geom` types; a reader of our own is a few hundred lines and
+//! reports every item it leaves out ([`Model::dropped`]).
+//!
+//! Errors ([`StepError`]) concern the file as a whole and name the line or `#id`: a
+//! truncated file, a reference to an undefined instance, a reference cycle, bad syntax.
+//! Problems confined to one face or curve drop that item and list it.
+
+mod assembly;
+mod colour;
+mod convert;
+pub mod error;
+mod geometry;
+pub mod param;
+pub mod parser;
+pub mod table;
+mod topology;
+pub mod units;
+
+#[cfg(test)]
+mod tests;
+
+pub use error::StepError;
+pub use param::Param;
+pub use table::{Entity, Record, StepFile};
+
+use crate::cad::brep::Model;
+use std::path::Path;
+
+/// Reads a STEP file into a B-rep model in millimetres, assembly instances expanded.
+///
+/// # Errors
+/// See [`StepError`]: unreadable, not STEP, syntax, truncated, duplicate or missing `#id`,
+/// reference cycle, or no B-rep shape at all.
+pub fn read(path: &Path) -> Result<Model, StepError> {
+    let bytes = std::fs::read(path).map_err(|source| StepError::Read { path: path.to_path_buf(), source })?;
+    read_bytes(path, &bytes)
+}
+
+/// Like [`read`], from bytes already in memory (`path` is used in messages only).
+///
+/// # Errors
+/// As [`read`].
+pub fn read_bytes(path: &Path, bytes: &[u8]) -> Result<Model, StepError> {
+    let file = parser::parse(path, bytes)?;
+    to_model(&file)
+}
+
+/// Converts a parsed file into a model.
+///
+/// # Errors
+/// [`StepError::Cycle`] for a reference cycle among geometry or placements,
+/// [`StepError::NoShape`] when no solid, shell or surface model could be read.
+pub fn to_model(file: &StepFile) -> Result<Model, StepError> {
+    let mut c = convert::Converter::new(file);
+    c.convert_all()?;
+    let mut model = c.model;
+    if model.faces.is_empty() {
+        let dropped = if model.dropped.is_empty() {
+            String::new()
+        } else {
+            let first: Vec<String> = model.dropped.iter().take(3).map(|d| format!("{} {}: {}", d.kind, d.id, d.why)).collect();
+            format!("; dropped {} item(s), e.g. {}", model.dropped.len(), first.join("; "))
+        };
+        return Err(StepError::NoShape { path: file.path.clone(), dropped });
+    }
+    model.mark_edges();
+    colour::assign(file, &mut model);
+    Ok(model)
+}

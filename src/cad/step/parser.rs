@@ -1,0 +1,509 @@
+//! A tolerant ISO 10303-21 reader: bytes → [`StepFile`]. One pass over the bytes with a line
+//! counter, no separate token list.
+//!
+//! Accepted beyond the strict grammar, because real files have them: comments anywhere
+//! (before `ISO-10303-21;` too), keywords and type names in any case, empty lists `()`,
+//! `''` inside strings, strings over several lines, reals without a digit before the point
+//! (`.5`), several `DATA` sections (with or without parameters), `ANCHOR`/`REFERENCE`/
+//! `SIGNATURE` sections (skipped), `&SCOPE ... ENDSCOPE` blocks (their instances are read like
+//! the others), and a missing `END-ISO-10303-21;` after a complete `DATA` section. Unset (`$`)
+//! and derived (`*`) values are kept as such; nothing is dropped here.
+
+use super::error::StepError;
+use super::param::Param;
+use super::table::{Entity, Record, StepFile};
+use std::path::Path;
+
+/// Parses the bytes of an exchange file and checks that every reference resolves.
+///
+/// # Errors
+/// [`StepError::NotStep`], [`StepError::Syntax`], [`StepError::Truncated`],
+/// [`StepError::DuplicateId`], [`StepError::MissingEntity`], each naming the line or `#id`.
+pub fn parse(path: &Path, bytes: &[u8]) -> Result<StepFile, StepError> {
+    let mut p = Parser { s: bytes, pos: 0, line: 1, path, context_line: 1, context: String::new() };
+    let file = p.file()?;
+    file.check_references()?;
+    Ok(file)
+}
+
+/// Internal failure: end of input (turned into `Truncated` with the current context) or a
+/// syntax error.
+enum Fail {
+    Eof,
+    Err(StepError),
+}
+
+type R<T> = Result<T, Fail>;
+
+struct Parser<'a> {
+    s: &'a [u8],
+    pos: usize,
+    line: u32,
+    path: &'a Path,
+    /// Where the item being read started, and what it is, for truncation messages.
+    context_line: u32,
+    context: String,
+}
+
+fn is_word(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_' || b == b'-'
+}
+
+impl<'a> Parser<'a> {
+    fn syntax(&self, message: impl Into<String>) -> Fail {
+        Fail::Err(StepError::Syntax { path: self.path.to_path_buf(), line: self.line, message: message.into() })
+    }
+
+    fn finish<T>(&self, r: R<T>) -> Result<T, StepError> {
+        r.map_err(|f| match f {
+            Fail::Err(e) => e,
+            Fail::Eof => StepError::Truncated { path: self.path.to_path_buf(), line: self.context_line, inside: self.context.clone() },
+        })
+    }
+
+    fn set_context(&mut self, what: String) {
+        self.context_line = self.line;
+        self.context = what;
+    }
+
+    /// Skips white space and comments; `Eof` inside an unterminated comment.
+    fn skip_ws(&mut self) -> R<()> {
+        while self.pos < self.s.len() {
+            let b = self.s[self.pos];
+            if b == b'\n' {
+                self.line += 1;
+                self.pos += 1;
+            } else if b <= b' ' || b == 0x7f {
+                self.pos += 1;
+            } else if b == b'/' && self.s.get(self.pos + 1) == Some(&b'*') {
+                let start = self.line;
+                self.pos += 2;
+                loop {
+                    match self.s.get(self.pos) {
+                        None => {
+                            self.context_line = start;
+                            self.context = "inside a comment".into();
+                            return Err(Fail::Eof);
+                        }
+                        Some(b'*') if self.s.get(self.pos + 1) == Some(&b'/') => {
+                            self.pos += 2;
+                            break;
+                        }
+                        Some(b'\n') => {
+                            self.line += 1;
+                            self.pos += 1;
+                        }
+                        Some(_) => self.pos += 1,
+                    }
+                }
+            } else {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// The next significant byte, not consumed.
+    fn peek(&mut self) -> R<u8> {
+        self.skip_ws()?;
+        self.s.get(self.pos).copied().ok_or(Fail::Eof)
+    }
+
+    fn expect(&mut self, c: u8, what: &str) -> R<()> {
+        let b = self.peek()?;
+        if b != c {
+            return Err(self.syntax(format!("expected '{}' {what}, found {}", c as char, self.describe_here())));
+        }
+        self.pos += 1;
+        Ok(())
+    }
+
+    fn describe_here(&self) -> String {
+        let end = (self.pos + 24).min(self.s.len());
+        let text = String::from_utf8_lossy(&self.s[self.pos..end]);
+        let text = text.lines().next().unwrap_or("");
+        if text.is_empty() { "the end of the line".into() } else { format!("'{text}'") }
+    }
+
+    /// A keyword or type name (letters, digits, `_`, `-`, an optional leading `&`), upper case.
+    fn word(&mut self) -> R<String> {
+        self.skip_ws()?;
+        let start = self.pos;
+        if self.s.get(self.pos) == Some(&b'&') {
+            self.pos += 1;
+        }
+        while self.pos < self.s.len() && is_word(self.s[self.pos]) {
+            self.pos += 1;
+        }
+        if self.pos == start {
+            if self.pos >= self.s.len() {
+                return Err(Fail::Eof);
+            }
+            return Err(self.syntax(format!("expected a keyword, found {}", self.describe_here())));
+        }
+        Ok(String::from_utf8_lossy(&self.s[start..self.pos]).to_ascii_uppercase())
+    }
+
+    fn file(&mut self) -> Result<StepFile, StepError> {
+        let r = self.skip_ws().and_then(|_| self.word_or_none());
+        let first = self.finish(r)?;
+        if first.as_deref() != Some("ISO-10303-21") {
+            return Err(StepError::NotStep {
+                path: self.path.to_path_buf(),
+                line: self.line,
+                found: first.map_or_else(|| "nothing".to_string(), |w| format!("'{w}'")),
+            });
+        }
+        let r = self.expect(b';', "after ISO-10303-21");
+        self.finish(r)?;
+        let mut schemas = Vec::new();
+        let mut system = None;
+        let mut entities = Vec::new();
+        let mut data_sections = 0;
+        loop {
+            let r = self.skip_ws();
+            self.finish(r)?;
+            if self.pos >= self.s.len() {
+                if data_sections > 0 {
+                    break; // no END-ISO-10303-21: tolerated after a complete DATA section
+                }
+                return Err(StepError::Truncated { path: self.path.to_path_buf(), line: self.line, inside: "before any DATA section".into() });
+            }
+            self.set_context("in the section keywords".into());
+            let r = self.word();
+            let kw = self.finish(r)?;
+            match kw.as_str() {
+                "HEADER" => {
+                    let r = self.header(&mut schemas, &mut system);
+                    self.finish(r)?;
+                }
+                "DATA" => {
+                    self.set_context("in the DATA section header".into());
+                    let r = self.data_start();
+                    self.finish(r)?;
+                    let r = self.instances(&mut entities, "ENDSEC");
+                    self.finish(r)?;
+                    data_sections += 1;
+                }
+                "ANCHOR" | "REFERENCE" | "SIGNATURE" => {
+                    self.set_context(format!("inside the {kw} section"));
+                    let r = self.skip_section();
+                    self.finish(r)?;
+                }
+                "END-ISO-10303-21" => {
+                    let r = self.skip_ws();
+                    self.finish(r)?;
+                    if self.s.get(self.pos) == Some(&b';') {
+                        self.pos += 1;
+                    }
+                    break;
+                }
+                _ => {
+                    return Err(StepError::Syntax {
+                        path: self.path.to_path_buf(),
+                        line: self.line,
+                        message: format!("unexpected '{kw}': expected HEADER, DATA or END-ISO-10303-21"),
+                    });
+                }
+            }
+        }
+        if data_sections == 0 {
+            return Err(StepError::Truncated { path: self.path.to_path_buf(), line: self.line, inside: "before any DATA section".into() });
+        }
+        StepFile::new(self.path, schemas, system, entities)
+    }
+
+    fn word_or_none(&mut self) -> R<Option<String>> {
+        if self.pos >= self.s.len() {
+            return Ok(None);
+        }
+        match self.word() {
+            Ok(w) => Ok(Some(w)),
+            Err(Fail::Err(_)) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
+    fn header(&mut self, schemas: &mut Vec<String>, system: &mut Option<String>) -> R<()> {
+        self.expect(b';', "after HEADER")?;
+        loop {
+            self.set_context("inside the HEADER section".into());
+            let name = self.word()?;
+            if name == "ENDSEC" {
+                self.expect(b';', "after ENDSEC")?;
+                return Ok(());
+            }
+            self.expect(b'(', &format!("after {name}"))?;
+            let params = self.list_body()?;
+            self.expect(b';', &format!("after {name}(...)"))?;
+            match name.as_str() {
+                "FILE_SCHEMA" => {
+                    if let Some(list) = params.first().and_then(Param::as_list) {
+                        schemas.extend(list.iter().filter_map(Param::as_str).map(|s| s.trim().to_ascii_uppercase()));
+                    }
+                }
+                "FILE_NAME" => *system = params.get(5).and_then(Param::as_str).map(str::to_string),
+                _ => {}
+            }
+        }
+    }
+
+    fn data_start(&mut self) -> R<()> {
+        if self.peek()? == b'(' {
+            self.pos += 1;
+            self.list_body()?;
+        }
+        self.expect(b';', "after DATA")
+    }
+
+    fn skip_section(&mut self) -> R<()> {
+        loop {
+            let b = self.peek()?;
+            match b {
+                b'\'' => {
+                    self.pos += 1;
+                    self.string()?;
+                }
+                b if is_word(b) => {
+                    if self.word()? == "ENDSEC" {
+                        return self.expect(b';', "after ENDSEC");
+                    }
+                }
+                _ => self.pos += 1,
+            }
+        }
+    }
+
+    /// Instances until the keyword `end` (`ENDSEC` or `ENDSCOPE`).
+    fn instances(&mut self, out: &mut Vec<Entity>, end: &str) -> R<()> {
+        loop {
+            let last = out.last().map(|e: &Entity| e.id);
+            self.set_context(match last {
+                Some(id) => format!("before {end} (last complete instance #{id})"),
+                None => format!("before {end}"),
+            });
+            let b = self.peek()?;
+            if b == b'#' {
+                self.instance(out)?;
+            } else {
+                let w = self.word()?;
+                if w == end {
+                    if end == "ENDSEC" {
+                        self.expect(b';', "after ENDSEC")?;
+                    }
+                    return Ok(());
+                }
+                return Err(self.syntax(format!("expected an instance '#id = ...;' or {end}, found '{w}'")));
+            }
+        }
+    }
+
+    fn id(&mut self) -> R<u64> {
+        // at '#'
+        self.pos += 1;
+        let start = self.pos;
+        while self.pos < self.s.len() && self.s[self.pos].is_ascii_digit() {
+            self.pos += 1;
+        }
+        if self.pos == start {
+            if self.pos >= self.s.len() {
+                return Err(Fail::Eof);
+            }
+            return Err(self.syntax(format!("expected digits after '#', found {}", self.describe_here())));
+        }
+        std::str::from_utf8(&self.s[start..self.pos])
+            .ok()
+            .and_then(|t| t.parse().ok())
+            .ok_or_else(|| self.syntax("instance id too large"))
+    }
+
+    fn instance(&mut self, out: &mut Vec<Entity>) -> R<()> {
+        let line = self.line;
+        let id = self.id()?;
+        self.context_line = line;
+        self.context = format!("inside instance #{id}");
+        self.expect(b'=', &format!("after #{id}"))?;
+        if self.peek()? == b'&' {
+            let w = self.word()?;
+            if w != "&SCOPE" {
+                return Err(self.syntax(format!("unexpected '{w}' in #{id}")));
+            }
+            self.instances(out, "ENDSCOPE")?;
+            self.context_line = line;
+            self.context = format!("inside instance #{id}");
+            if self.peek()? == b'/' {
+                self.pos += 1;
+                self.list_until(b'/')?;
+            }
+        }
+        let mut records = Vec::with_capacity(1);
+        if self.peek()? == b'(' {
+            self.pos += 1;
+            loop {
+                if self.peek()? == b')' {
+                    self.pos += 1;
+                    break;
+                }
+                records.push(self.record()?);
+            }
+            if records.is_empty() {
+                return Err(self.syntax(format!("#{id} is an empty complex instance '()'")));
+            }
+        } else {
+            records.push(self.record()?);
+        }
+        self.expect(b';', &format!("at the end of #{id}"))?;
+        out.push(Entity { id, line, records });
+        Ok(())
+    }
+
+    fn record(&mut self) -> R<Record> {
+        let name = self.word()?;
+        self.expect(b'(', &format!("after {name}"))?;
+        let params = self.list_body()?;
+        Ok(Record { name: name.into_boxed_str(), params })
+    }
+
+    /// Parameters up to and including the closing `)` (the `(` already consumed).
+    fn list_body(&mut self) -> R<Vec<Param>> {
+        self.list_until(b')')
+    }
+
+    fn list_until(&mut self, close: u8) -> R<Vec<Param>> {
+        let mut v = Vec::new();
+        if self.peek()? == close {
+            self.pos += 1;
+            return Ok(v);
+        }
+        loop {
+            v.push(self.param()?);
+            let b = self.peek()?;
+            self.pos += 1;
+            if b == b',' {
+                continue;
+            }
+            if b == close {
+                return Ok(v);
+            }
+            self.pos -= 1;
+            return Err(self.syntax(format!("expected ',' or '{}' in a parameter list, found {}", close as char, self.describe_here())));
+        }
+    }
+
+    fn param(&mut self) -> R<Param> {
+        let b = self.peek()?;
+        match b {
+            b'$' => {
+                self.pos += 1;
+                Ok(Param::Unset)
+            }
+            b'*' => {
+                self.pos += 1;
+                Ok(Param::Derived)
+            }
+            b'#' => Ok(Param::Ref(self.id()?)),
+            b'\'' => {
+                self.pos += 1;
+                Ok(Param::Str(self.string()?.into_boxed_str()))
+            }
+            b'"' => {
+                self.pos += 1;
+                let start = self.pos;
+                while self.pos < self.s.len() && self.s[self.pos] != b'"' {
+                    self.pos += 1;
+                }
+                if self.pos >= self.s.len() {
+                    return Err(Fail::Eof);
+                }
+                let t = String::from_utf8_lossy(&self.s[start..self.pos]).into_owned();
+                self.pos += 1;
+                Ok(Param::Binary(t.into_boxed_str()))
+            }
+            b'.' if self.s.get(self.pos + 1).is_some_and(|c| c.is_ascii_alphabetic() || *c == b'_') => {
+                self.pos += 1;
+                let start = self.pos;
+                while self.pos < self.s.len() && (self.s[self.pos].is_ascii_alphanumeric() || self.s[self.pos] == b'_') {
+                    self.pos += 1;
+                }
+                if self.s.get(self.pos) != Some(&b'.') {
+                    if self.pos >= self.s.len() {
+                        return Err(Fail::Eof);
+                    }
+                    return Err(self.syntax("an enumeration value must end with '.'"));
+                }
+                let t = String::from_utf8_lossy(&self.s[start..self.pos]).to_ascii_uppercase();
+                self.pos += 1;
+                Ok(Param::Enum(t.into_boxed_str()))
+            }
+            b'(' => {
+                self.pos += 1;
+                Ok(Param::List(self.list_body()?))
+            }
+            b'-' | b'+' | b'.' | b'0'..=b'9' => self.number(),
+            b if b.is_ascii_alphabetic() || b == b'_' => {
+                let name = self.word()?;
+                self.expect(b'(', &format!("after the type name {name}"))?;
+                Ok(Param::Typed(name.into_boxed_str(), self.list_body()?))
+            }
+            _ => Err(self.syntax(format!("unexpected {} in a parameter list", self.describe_here()))),
+        }
+    }
+
+    fn number(&mut self) -> R<Param> {
+        let start = self.pos;
+        let mut real = false;
+        while self.pos < self.s.len() {
+            let c = self.s[self.pos];
+            match c {
+                b'0'..=b'9' => {}
+                b'.' | b'e' | b'E' => real = true,
+                b'+' | b'-' if self.pos == start || matches!(self.s[self.pos - 1], b'e' | b'E') => {}
+                _ => break,
+            }
+            self.pos += 1;
+        }
+        let t = &self.s[start..self.pos];
+        if !real {
+            if let Some(i) = std::str::from_utf8(t).ok().and_then(|t| t.parse::<i64>().ok()) {
+                return Ok(Param::Int(i));
+            }
+        }
+        // "1." and "1.E5" are fine for fast_float; ".5" too
+        match fast_float2::parse::<f64, _>(t) {
+            Ok(x) => Ok(Param::Real(x)),
+            Err(_) => Err(self.syntax(format!("'{}' is not a number", String::from_utf8_lossy(t)))),
+        }
+    }
+
+    /// A string after its opening quote, `''` turned into `'`.
+    fn string(&mut self) -> R<String> {
+        let start_line = self.line;
+        let mut out: Vec<u8> = Vec::new();
+        let mut start = self.pos;
+        loop {
+            match self.s.get(self.pos) {
+                None => {
+                    self.context_line = start_line;
+                    self.context = format!("inside a string ({})", self.context);
+                    return Err(Fail::Eof);
+                }
+                Some(b'\'') => {
+                    out.extend_from_slice(&self.s[start..self.pos]);
+                    if self.s.get(self.pos + 1) == Some(&b'\'') {
+                        out.push(b'\'');
+                        self.pos += 2;
+                        start = self.pos;
+                    } else {
+                        self.pos += 1;
+                        return Ok(String::from_utf8_lossy(&out).into_owned());
+                    }
+                }
+                Some(b'\n') => {
+                    self.line += 1;
+                    self.pos += 1;
+                }
+                Some(_) => self.pos += 1,
+            }
+        }
+    }
+}

@@ -1,0 +1,225 @@
+//! STEP topology (ISO 10303-42 §5) → the arena: solids, shells, faces, loops, edges and
+//! vertices. A face that cannot be converted (unsupported surface, malformed bound) is left
+//! out of its shell and reported; an edge whose curve cannot be converted keeps its vertices
+//! and is reported (its curve is `None`).
+
+use super::convert::{Args, Converter, Fail, R, drop_entity};
+use crate::cad::brep::{Coedge, Edge, EntityRef, Face, Loop, Shell, Solid, Vertex};
+use crate::cad::geom::{Curve, Interval, wrap_into};
+use crate::core::FaceId;
+use glam::DVec3;
+
+impl Converter<'_> {
+    /// `MANIFOLD_SOLID_BREP`, `BREP_WITH_VOIDS` or `FACETED_BREP`.
+    pub(super) fn solid(&mut self, id: u64) -> R<()> {
+        let e = self.entity(id)?;
+        let name = e.type_name().to_string();
+        let a = Args::of(e, &name)?;
+        let outer = a.id(1)?;
+        let voids = if name == "BREP_WITH_VOIDS" { a.ids(2)? } else { Vec::new() };
+        let inst = self.solid_instances.entry(id).or_insert(0);
+        let instance = *inst;
+        *inst += 1;
+        let solid = self.model.solids.len() as u32;
+        self.model.solids.push(Solid { shells: Vec::new(), name: a.name(0), instance, source: EntityRef(id) });
+        let s = self.shell(outer, Some(solid), false, false)?;
+        self.model.solids[solid as usize].shells.push(s);
+        for v in voids {
+            let r = self.shell(v, Some(solid), true, false);
+            if let Some(s) = self.soft(r)? {
+                self.model.solids[solid as usize].shells.push(s);
+            }
+        }
+        Ok(())
+    }
+
+    /// `SHELL_BASED_SURFACE_MODEL`: its shells, without a solid.
+    pub(super) fn surface_model(&mut self, id: u64) -> R<()> {
+        let e = self.entity(id)?;
+        let a = Args::of(e, "SHELL_BASED_SURFACE_MODEL")?;
+        for s in a.ids(1)? {
+            let r = self.shell(s, None, false, false);
+            self.soft(r)?;
+        }
+        Ok(())
+    }
+
+    /// `CLOSED_SHELL`, `OPEN_SHELL` or their `ORIENTED_` forms; returns its index.
+    pub(super) fn shell(&mut self, id: u64, solid: Option<u32>, void: bool, flip: bool) -> R<u32> {
+        let e = self.entity(id)?;
+        let name = e.type_name();
+        if name == "ORIENTED_CLOSED_SHELL" || name == "ORIENTED_OPEN_SHELL" {
+            let a = Args::of(e, name)?;
+            let inner = a.id(2)?;
+            let flip = flip ^ !a.bool_or(3, true);
+            return self.within(id, |c| c.shell(inner, solid, void, flip));
+        }
+        if name != "CLOSED_SHELL" && name != "OPEN_SHELL" {
+            return Err(drop_entity(e, "expected CLOSED_SHELL or OPEN_SHELL"));
+        }
+        let a = Args::of(e, name)?;
+        let faces = a.ids(1)?;
+        let shell = self.model.shells.len() as u32;
+        self.model.shells.push(Shell { faces: Vec::new(), closed: name == "CLOSED_SHELL", solid, void, source: EntityRef(id) });
+        for f in faces {
+            let r = self.face(f, shell, flip);
+            if let Some(fid) = self.soft(r)? {
+                self.model.shells[shell as usize].faces.push(fid);
+            }
+        }
+        Ok(shell)
+    }
+
+    /// `ADVANCED_FACE`, `FACE_SURFACE` or `ORIENTED_FACE`.
+    fn face(&mut self, id: u64, shell: u32, flip: bool) -> R<FaceId> {
+        let e = self.entity(id)?;
+        let name = e.type_name();
+        if name == "ORIENTED_FACE" {
+            let a = Args::of(e, name)?;
+            let inner = a.id(2)?;
+            let flip = flip ^ !a.bool_or(3, true);
+            return self.within(id, |c| c.face(inner, shell, flip));
+        }
+        let rec = if e.has("ADVANCED_FACE") {
+            "ADVANCED_FACE"
+        } else if e.has("FACE_SURFACE") {
+            "FACE_SURFACE"
+        } else {
+            return Err(drop_entity(e, "unsupported face type"));
+        };
+        let a = Args::of(e, rec)?;
+        let bounds = a.ids(1)?;
+        let geometry = a.id(2)?;
+        let same_sense = a.bool_or(3, true) ^ flip;
+        let surface = match self.surface_index(geometry) {
+            Ok(s) => s,
+            Err(Fail::Drop(d)) => {
+                let why = format!("its surface {} ({}) was not converted: {}", d.id, d.kind, d.why);
+                return Err(drop_entity(e, why));
+            }
+            Err(f) => return Err(f),
+        };
+        let fid = FaceId(self.model.faces.len() as u32 + 1);
+        let mut loops = Vec::with_capacity(bounds.len());
+        for b in bounds {
+            let be = self.entity(b)?;
+            let outer = be.has("FACE_OUTER_BOUND");
+            let bname = if outer { "FACE_OUTER_BOUND" } else { "FACE_BOUND" };
+            let ba = Args::of(be, bname)?;
+            let lp = self.loop_(ba.id(1)?, fid, outer, ba.bool_or(2, true)).map_err(|f| match f {
+                Fail::Drop(d) => drop_entity(e, format!("bound {}: {} {}: {}", b, d.kind, d.id, d.why)),
+                f => f,
+            })?;
+            loops.push(lp);
+        }
+        // a single bound is the outer one; put the outer one first
+        if loops.len() == 1 {
+            let l = loops[0];
+            self.model.loops[l as usize].outer = true;
+        }
+        if let Some(k) = loops.iter().position(|&l| self.model.loops[l as usize].outer) {
+            loops[..=k].rotate_right(1);
+        }
+        self.model.faces.push(Face { surface, same_sense, loops, shell, name: a.name(0), colour: None, source: EntityRef(id) });
+        Ok(fid)
+    }
+
+    /// `EDGE_LOOP` or `VERTEX_LOOP`; returns its index.
+    fn loop_(&mut self, id: u64, face: FaceId, outer: bool, orientation: bool) -> R<u32> {
+        let e = self.entity(id)?;
+        let mut lp = Loop { face, outer, orientation, coedges: Vec::new(), vertex: None, source: EntityRef(id) };
+        match e.type_name() {
+            "EDGE_LOOP" => {
+                let a = Args::of(e, "EDGE_LOOP")?;
+                for oe in a.ids(1)? {
+                    let oee = self.entity(oe)?;
+                    let (edge, forward) = if oee.type_name() == "ORIENTED_EDGE" {
+                        let oa = Args::of(oee, "ORIENTED_EDGE")?;
+                        (oa.id(3)?, oa.bool_or(4, true))
+                    } else {
+                        (oe, true)
+                    };
+                    let ei = self.edge(edge)?;
+                    lp.coedges.push(Coedge { edge: ei, forward });
+                }
+                if lp.coedges.is_empty() {
+                    return Err(drop_entity(e, "empty edge loop"));
+                }
+            }
+            "VERTEX_LOOP" => {
+                let a = Args::of(e, "VERTEX_LOOP")?;
+                lp.vertex = Some(self.vertex(a.id(1)?)?);
+            }
+            _ => return Err(drop_entity(e, "unsupported loop type (fepre reads EDGE_LOOP and VERTEX_LOOP)")),
+        }
+        self.model.loops.push(lp);
+        Ok(self.model.loops.len() as u32 - 1)
+    }
+
+    /// `VERTEX_POINT`, placed; cached per instance.
+    fn vertex(&mut self, id: u64) -> R<u32> {
+        let key = (id, self.ctx.instance);
+        if let Some(&v) = self.vertices.get(&key) {
+            return Ok(v);
+        }
+        let e = self.entity(id)?;
+        let a = Args::of(e, "VERTEX_POINT")?;
+        let p = self.point(a.id(1)?)?;
+        let point = self.ctx.place.apply_point(p);
+        self.model.vertices.push(Vertex { point, source: EntityRef(id) });
+        let k = self.model.vertices.len() as u32 - 1;
+        self.vertices.insert(key, k);
+        Ok(k)
+    }
+
+    /// `EDGE_CURVE`, placed; cached per instance.
+    fn edge(&mut self, id: u64) -> R<u32> {
+        let key = (id, self.ctx.instance);
+        if let Some(&k) = self.edges.get(&key) {
+            return Ok(k);
+        }
+        let e = self.entity(id)?;
+        if e.type_name() != "EDGE_CURVE" {
+            return Err(drop_entity(e, "unsupported edge type (fepre reads EDGE_CURVE)"));
+        }
+        let a = Args::of(e, "EDGE_CURVE")?;
+        let start = self.vertex(a.id(1)?)?;
+        let end = self.vertex(a.id(2)?)?;
+        let same = a.bool_or(4, true);
+        let curve = self.curve_index(a.id(3)?)?;
+        let (ps, pe) = (self.model.vertices[start as usize].point, self.model.vertices[end as usize].point);
+        let closed = start == end;
+        let (curve, range, same_sense) = match curve {
+            Some((c, reversed)) => {
+                let same_sense = same ^ reversed;
+                let curve = &self.model.curves[c as usize];
+                let (a_pt, b_pt) = if same_sense { (ps, pe) } else { (pe, ps) };
+                (Some(c), edge_range(curve, a_pt, b_pt, closed), same_sense)
+            }
+            None => (None, Interval::new(0.0, 1.0), true),
+        };
+        self.model.edges.push(Edge { curve, start, end, range, same_sense, closed, seam: false, degenerate: false, source: EntityRef(id) });
+        let k = self.model.edges.len() as u32 - 1;
+        self.edges.insert(key, k);
+        Ok(k)
+    }
+}
+
+/// The increasing curve interval from the point `a` to the point `b` (in the curve's
+/// direction); for a closed edge one whole period or the whole bounded domain.
+pub(super) fn edge_range(curve: &Curve, a: DVec3, b: DVec3, closed: bool) -> Interval {
+    let dom = curve.domain();
+    let ta = curve.project(a);
+    if let Some(per) = dom.period {
+        let mut tb = wrap_into(curve.project(b), ta, per);
+        if closed || tb - ta <= 1e-12 * per {
+            tb = ta + per;
+        }
+        return Interval::new(ta, tb);
+    }
+    if closed && dom.range.is_bounded() {
+        return dom.range;
+    }
+    let tb = curve.project(b);
+    Interval::new(ta.min(tb), ta.max(tb))
+}

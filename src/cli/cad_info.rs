@@ -1,0 +1,141 @@
+//! `fepre cad-info FILE`: what fepre reads from a STEP file: solids, shells, faces, edges and
+//! vertices (assembly instances expanded), units, faces per surface kind, and every item it
+//! left out with the reason.
+
+use crate::cad::brep::{Dropped, Summary};
+use crate::cad::step;
+use anyhow::Result;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Examples shown by `fepre cad-info --help`.
+pub const EXAMPLES: &str = "\
+Examples:
+  fepre cad-info part.step                 counts, units, surface kinds, dropped items
+  fepre cad-info assembly.stp --json       the same as one JSON object
+  fepre cad-info part.step --mesh -o p.msh tessellate: closed? volume? and write the tagged surface";
+
+/// Arguments of `fepre cad-info`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// STEP file (.step, .stp; AP203, AP214, AP242).
+    pub file: PathBuf,
+    /// Print one JSON object on standard output instead of the text report.
+    #[arg(long)]
+    pub json: bool,
+    /// List at most N dropped items in the text report (the JSON lists them all).
+    #[arg(long, value_name = "N", default_value_t = 20)]
+    pub max_listed: usize,
+    /// Also tessellate the faces and report the surface: triangles, closed, volume.
+    #[arg(long)]
+    pub mesh: bool,
+    /// Chord tolerance of `--mesh`, as a fraction of the model size.
+    #[arg(long, value_name = "REL", default_value_t = 1e-3, value_parser = crate::cli::parse_fraction)]
+    pub chord: f64,
+    /// Write the tessellation (implies `--mesh`) to this mesh file (.stl .obj .msh .vtu ...;
+    /// face ids kept where the format holds tags).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+/// What `--mesh` adds.
+#[derive(Debug, Serialize)]
+struct MeshInfo {
+    triangles: usize,
+    vertices: usize,
+    closed: bool,
+    manifold: bool,
+    oriented: bool,
+    open_edges: usize,
+    volume_mm3: f64,
+    area_mm2: f64,
+    failed_faces: Vec<crate::tessellate::FailedFace>,
+    seconds: f64,
+}
+
+/// The JSON object `fepre cad-info --json` prints.
+#[derive(Debug, Serialize)]
+struct Report {
+    file: String,
+    #[serde(flatten)]
+    summary: Summary,
+    dropped: Vec<Dropped>,
+    seconds: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mesh: Option<MeshInfo>,
+}
+
+/// Runs `fepre cad-info`.
+///
+/// # Errors
+/// When the file cannot be read as STEP (the message names the line or `#id`).
+pub fn run(args: &Args) -> Result<()> {
+    let t0 = Instant::now();
+    let model = step::read(&args.file)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let mut surface = None;
+    let mesh = (args.mesh || args.output.is_some()).then(|| {
+        let t1 = Instant::now();
+        let t = crate::tessellate::tessellate(&model, &crate::tessellate::TessellateOptions::default().with_chord_relative(args.chord));
+        surface = Some(t.surface.clone());
+        let r = crate::mesh::topology::surface_report(&t.surface, &crate::mesh::topology::ReportOptions::default().with_self_intersections(false));
+        MeshInfo {
+            triangles: t.surface.triangles.len(),
+            vertices: t.surface.vertices.len(),
+            closed: r.closed,
+            manifold: r.manifold,
+            oriented: r.oriented,
+            open_edges: r.open_edges,
+            volume_mm3: r.shells.iter().map(|s| s.volume).sum(),
+            area_mm2: r.shells.iter().map(|s| s.area).sum(),
+            failed_faces: t.failed,
+            seconds: t1.elapsed().as_secs_f64(),
+        }
+    });
+    if let (Some(out), Some(s)) = (&args.output, surface) {
+        crate::io::write(out, &crate::io::MeshData::Surface(s), &crate::io::WriteOptions::default())?;
+    }
+    let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds, mesh };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", text(&report, args.max_listed));
+    }
+    Ok(())
+}
+
+fn text(r: &Report, max_listed: usize) -> String {
+    let s = &r.summary;
+    let mut out = String::new();
+    let _ = writeln!(out, "file       {}", r.file);
+    let _ = writeln!(out, "units      {} (x{} to mm), angles in {}", s.units.length, s.units.to_mm, s.units.angle);
+    let _ = writeln!(out, "solids     {}", s.solids);
+    let _ = writeln!(out, "shells     {}", s.shells);
+    let _ = writeln!(out, "faces      {}", s.faces);
+    let _ = writeln!(out, "edges      {} ({} closed, {} seam, {} degenerate)", s.edges, s.closed_edges, s.seam_edges, s.degenerate_edges);
+    let _ = writeln!(out, "vertices   {}", s.vertices);
+    if let Some([lo, hi]) = s.bounds {
+        let _ = writeln!(out, "extent mm  {:.6} x {:.6} x {:.6}", hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    }
+    let kinds: Vec<String> = s.faces_by_surface.iter().map(|(k, n)| format!("{k} {n}")).collect();
+    let _ = writeln!(out, "surfaces   {}", kinds.join(", "));
+    let _ = writeln!(out, "dropped    {}", r.dropped.len());
+    for d in r.dropped.iter().take(max_listed) {
+        let _ = writeln!(out, "  {} {}: {}", d.id, d.kind, d.why);
+    }
+    if r.dropped.len() > max_listed {
+        let _ = writeln!(out, "  ... {} more (--json lists all)", r.dropped.len() - max_listed);
+    }
+    let _ = writeln!(out, "seconds    {:.3}", r.seconds);
+    if let Some(m) = &r.mesh {
+        let _ = writeln!(out, "mesh       {} triangles, {} vertices, closed {}, manifold {}, oriented {}, {} open edges", m.triangles, m.vertices, m.closed, m.manifold, m.oriented, m.open_edges);
+        let _ = writeln!(out, "volume mm3 {:.6}  area mm2 {:.6}  ({:.3} s)", m.volume_mm3, m.area_mm2, m.seconds);
+        let _ = writeln!(out, "failed     {} faces", m.failed_faces.len());
+        for f in m.failed_faces.iter().take(max_listed) {
+            let _ = writeln!(out, "  {} {}: {}", f.face, f.source, f.why);
+        }
+    }
+    out
+}

@@ -1,0 +1,75 @@
+//! Discretisation of B-rep edges: each edge once, shared by the faces that use it.
+
+use crate::cad::brep::{Edge, Model};
+use glam::DVec3;
+
+/// The points of one edge, from its start vertex to its end vertex.
+#[derive(Clone, Debug, Default)]
+pub struct EdgePoints {
+    /// Global vertex indices; the first and last are the edge's B-rep vertices (all equal for
+    /// a degenerate edge).
+    pub ids: Vec<u32>,
+    /// Curve parameters of the points (the edge's range, in the direction start → end).
+    pub params: Vec<f64>,
+}
+
+/// Points along `edge` with chord error at most `tol` and tangent turn at most `max_angle_deg`
+/// per segment; new points are appended to `vertices`.
+pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, vertices: &mut Vec<DVec3>) -> EdgePoints {
+    let (a, b) = (edge.range.min, edge.range.max);
+    let Some(ci) = edge.curve.filter(|_| !edge.degenerate && a.is_finite() && b.is_finite()) else {
+        // no curve or a point: the vertices only
+        let params = vec![a, b];
+        return EdgePoints { ids: vec![edge.start, edge.end], params };
+    };
+    let curve = model.curve(ci);
+    let straight = matches!(curve, crate::cad::geom::Curve::Line(_));
+    let mut ts = vec![a];
+    if !straight {
+        let cos_max = max_angle_deg.to_radians().cos();
+        let n0 = if edge.closed { 8 } else { 4 };
+        for k in 0..n0 {
+            let (t0, t1) = (a + (b - a) * k as f64 / n0 as f64, a + (b - a) * (k + 1) as f64 / n0 as f64);
+            refine(&|t| curve.point(t), &|t| curve.derivative(t), t0, t1, tol, cos_max, 0, &mut ts);
+        }
+    } else {
+        ts.push(b);
+    }
+    // in the direction start -> end
+    if !edge.same_sense {
+        ts.reverse();
+    }
+    let n = ts.len();
+    let mut ids = Vec::with_capacity(n);
+    for (k, &t) in ts.iter().enumerate() {
+        if k == 0 {
+            ids.push(edge.start);
+        } else if k == n - 1 {
+            ids.push(edge.end);
+        } else {
+            vertices.push(curve.point(t));
+            ids.push(vertices.len() as u32 - 1);
+        }
+    }
+    EdgePoints { ids, params: ts }
+}
+
+/// Appends the parameters after `t0` up to and including `t1`, splitting where the midpoint
+/// is farther than `tol` from the chord or the tangent turns too much.
+#[allow(clippy::too_many_arguments)]
+fn refine(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, t0: f64, t1: f64, tol: f64, cos_max: f64, depth: u32, out: &mut Vec<f64>) {
+    let tm = 0.5 * (t0 + t1);
+    let (p0, p1, pm) = (p(t0), p(t1), p(tm));
+    let chord = p1 - p0;
+    let dev = if chord.length_squared() > 0.0 { (pm - p0).reject_from(chord).length() } else { (pm - p0).length() };
+    let turn_ok = match (d(t0).try_normalize(), d(t1).try_normalize()) {
+        (Some(u), Some(v)) => u.dot(v) >= cos_max,
+        _ => true,
+    };
+    if depth < 16 && (dev > tol || !turn_ok) {
+        refine(p, d, t0, tm, tol, cos_max, depth + 1, out);
+        refine(p, d, tm, t1, tol, cos_max, depth + 1, out);
+    } else {
+        out.push(t1);
+    }
+}

@@ -1,0 +1,103 @@
+//! Unit tests of the tessellator on B-reps built by hand.
+
+use super::*;
+use crate::cad::brep::{Coedge, Edge, EntityRef, Face, Loop, Shell, Solid, Vertex};
+use crate::cad::geom::{Curve, Frame, Interval, Line, Plane, Surface};
+use crate::mesh::topology::{ReportOptions, surface_report};
+
+/// The tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1) as a B-rep: 4 planar faces, 6 line
+/// edges, faces oriented outward by `same_sense`.
+fn tetrahedron() -> Model {
+    let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let mut m = Model::default();
+    m.vertices = p.iter().map(|&point| Vertex { point, source: EntityRef(0) }).collect();
+    let pairs = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+    for (k, &(a, b)) in pairs.iter().enumerate() {
+        m.curves.push(Curve::Line(Line { origin: p[a], direction: p[b] - p[a] }));
+        m.edges.push(Edge {
+            curve: Some(k as u32),
+            start: a as u32,
+            end: b as u32,
+            range: Interval::new(0.0, 1.0),
+            same_sense: true,
+            closed: false,
+            seam: false,
+            degenerate: false,
+            source: EntityRef(k as u64 + 1),
+        });
+    }
+    let edge = |a: u32, b: u32| -> Coedge {
+        let k = pairs.iter().position(|&(x, y)| (x, y) == (a as usize, b as usize) || (x, y) == (b as usize, a as usize)).unwrap();
+        Coedge { edge: k as u32, forward: pairs[k].0 == a as usize }
+    };
+    // faces as outward counter-clockwise vertex triples
+    let faces = [[0u32, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+    m.shells.push(Shell { faces: Vec::new(), closed: true, solid: Some(0), void: false, source: EntityRef(100) });
+    m.solids.push(Solid { shells: vec![0], name: None, instance: 0, source: EntityRef(101) });
+    for (k, f) in faces.iter().enumerate() {
+        let (a, b, c) = (p[f[0] as usize], p[f[1] as usize], p[f[2] as usize]);
+        let n = (b - a).cross(c - a);
+        // a plane whose normal is inward for odd faces: same_sense false must flip them back
+        let flip = k % 2 == 1;
+        let z = if flip { -n } else { n };
+        let frame = Frame::from_axes(a, Some(z), Some(b - a)).unwrap();
+        m.surfaces.push(Surface::Plane(Plane { frame }));
+        let fid = FaceId(k as u32 + 1);
+        m.loops.push(Loop {
+            face: fid,
+            outer: true,
+            orientation: true,
+            coedges: vec![edge(f[0], f[1]), edge(f[1], f[2]), edge(f[2], f[0])],
+            vertex: None,
+            source: EntityRef(200 + k as u64),
+        });
+        m.faces.push(Face { surface: k as u32, same_sense: !flip, loops: vec![k as u32], shell: 0, name: None, colour: None, source: EntityRef(300 + k as u64) });
+        m.shells[0].faces.push(fid);
+    }
+    assert!(m.issues(1e-9).is_empty(), "{:?}", m.issues(1e-9));
+    m
+}
+
+#[test]
+fn tetrahedron_is_closed_outward_and_tagged() {
+    let m = tetrahedron();
+    let t = tessellate(&m, &TessellateOptions::default());
+    assert!(t.failed.is_empty(), "{:?}", t.failed);
+    t.surface.validate().unwrap();
+    assert_eq!(t.surface.triangles.len(), 4);
+    assert_eq!(t.surface.vertices.len(), 4, "planar faces with straight edges add no vertex");
+    let r = surface_report(&t.surface, &ReportOptions::default());
+    assert!(r.closed && r.manifold && r.oriented && r.outward, "{r:?}");
+    let v: f64 = r.shells.iter().map(|s| s.volume).sum();
+    assert!((v - 1.0 / 6.0).abs() < 1e-12, "{v}");
+    let mut tags = t.surface.face_tags.clone();
+    tags.sort();
+    assert_eq!(tags, vec![FaceId(1), FaceId(2), FaceId(3), FaceId(4)]);
+}
+
+#[test]
+fn constraint_parity_keeps_a_concave_face_concave() {
+    // an L-shaped planar face: the notch must stay empty
+    let pts = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)];
+    let mut m = Model::default();
+    m.vertices = pts.iter().map(|&(x, y)| Vertex { point: DVec3::new(x, y, 0.0), source: EntityRef(0) }).collect();
+    let n = pts.len();
+    let mut coedges = Vec::new();
+    for i in 0..n {
+        let (a, b) = (m.vertices[i].point, m.vertices[(i + 1) % n].point);
+        m.curves.push(Curve::Line(Line { origin: a, direction: b - a }));
+        m.edges.push(Edge { curve: Some(i as u32), start: i as u32, end: ((i + 1) % n) as u32, range: Interval::new(0.0, 1.0), same_sense: true, closed: false, seam: false, degenerate: false, source: EntityRef(i as u64) });
+        coedges.push(Coedge { edge: i as u32, forward: true });
+    }
+    m.surfaces.push(Surface::Plane(Plane { frame: Frame::WORLD }));
+    m.shells.push(Shell { faces: vec![FaceId(1)], closed: false, solid: None, void: false, source: EntityRef(50) });
+    m.loops.push(Loop { face: FaceId(1), outer: true, orientation: true, coedges, vertex: None, source: EntityRef(51) });
+    m.faces.push(Face { surface: 0, same_sense: true, loops: vec![0], shell: 0, name: None, colour: None, source: EntityRef(52) });
+    let t = tessellate(&m, &TessellateOptions::default());
+    assert!(t.failed.is_empty());
+    let area: f64 = t.surface.triangles.iter().map(|tr| {
+        let [a, b, c] = tr.map(|i| t.surface.vertices[i as usize]);
+        (b - a).cross(c - a).z / 2.0
+    }).sum();
+    assert!((area - 3.0).abs() < 1e-12, "area {area}");
+}
