@@ -87,7 +87,7 @@ impl Graph {
         // relationship -> (parent product definition) from CDSR + NAUO
         let mut parent_pd_of_rel: FxHashMap<u64, u64> = FxHashMap::default();
         for e in file.of_type("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION") {
-            let r = e.record("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION").expect("filtered by type");
+            let Some(r) = e.record("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION") else { continue };
             let (Some(rel), Some(pds)) = (r.params.first().and_then(Param::as_ref_id), r.params.get(1).and_then(Param::as_ref_id)) else {
                 continue;
             };
