@@ -76,6 +76,10 @@ pub(crate) struct SurfaceModel {
 /// the sine of the angle between their normals is below this.
 const COPLANAR_SINE: f64 = 1e-6;
 
+/// The most input triangles in one merged facet (each Steiner point on a facet costs a
+/// retriangulation of the whole facet).
+const MAX_MERGED: u32 = 64;
+
 fn find(parent: &mut [u32], mut x: u32) -> u32 {
     while parent[x as usize] != x {
         parent[x as usize] = parent[parent[x as usize] as usize];
@@ -102,6 +106,7 @@ impl SurfaceModel {
             }
         }
         let mut parent: Vec<u32> = (0..triangles.len() as u32).collect();
+        let mut members: Vec<u32> = vec![1; triangles.len()];
         if merge {
             let mut edges: Vec<(&(u32, u32), &Vec<u32>)> = on_edge.iter().collect();
             edges.sort_unstable_by_key(|e| *e.0);
@@ -114,8 +119,10 @@ impl SurfaceModel {
                 let scale = nx.length() * ny.length();
                 if scale > 0.0 && nx.dot(ny) > 0.0 && nx.cross(ny).length() <= COPLANAR_SINE * scale {
                     let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
-                    if rx != ry {
+                    // facets stay small enough to retriangulate at every split cheaply
+                    if rx != ry && members[rx as usize] + members[ry as usize] <= MAX_MERGED {
                         parent[rx.max(ry) as usize] = rx.min(ry);
+                        members[rx.min(ry) as usize] += members[rx.max(ry) as usize];
                     }
                 }
             }
