@@ -36,8 +36,8 @@ q() { "$judge" "$1" | awk -v k="$2" '$1 == k { print $2 }'; }
 printf '%-9s %-7s %9s %9s %8s %8s %8s %8s %9s %9s\n' input tool wall_s peak_MiB tets min_dih max_dih max_re vs_TetGen vs_CGAL
 for name in "${inputs[@]}"; do
   case "$name" in
-    plc) size=0.14; area=0.0005; csize=0.1 ;;
-    plc_fine) size=0.075; area=0.000065; csize=0.05 ;;
+    plc) size=0.13; area=0.0005; csize=0.1 ;;
+    plc_fine) size=0.07; area=0.000065; csize=0.05 ;;
     *) echo "unknown input $name"; exit 1 ;;
   esac
   [ -f "$data/$name.poly" ] || { echo "missing $data/$name.poly: run shared/tools/gen/make_all.sh"; exit 1; }

@@ -115,6 +115,34 @@ fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions, r_min: 
     }
 }
 
+/// The wall on a cavity's boundary on which `c` would make a bad tet (radius-edge over
+/// [`WALL_RADIUS_EDGE`], or not positive): a point too near the surface. As (tet, face).
+fn bad_on_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
+    for &(f, r) in boundary {
+        if f.contains(&GHOST) || tr.walls[(r >> 2) as usize] >> (r & 3) & 1 == 0 {
+            continue;
+        }
+        let [a, b, d] = f.map(|v| tr.point(v));
+        let (u, v, w) = (b - a, d - a, c - a);
+        let det = u.dot(v.cross(w));
+        let lmin2 = [u, v, w, d - b, c - b, c - d].iter().map(|e| e.length_squared()).fold(f64::INFINITY, f64::min);
+        let bad = if det <= 0.0 {
+            true
+        } else {
+            let num = u.length_squared() * v.cross(w) + v.length_squared() * w.cross(u) + w.length_squared() * u.cross(v);
+            let r2 = (num / (2.0 * det)).length_squared();
+            r2 > WALL_RADIUS_EDGE * WALL_RADIUS_EDGE * lmin2
+        };
+        if bad {
+            return Some((r >> 2, (r & 3) as usize));
+        }
+    }
+    None
+}
+
+/// The worst radius-edge ratio allowed for a new tet on a wall.
+const WALL_RADIUS_EDGE: f64 = 1.6;
+
 /// The wall on a cavity's boundary whose equatorial sphere holds `c`, as (tet, face).
 fn encroached_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
     for &(f, r) in boundary {
@@ -172,7 +200,7 @@ pub(crate) fn refine(
         tr.created.clear();
         // a point inside a subface's diametral sphere is not inserted: the subface is split
         // instead, or with keep-surface, the tet is worked on from inside below
-        let res = tr.insert_checked(p, t, |tr, walls| encroached_wall(tr, walls, c));
+        let res = tr.insert_checked(p, t, |tr, walls| if encroached_wall(tr, walls, c).is_some() { bad_on_wall(tr, walls, c) } else { None });
         match res {
             Inserted::Yes(_) => {
                 let region = labels.get(t);
