@@ -128,10 +128,8 @@ fn keep_surface(name: &str, size: f64, tetgen_switches: &str) {
         assert!(q["min_dihedral_deg"] >= MIN_DIHEDRAL, "{name}: min dihedral {}", q["min_dihedral_deg"]);
         assert!(q["max_dihedral_deg"] <= MAX_DIHEDRAL, "{name}: max dihedral {}", q["max_dihedral_deg"]);
         assert_eq!(q["inverted_or_flat"], 0.0);
-        // the acceptance asks for no tet over 2; the mesher is not there yet in keep-surface
-        // mode (a few tets up to about 2.3 remain, see the note): this bound guards
-        // against regressions only
-        assert!(q["max_radius_edge_ratio"] <= 2.5, "{name}: radius-edge {}", q["max_radius_edge_ratio"]);
+        assert_eq!(q["tets_radius_edge_over_2"], 0.0, "{name}: radius-edge {}", q["max_radius_edge_ratio"]);
+        assert!(q["max_radius_edge_ratio"] <= 2.0, "{name}: radius-edge {}", q["max_radius_edge_ratio"]);
     }
 }
 

@@ -7,8 +7,10 @@
 //! measures are computed bitwise as the judge (`shared/tools/cgal_ref/tet_quality.h`) computes
 //! them, so the optimiser's idea of a bad tet is the judge's: the interior dihedral angle at an
 //! edge is `180° − acos(n̂_k · n̂_l)` with `n_k`, `n_l` the outward normals of the two faces at
-//! the edge. Smoothing follows the gradients of the angle terms only (from normals computed
-//! here, equal to the judge's up to rounding); the radius-edge term just limits its steps.
+//! the edge. Smoothing follows the gradients of the angle terms (from normals computed here,
+//! equal to the judge's up to rounding) and, where the radius-edge term is among the least,
+//! its gradient by central differences: a tet bad only for a short edge at a free vertex is
+//! mended by moving that vertex away.
 //!
 //! The score is only ever evaluated on tets already known to be positively oriented (decided
 //! exactly with [`orient3d`](crate::core::predicates::orient3d) by the caller); it is a
@@ -24,7 +26,7 @@
 //!   the roles of `p` and `q` exchanged.
 
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::quality::tetrahedron::{TET_EDGES, tet_min_max_dihedral_radius_edge};
+use crate::quality::tetrahedron::{TET_EDGES, tet_min_max_dihedral_radius_edge, tet_radius_edge};
 use glam::DVec3;
 
 /// The faces at each edge of [`TET_EDGES`]: the faces opposite the edge's two other vertices.
@@ -164,6 +166,36 @@ pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, mu
             f(Term { value: large, grad: -g * tg.inv_max });
         }
     }
+    if tg.max_re.is_finite() {
+        let re = tet_radius_edge(p);
+        let value = tg.max_re / re;
+        if value < limit && re.is_finite() {
+            f(Term { value, grad: radius_edge_term_gradient(p, m, tg.max_re) });
+        }
+    }
+}
+
+/// The gradient of the radius-edge term `ρ / (R / l_min)` with respect to vertex `m`, by
+/// central differences (the term is only active on the few tets near the bound, and the
+/// shortest edge switching makes it piecewise anyway).
+fn radius_edge_term_gradient(p: &[DVec3; 4], m: usize, max_re: f64) -> DVec3 {
+    let scale = TET_EDGES.iter().map(|&[i, j]| p[i].distance(p[j])).fold(0.0, f64::max);
+    let h = 1e-7 * scale;
+    if h <= 0.0 || !h.is_finite() {
+        return DVec3::ZERO;
+    }
+    let mut g = DVec3::ZERO;
+    for axis in 0..3 {
+        let (mut a, mut b) = (*p, *p);
+        a[m][axis] += h;
+        b[m][axis] -= h;
+        let (ra, rb) = (tet_radius_edge(&a), tet_radius_edge(&b));
+        if !(ra.is_finite() && rb.is_finite()) {
+            return DVec3::ZERO;
+        }
+        g[axis] = (max_re / ra - max_re / rb) / (2.0 * h);
+    }
+    g
 }
 
 /// The gradient (radians per length) of the dihedral angle at edge `e` ([`TET_EDGES`] order)

@@ -2,9 +2,9 @@
 //! the tets around it, after Freitag, Jones and Plassmann's method as Klingner and Shewchuk use
 //! it ("Aggressive tetrahedral mesh improvement", 2007).
 //!
-//! The objective `f(x) = min` over the star's tets and their edges of the two normalised angle
-//! terms of [`measure`](crate::mesh3d::optimize::measure) is maximised from the current
-//! position:
+//! The objective `f(x) = min` over the star's tets of their terms in
+//! [`measure`](crate::mesh3d::optimize::measure) (two normalised angle terms per edge, and the
+//! radius-edge term) is maximised from the current position:
 //! 1. the *active* terms are those within a small margin of `f`; the search direction `d` is the
 //!    point of least norm in the convex hull of their gradients (Gilbert's algorithm), the
 //!    steepest ascent direction of their minimum;
