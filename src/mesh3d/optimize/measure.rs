@@ -146,9 +146,10 @@ pub(crate) struct Term {
 }
 
 /// Calls `f` with every term of the tet `p` below `limit` and its gradient with respect to
-/// vertex `m`: each edge gives `θ / θ_target_min` and `(180° − θ) / (180° − θ_target_max)`.
+/// vertex `m`: each edge gives `θ / θ_target_min` and `(180° − θ) / (180° − θ_target_max)`;
+/// the radius-edge term comes only below `re_limit` (its gradient costs six evaluations).
 /// Nothing for a tet degenerate in floating point.
-pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, mut f: impl FnMut(Term)) {
+pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, re_limit: f64, mut f: impl FnMut(Term)) {
     let n = normals(p);
     let Some(c) = cosines(&n) else { return };
     for (e, &ce) in c.iter().enumerate() {
@@ -169,7 +170,7 @@ pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, mu
     if tg.max_re.is_finite() {
         let re = tet_radius_edge(p);
         let value = tg.max_re / re;
-        if value < limit && re.is_finite() {
+        if value < re_limit && re.is_finite() {
             f(Term { value, grad: radius_edge_term_gradient(p, m, tg.max_re) });
         }
     }

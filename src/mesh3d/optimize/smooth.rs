@@ -174,7 +174,7 @@ impl Smoother {
             for s in 0..self.star.len() {
                 let p = self.corners_at(w, s, x);
                 let terms = &mut self.terms;
-                terms_below(&p, self.at[s] as usize, &w.tg, f + WINDOW, |t| terms.push(t));
+                terms_below(&p, self.at[s] as usize, &w.tg, f + WINDOW, f + ACTIVE, |t| terms.push(t));
             }
             self.grads.clear();
             for t in &self.terms {
