@@ -127,6 +127,10 @@ pub(crate) enum Located {
     Duplicate(u32),
     /// The walk reached a tet the insertion may not touch.
     Blocked,
+    /// The point lies behind this wall (tet, face) seen from the start ([`locate_walled`]).
+    Wall(u32, usize),
+    /// The walk took more steps than it was allowed (walls can make it cycle).
+    Lost,
 }
 
 /// Buffers reused by every insertion of one thread.
@@ -162,12 +166,28 @@ impl Scratch {
 /// Visibility walk from tet `start` to a tet in conflict with `p` (the finite tet whose
 /// closure holds it, or the ghost beyond whose hull face it lies), or the vertex it duplicates.
 pub(crate) fn locate<K: Kernel, S: TetStore, O: Owner>(k: &K, s: &S, o: &O, rng: &mut XorShift, start: u32, p: u32) -> Located {
+    locate_walled(k, s, o, &NoWalls, rng, start, p, usize::MAX)
+}
+
+/// [`locate`] that stops at walls, and after `max_steps` steps (in a walled triangulation,
+/// which need not be Delaunay, a visibility walk can cycle).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn locate_walled<K: Kernel, S: TetStore, O: Owner, W: Walls>(
+    k: &K,
+    s: &S,
+    o: &O,
+    walls: &W,
+    rng: &mut XorShift,
+    start: u32,
+    p: u32,
+    max_steps: usize,
+) -> Located {
     let mut t = start;
     if s.v(t)[3] == GHOST {
         t = s.n(t, 3) >> 2;
     }
     let mut came_from = 4usize;
-    loop {
+    for _ in 0..max_steps {
         let w = s.v(t);
         if !o.owns(&w) {
             return Located::Blocked;
@@ -183,12 +203,16 @@ pub(crate) fn locate<K: Kernel, S: TetStore, O: Owner>(k: &K, s: &S, o: &O, rng:
             let mut q = w;
             q[f] = p;
             if k.orient(q[0], q[1], q[2], q[3]) == Sign::Negative {
-                next = Some(s.n(t, f));
+                next = Some(f);
                 break;
             }
         }
         match next {
-            Some(r) => {
+            Some(f) => {
+                if walls.wall(t, f) {
+                    return Located::Wall(t, f);
+                }
+                let r = s.n(t, f);
                 let n = r >> 2;
                 let nv = s.v(n);
                 if nv[3] == GHOST {
@@ -205,6 +229,7 @@ pub(crate) fn locate<K: Kernel, S: TetStore, O: Owner>(k: &K, s: &S, o: &O, rng:
             }
         }
     }
+    Located::Lost
 }
 
 /// True if `p` lies inside the (perturbed) circumsphere of tet `t`; for a ghost tet, beyond

@@ -139,7 +139,7 @@ impl<K: Kernel> Shared<'_, K> {
                     out.duplicates.push([p, v]);
                     continue;
                 }
-                Located::Blocked => {
+                Located::Blocked | Located::Wall(..) | Located::Lost => {
                     out.postponed.push(p);
                     continue;
                 }

@@ -71,7 +71,7 @@ impl<'k, K: Kernel> Triangulation<'k, K> {
         let t0 = match locate(self.kernel, &self.tets, &Everything, &mut self.sc.rng, self.hint, p) {
             Located::Conflict(t) => t,
             Located::Duplicate(v) => return Some(v),
-            Located::Blocked => unreachable!("the serial insertion owns every tet"),
+            Located::Blocked | Located::Wall(..) | Located::Lost => unreachable!("the serial insertion owns every tet and has no walls"),
         };
         dig(self.kernel, &self.tets, &Everything, &mut self.mark, &mut self.sc, t0, p);
         // slots: the cavity's own first, then free ones, then new ones

@@ -11,9 +11,9 @@
 use crate::core::Sign;
 use crate::core::spatial_order::brio_order;
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::mesh3d::delaunay::cavity::{Everything, IN, Located, Marks, OUT, Scratch, Walls, dig_walled, fill, link_star, locate};
+use crate::mesh3d::delaunay::cavity::{Everything, IN, Located, Marks, OUT, Scratch, Walls, dig_walled, fill, link_star, locate, locate_walled};
 use crate::mesh3d::delaunay::kernel::{FloatKernel, Kernel};
-use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet, TetStore};
+use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet};
 use glam::DVec3;
 
 /// No tet.
@@ -194,11 +194,16 @@ impl Tetra {
             self.default_start()
         };
         let walls = WallBits(&self.walls);
-        let t0 = match locate_walled(&self.k, &self.tets, &walls, self.walled, &mut self.sc, start, p) {
-            Walk::Found(t) => t,
-            Walk::Duplicate(v) => return Inserted::Duplicate(v),
-            Walk::Wall(t, f) => return Inserted::Blocked(t, f),
-            Walk::Lost => return Inserted::Refused,
+        let located = if self.walled {
+            locate_walled(&self.k, &self.tets, &Everything, &walls, &mut self.sc.rng, start, p, 4 * self.tets.len() + 16)
+        } else {
+            locate(&self.k, &self.tets, &Everything, &mut self.sc.rng, start, p)
+        };
+        let t0 = match located {
+            Located::Conflict(t) => t,
+            Located::Duplicate(v) => return Inserted::Duplicate(v),
+            Located::Wall(t, f) => return Inserted::Blocked(t, f),
+            Located::Blocked | Located::Lost => return Inserted::Refused,
         };
         let ok = if self.walled {
             dig_walled(&self.k, &self.tets, &Everything, &walls, &mut self.mark, &mut self.sc, t0, p)
@@ -423,71 +428,6 @@ impl Tetra {
     }
 }
 
-/// Where a walk ended.
-enum Walk {
-    /// In this tet (or the ghost beyond whose hull face the point lies).
-    Found(u32),
-    /// On this vertex.
-    Duplicate(u32),
-    /// At this wall (tet, face): the point lies behind it.
-    Wall(u32, usize),
-    /// Nowhere (a walk that would not end: a bug).
-    Lost,
-}
-
-/// The walk of [`locate`], stopping at walls when `walled`.
-fn locate_walled(k: &FloatKernel, s: &Vec<Tet>, walls: &WallBits<'_>, walled: bool, sc: &mut Scratch, start: u32, p: u32) -> Walk {
-    if !walled {
-        return match locate(k, s, &Everything, &mut sc.rng, start, p) {
-            Located::Conflict(t) => Walk::Found(t),
-            Located::Duplicate(v) => Walk::Duplicate(v),
-            Located::Blocked => Walk::Lost,
-        };
-    }
-    let mut t = start;
-    if s.v(t)[3] == GHOST {
-        t = s.n(t, 3) >> 2;
-    }
-    let mut came_from = 4usize;
-    for _ in 0..(4 * s.len() + 16) {
-        let w = s.v(t);
-        let r = (sc.rng.next_u64() >> 62) as usize;
-        let mut next = None;
-        for j in 0..4 {
-            let f = (r + j) & 3;
-            if f == came_from {
-                continue;
-            }
-            let mut q = w;
-            q[f] = p;
-            if k.orient(q[0], q[1], q[2], q[3]) == Sign::Negative {
-                next = Some(f);
-                break;
-            }
-        }
-        match next {
-            Some(f) => {
-                if walls.wall(t, f) {
-                    return Walk::Wall(t, f);
-                }
-                let r = s.n(t, f);
-                let n = r >> 2;
-                if s.v(n)[3] == GHOST {
-                    return Walk::Found(n);
-                }
-                came_from = (r & 3) as usize;
-                t = n;
-            }
-            None => {
-                if let Some(&v) = w.iter().find(|&&v| k.same(v, p)) {
-                    return Walk::Duplicate(v);
-                }
-                return Walk::Found(t);
-            }
-        }
-    }
-    Walk::Lost
-}
 
 /// Four points spanning a positive tet, in insertion order.
 fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
