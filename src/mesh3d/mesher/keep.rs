@@ -11,6 +11,7 @@
 //! - the link condition holds: the vertices and edges that the links of `v` and `w` share
 //!   are exactly the link of the edge `vw` (so no tet, face or edge is doubled);
 //! - `w` lies on `v`'s segment or facet, so the boundary keeps its shape.
+//!
 //! Among the neighbours allowed, the one whose new tets have the best worst shape is taken.
 //! Passes repeat while they merge something; what is left is reported.
 

@@ -368,8 +368,8 @@ impl Tetra {
         while i < out.len() {
             let t = out[i];
             let tv = self.tets[t as usize].v;
-            for f in 0..4 {
-                if tv[f] == v {
+            for (f, &tf) in tv.iter().enumerate() {
+                if tf == v {
                     continue; // the face opposite v does not contain it
                 }
                 let n = self.tets[t as usize].n[f] >> 2;
