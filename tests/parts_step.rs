@@ -153,3 +153,51 @@ fn opencascade_reads_the_written_parts() {
         assert!(((occ - volume) / volume).abs() < 1e-4, "{name}: OpenCASCADE volume {occ} vs analytic {volume}");
     }
 }
+
+#[test]
+fn other_parameters_give_other_valid_parts() {
+    let mut variants: Vec<(String, Model, f64, i64)> = Vec::new();
+    for n in [0usize, 1, 3] {
+        let b = Bracket::default().with_holes_per_leg(n);
+        variants.push((format!("bracket with {n} holes per leg"), b.build().unwrap(), b.volume(), 2 * n as i64));
+    }
+    for bolts in [3usize, 8] {
+        let mut f = Flange::default();
+        f.bolts = bolts;
+        f.thickness = 20.0;
+        variants.push((format!("flange with {bolts} bolts"), f.build().unwrap(), f.volume(), bolts as i64 + 1));
+    }
+    for angle in [45.0, 180.0] {
+        let mut e = Elbow::default();
+        e.angle_deg = angle;
+        variants.push((format!("elbow of {angle}°"), e.build().unwrap(), e.volume(), 1));
+    }
+    for (name, m, volume, genus) in variants {
+        let v = check_tessellation(&name, &m, genus, CHORD);
+        assert!(((v - volume) / volume).abs() < 0.005, "{name}: volume {v} vs analytic {volume}");
+    }
+}
+
+#[test]
+fn bad_parameters_are_errors_that_say_which() {
+    use fepre::cad::parts::PartError;
+    let mut b = Bracket::default();
+    b.width = -1.0;
+    assert!(matches!(b.build(), Err(PartError::Parameters { part: "bracket", .. })));
+    let mut b = Bracket::default();
+    b.hole_diameter = 40.0;
+    let e = b.build().unwrap_err().to_string();
+    assert!(e.contains("hole_diameter"), "{e}");
+    let mut f = Flange::default();
+    f.bolts = 40;
+    assert!(f.build().unwrap_err().to_string().contains("overlap"));
+    let mut f = Flange::default();
+    f.bolt_circle_diameter = f.outer_diameter;
+    assert!(matches!(f.build(), Err(PartError::Parameters { part: "flange", .. })));
+    let mut e = Elbow::default();
+    e.wall = 20.0;
+    assert!(e.build().unwrap_err().to_string().contains("wall"));
+    let mut e = Elbow::default();
+    e.angle_deg = f64::NAN;
+    assert!(matches!(e.build(), Err(PartError::Parameters { part: "elbow", .. })));
+}
