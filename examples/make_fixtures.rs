@@ -1,9 +1,14 @@
 //! Regenerates the parts in `cad_fixtures/` that fepre makes itself.
 //!
-//! `cargo run --example make_fixtures` writes `cad_fixtures/plate_with_hole.{obj,stl}`: a
-//! 40 × 40 × 8 plate with a 64-sided through-hole of radius 8, each CAD face tagged (top,
-//! bottom, four sides, hole), closed, outward-oriented, genus 1. A test checks that the
-//! committed files equal what this program writes.
+//! `cargo run --example make_fixtures` writes
+//! - `cad_fixtures/plate_with_hole.{obj,stl}`: a 40 × 40 × 8 plate with a 64-sided
+//!   through-hole of radius 8, each CAD face tagged (top, bottom, four sides, hole), closed,
+//!   outward-oriented, genus 1;
+//! - `cad_fixtures/{bracket,flange,elbow}.step`: the parts of `fepre::cad::parts` at their
+//!   default parameters, built with truck-modeling and written by our STEP writer (AP214, mm,
+//!   named faces).
+//!
+//! A test checks that the committed files equal what this program writes.
 
 use fepre::io::{MeshData, WriteOptions, write};
 use fepre::mesh::shapes::plate_with_hole;
@@ -17,6 +22,11 @@ fn main() -> anyhow::Result<()> {
         let path = dir.join(name);
         write(&path, &plate, &WriteOptions::default().with_ascii(true))?;
         println!("wrote {}", path.display());
+    }
+    for (name, model) in fepre::cad::parts::default_parts()? {
+        let path = dir.join(format!("{name}.step"));
+        fepre::cad::step::write(&path, &model, name)?;
+        println!("wrote {} ({} faces)", path.display(), model.faces.len());
     }
     Ok(())
 }

@@ -19,6 +19,15 @@ fn committed_fixtures_are_up_to_date() {
             "{name} differs from what make_fixtures writes: run `cargo run --example make_fixtures`"
         );
     }
+    for (name, model) in fepre::cad::parts::default_parts().unwrap() {
+        let fresh = dir.path().join(format!("{name}.step"));
+        fepre::cad::step::write(&fresh, &model, name).unwrap();
+        let committed = Path::new(env!("CARGO_MANIFEST_DIR")).join("cad_fixtures").join(format!("{name}.step"));
+        assert!(
+            std::fs::read(&fresh).unwrap() == std::fs::read(&committed).unwrap_or_default(),
+            "{name}.step differs from what make_fixtures writes: run `cargo run --example make_fixtures`"
+        );
+    }
 }
 
 #[test]

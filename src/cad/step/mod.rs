@@ -12,6 +12,9 @@
 //! and its types are not our `geom` types; a reader of our own is a few hundred lines and
 //! reports every item it leaves out ([`Model::dropped`]).
 //!
+//! The other way, [`writer`] writes a [`Model`] as an AP214 file (millimetres, named faces,
+//! deterministic bytes) that this reader and OpenCASCADE read back.
+//!
 //! Errors ([`StepError`]) concern the file as a whole and name the line or `#id`: a
 //! truncated file, a reference to an undefined instance, a reference cycle, bad syntax.
 //! Problems confined to one face or curve drop that item and list it.
@@ -26,6 +29,8 @@ pub mod parser;
 pub mod table;
 mod topology;
 pub mod units;
+mod write_geometry;
+pub mod writer;
 
 #[cfg(test)]
 mod tests;
@@ -33,6 +38,7 @@ mod tests;
 pub use error::StepError;
 pub use param::Param;
 pub use table::{Entity, Record, StepFile};
+pub use writer::{StepWriteError, write};
 
 use crate::cad::brep::Model;
 use std::path::Path;

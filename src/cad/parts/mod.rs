@@ -1,0 +1,118 @@
+//! Parametric parts built in code with truck-modeling and converted into our [`Model`]: an
+//! L-shaped bracket with a filleted inner corner and holes ([`bracket`]), a flange with a bore
+//! and bolt holes ([`flange`]) and a 90° pipe elbow ([`elbow`]).
+//!
+//! Each part has a parameter struct in millimetres with sensible defaults, a `build` that
+//! sweeps its profile with truck (`tsweep`, `rsweep`; no booleans) and converts the solid
+//! ([`truck_topology`], `truck_geometry.rs`: truck's rational arcs and swept surfaces become
+//! exact circles, planes, cylinders and tori), and a `volume` computed from the parameters.
+//! Every face is named (`bottom`, `top`, `hole_1`, ...) so that boundary conditions can be
+//! attached to named faces; a name may cover several faces (truck builds a full hole from two
+//! half cylinders, and both are `hole_1`).
+
+pub mod bracket;
+pub mod elbow;
+pub mod flange;
+mod sketch;
+mod truck_geometry;
+pub mod truck_topology;
+
+pub use bracket::Bracket;
+pub use elbow::Elbow;
+pub use flange::Flange;
+pub use truck_topology::solid_to_model;
+
+use crate::cad::brep::Model;
+use crate::cad::geom::Surface;
+use crate::core::FaceId;
+use glam::DVec3;
+
+/// Why a part could not be built.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PartError {
+    /// The parameters do not describe a valid part.
+    #[error("invalid {part} parameters: {why}")]
+    Parameters {
+        /// The part.
+        part: &'static str,
+        /// Which parameter, and what it must satisfy.
+        why: String,
+    },
+    /// truck refused to build the shape (a wire that is not planar, loops that cross).
+    #[error("truck could not build the {part}: {why}")]
+    Modeling {
+        /// The part.
+        part: &'static str,
+        /// truck's message.
+        why: String,
+    },
+    /// A curve or surface of truck's solid could not be converted.
+    #[error("face {face}: {why}")]
+    Geometry {
+        /// The face being converted.
+        face: FaceId,
+        /// Why.
+        why: String,
+    },
+    /// A face the part's naming rules do not recognise (a bug in the part's builder).
+    #[error("face {face} of the {part} matches none of its names (internal error)")]
+    Unnamed {
+        /// The part.
+        part: &'static str,
+        /// The face.
+        face: FaceId,
+    },
+}
+
+/// What the naming rules look at: the face's surface, its outward normal where it is a plane,
+/// and the mean of its vertices.
+pub(crate) struct FaceProbe<'m> {
+    pub surface: &'m Surface,
+    /// Outward unit normal of a planar face.
+    pub plane_normal: Option<DVec3>,
+    /// Mean of the vertices of its loops.
+    pub centre: DVec3,
+}
+
+/// Names every face by `rule`; a face without a name is an error.
+pub(crate) fn name_faces(model: &mut Model, part: &'static str, rule: impl Fn(&FaceProbe<'_>) -> Option<String>) -> Result<(), PartError> {
+    let mut names = Vec::with_capacity(model.faces.len());
+    for fid in model.face_ids() {
+        let f = model.face(fid);
+        let surface = model.surface(f.surface);
+        let plane_normal = match surface {
+            Surface::Plane(p) => Some(if f.same_sense { p.frame.z } else { -p.frame.z }),
+            _ => None,
+        };
+        let (mut sum, mut n) = (DVec3::ZERO, 0.0);
+        for &l in &f.loops {
+            for c in &model.loops[l as usize].coedges {
+                let e = &model.edges[c.edge as usize];
+                sum += model.vertices[if c.forward { e.start } else { e.end } as usize].point;
+                n += 1.0;
+            }
+        }
+        let centre = if n > 0.0 { sum / n } else { DVec3::ZERO };
+        let probe = FaceProbe { surface, plane_normal, centre };
+        names.push(rule(&probe).ok_or(PartError::Unnamed { part, face: fid })?);
+    }
+    for (f, n) in model.faces.iter_mut().zip(names) {
+        f.name = Some(n);
+    }
+    Ok(())
+}
+
+/// True when `a` and `b` point the same way (unit vectors, within 1e-6).
+pub(crate) fn along(a: DVec3, b: DVec3) -> bool {
+    (a - b).length() < 1e-6
+}
+
+/// Every part at its default parameters, by name (`bracket`, `flange`, `elbow`): what
+/// `cargo run --example make_fixtures` writes to `cad_fixtures/NAME.step`.
+///
+/// # Errors
+/// None in practice (the defaults are valid); a [`PartError`] would mean a bug.
+pub fn default_parts() -> Result<Vec<(&'static str, Model)>, PartError> {
+    Ok(vec![("bracket", Bracket::default().build()?), ("flange", Flange::default().build()?), ("elbow", Elbow::default().build()?)])
+}
