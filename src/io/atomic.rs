@@ -35,11 +35,17 @@ where
             _ => PathBuf::from("."),
         };
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-        let tmp = tempfile::Builder::new()
-            .prefix(&format!(".{name}."))
-            .suffix(".tmp")
-            .tempfile_in(&dir)
-            .map_err(|e| werr(path, e))?;
+        let prefix = format!(".{name}.");
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(&prefix).suffix(".tmp");
+        // a temporary file is private (0600); the output is an ordinary file, readable as
+        // the user's umask says (0666 & !umask), as a plain `File::create` would make it
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        let tmp = builder.tempfile_in(&dir).map_err(|e| werr(path, e))?;
         temps.push(tmp);
     }
     let mut writers = Vec::with_capacity(temps.len());
@@ -66,6 +72,18 @@ pub fn write_err(path: &Path) -> impl Fn(std::io::Error) -> IoError + '_ {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(unix)]
+    #[test]
+    fn output_is_readable_like_a_created_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let (ours, plain) = (dir.path().join("a.stl"), dir.path().join("b.stl"));
+        write_atomic(&ours, |w| w.write_all(b"x").map_err(write_err(&ours))).unwrap();
+        std::fs::write(&plain, b"x").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&ours), mode(&plain));
+    }
 
     #[test]
     fn failed_body_leaves_nothing() {
