@@ -32,7 +32,7 @@ pub struct Args {
     #[arg(long)]
     pub mesh: bool,
     /// Chord tolerance of `--mesh`, as a fraction of the model size.
-    #[arg(long, value_name = "REL", default_value_t = 1e-3, value_parser = crate::cli::parse_fraction)]
+    #[arg(long, value_name = "REL", default_value_t = 2e-4, value_parser = crate::cli::parse_fraction)]
     pub chord: f64,
     /// Write the tessellation (implies `--mesh`) to this mesh file (.stl .obj .msh .vtu ...;
     /// face ids kept where the format holds tags).
