@@ -93,8 +93,11 @@ pub struct ShellCheck {
     pub brep_shells: Vec<EntityRef>,
     /// Faces in the group.
     pub faces: usize,
-    /// The B-rep closes (every edge used twice or as a seam).
+    /// The B-rep closes (every edge used twice or as a seam), or one of its shells is a
+    /// `CLOSED_SHELL` (then a face the reader dropped leaves the triangles open: a failure).
     pub brep_closed: bool,
+    /// One of its shells is a `CLOSED_SHELL`.
+    pub declared_closed: bool,
     /// A void of a solid (expected to enclose negative volume).
     pub void: bool,
     /// Edge-connected components of its triangles (1 when right).
@@ -379,6 +382,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             brep_shells: Vec::new(),
             faces: 0,
             brep_closed: true,
+            declared_closed: false,
             void: false,
             mesh_components: 0,
             euler_mesh: 0,
@@ -420,6 +424,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             x.brep_shells.push(shell.source);
         }
         x.void |= shell.void;
+        x.declared_closed |= shell.closed;
         for &l in &face.loops {
             let lp = &model.loops[l as usize];
             verts[g].extend(lp.vertex);
@@ -441,6 +446,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
     let mut volume_ok = true;
     let (mut vol_total, mut area_total) = ([0.0f64; 3], [0.0f64; 2]);
     for (g, x) in shells.iter_mut().enumerate() {
+        x.brep_closed |= x.declared_closed;
         verts[g].sort_unstable();
         verts[g].dedup();
         edges[g].sort_unstable();
