@@ -82,6 +82,8 @@ struct Report {
     solids: usize,
     /// Shells not bounding a solid (surface models).
     surface_model_shells: usize,
+    /// What sewing the open shells did.
+    sewing: Option<crate::cad::brep::SewReport>,
     faces: usize,
     triangles: usize,
     vertices: usize,
@@ -176,6 +178,9 @@ pub fn run(args: &Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
     } else {
         println!("solids       {} ({} surface-model shells)", r.solids, r.surface_model_shells);
+        if let Some(sw) = &r.sewing {
+            println!("sewn         {} edges and {} vertices merged (tolerance {:.3e} mm), free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
+        }
         println!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
         println!("triangles    {} ({} vertices)", r.triangles, r.vertices);
         println!("watertight   {}", r.watertight);
@@ -202,7 +207,8 @@ fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Re
         input: args.cad.display().to_string(),
         output,
         solids: c.model.solids.len(),
-        surface_model_shells: c.model.shells.iter().filter(|x| x.solid.is_none()).count(),
+        surface_model_shells: c.model.surface_model_shells(),
+        sewing: c.model.sewing.clone(),
         faces: c.model.faces.len(),
         triangles: s.triangles.len(),
         vertices: s.vertices.len(),

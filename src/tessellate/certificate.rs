@@ -506,10 +506,26 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
     }
     let mut bad_edges: Vec<((u32, u32), (u32, u32))> = edge_count.into_iter().filter(|(_, (n, _))| *n != 2).collect();
     bad_edges.sort_unstable();
+    // an open group is open exactly along its free B-rep edges: as many open mesh edges as
+    // those edges have segments (faces that do not conform along a shared edge add more)
+    let mut free_segments = vec![0usize; ngroups];
+    let mut open_in_group = vec![0usize; ngroups];
+    for (f, face) in model.faces.iter().enumerate() {
+        for &l in &face.loops {
+            for c in &model.loops[l as usize].coedges {
+                if edge_uses.get(&c.edge) == Some(&1) {
+                    free_segments[group[f] as usize] += t.edges.get(c.edge as usize).map_or(0, |ep| ep.ids.len().saturating_sub(1));
+                }
+            }
+        }
+    }
     for ((a, b), (n, k)) in bad_edges {
         let fid = s.face_tags.get(k as usize).copied().unwrap_or_default();
         let open_group_ok = n == 1 && group_of_face(fid).is_some_and(|g| !shells[g as usize].brep_closed);
         if open_group_ok {
+            if let Some(g) = group_of_face(fid) {
+                open_in_group[g as usize] += 1;
+            }
             continue;
         }
         let p = s.vertices.get(a as usize).copied().unwrap_or(DVec3::NAN);
@@ -521,6 +537,17 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             step_id: face_ref(fid),
             message: format!("mesh edge {a}-{b} ({p} to {q}) has {n} triangles"),
         });
+    }
+    for (g, x) in shells.iter().enumerate() {
+        if !x.brep_closed && open_in_group[g] != free_segments[g] {
+            closed_ok = false;
+            failures.push(CheckFailure {
+                check: "closed",
+                face: None,
+                step_id: x.brep_shells.first().copied(),
+                message: format!("open shell group {:?}: {} open mesh edges, its free B-rep edges have {} segments (faces do not conform along a shared edge)", x.brep_shells, open_in_group[g], free_segments[g]),
+            });
+        }
     }
     let manifold = report.manifold;
     if !report.vertex_manifold {
