@@ -20,6 +20,7 @@ pub mod certificate;
 pub mod edge_points;
 pub mod face_mesh;
 pub mod quadrature;
+mod refine;
 
 #[cfg(test)]
 mod tests;
