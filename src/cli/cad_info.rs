@@ -32,7 +32,7 @@ pub struct Args {
     #[arg(long)]
     pub mesh: bool,
     /// Chord tolerance of `--mesh`, as a fraction of the model size.
-    #[arg(long, value_name = "REL", default_value_t = 1e-3, value_parser = crate::cli::parse_fraction)]
+    #[arg(long, value_name = "REL", default_value_t = 2e-4, value_parser = crate::cli::parse_fraction)]
     pub chord: f64,
     /// Write the tessellation (implies `--mesh`) to this mesh file (.stl .obj .msh .vtu ...;
     /// face ids kept where the format holds tags).
@@ -112,7 +112,10 @@ fn text(r: &Report, max_listed: usize) -> String {
     let _ = writeln!(out, "file       {}", r.file);
     let _ = writeln!(out, "units      {} (x{} to mm), angles in {}", s.units.length, s.units.to_mm, s.units.angle);
     let _ = writeln!(out, "solids     {}", s.solids);
-    let _ = writeln!(out, "shells     {}", s.shells);
+    let _ = writeln!(out, "shells     {} ({} of a surface model)", s.shells, s.surface_model_shells);
+    if let Some(sw) = &s.sewing {
+        let _ = writeln!(out, "sewn       {} edges, {} vertices merged (tolerance {:.3e} mm); free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
+    }
     let _ = writeln!(out, "faces      {}", s.faces);
     let _ = writeln!(out, "edges      {} ({} closed, {} seam, {} degenerate)", s.edges, s.closed_edges, s.seam_edges, s.degenerate_edges);
     let _ = writeln!(out, "vertices   {}", s.vertices);

@@ -19,6 +19,7 @@ Examples:
   fepre mesh plc.poly -o plc.vtu --size 0.16            edge length about 0.16 everywhere; holes and regions from the .poly
   fepre mesh part.obj -o part.msh --keep-surface        the boundary triangles exactly as given (no Steiner points on them)
   fepre mesh part.stl -o part.1.ele --json              TetGen files; one JSON report on standard output
+  fepre mesh part.step -o part.mesh                     a STEP part: tessellated, certified, then meshed; tags = CAD face ids
 
 Every boundary triangle of the result carries the tag of the input triangle it lies in (STL
 solid, OBJ group, glTF primitive, .poly facet marker); each tet carries its region.";
@@ -26,7 +27,8 @@ solid, OBJ group, glTF primitive, .poly facet marker); each tet carries its regi
 /// Arguments of `fepre mesh`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Closed surface: STL, OBJ, GLB/glTF, OFF, TetGen .poly/.smesh, Medit .mesh.
+    /// Closed surface: STL, OBJ, GLB/glTF, OFF, TetGen .poly/.smesh, Medit .mesh; or a STEP
+    /// part (.step, .stp), tessellated at the default deviation and certified first.
     pub surface: PathBuf,
     /// Output tet mesh; its extension picks the format (.mesh, .ele/.node, .vtu, .msh).
     #[arg(short, long, value_name = "OUT")]
@@ -46,6 +48,11 @@ pub struct Args {
     /// Print one JSON object on standard output.
     #[arg(long)]
     pub json: bool,
+}
+
+/// True for a `.step` or `.stp` path (any case).
+fn is_step(path: &std::path::Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
 }
 
 fn positive(s: &str) -> Result<f64, String> {
@@ -92,16 +99,27 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let progress = Progress::start(&format!("reading {}", args.surface.display()));
     let t0 = Instant::now();
-    let loaded = io::read(&args.surface, &ReadOptions::default())?;
-    let surface = match loaded.mesh {
-        MeshData::Surface(s) => s,
-        other => anyhow::bail!("{}: a closed surface is needed, this file holds a {}", args.surface.display(), other.kind()),
+    let (surface, seeds) = if is_step(&args.surface) {
+        // a CAD part: tessellated at the default deviation and certified first; its faces'
+        // ids become the boundary tags
+        let c = crate::cli::tessellate::read_and_certify(&args.surface, crate::tessellate::TessellateOptions::default().chord_relative)?;
+        if !c.certificate.passed {
+            anyhow::bail!("{}", crate::cli::tessellate::failure_message(&args.surface, &c.certificate, &c.model.dropped));
+        }
+        (c.tessellation.surface, Seeds::default())
+    } else {
+        let loaded = io::read(&args.surface, &ReadOptions::default())?;
+        let surface = match loaded.mesh {
+            MeshData::Surface(s) => s,
+            other => anyhow::bail!("{}: a closed surface is needed, this file holds a {}", args.surface.display(), other.kind()),
+        };
+        let seeds = Seeds {
+            holes: loaded.seeds.holes.clone(),
+            regions: loaded.seeds.regions.iter().map(|&(point, tag, _)| RegionSeed { point, tag }).collect(),
+        };
+        (surface, seeds)
     };
     let read_seconds = t0.elapsed().as_secs_f64();
-    let seeds = Seeds {
-        holes: loaded.seeds.holes.clone(),
-        regions: loaded.seeds.regions.iter().map(|&(point, tag, _)| RegionSeed { point, tag }).collect(),
-    };
     let options = MeshOptions::default()
         .with_max_radius_edge(args.max_radius_edge)
         .with_min_dihedral(args.min_dihedral)

@@ -8,6 +8,7 @@ pub mod delaunay;
 pub mod inspect;
 pub mod mesh;
 pub mod progress;
+pub mod tessellate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -22,6 +23,8 @@ Examples:
   fepre delaunay points.xyz -o dt.mesh     exact Delaunay tetrahedralization of a point set
   fepre mesh part.stl -o part.mesh         quality tet mesh of a closed surface, boundary tags kept
   fepre cad-info part.step                 what fepre reads from a STEP file: counts, units, dropped items
+  fepre tessellate part.step -o part.stl   certified watertight surface of a STEP file, face tags kept
+  fepre mesh part.step -o part.mesh        STEP straight to quality tets (tessellated and certified first)
 
 Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
 
@@ -58,6 +61,11 @@ pub enum Command {
     /// units, surface kinds and every item left out.
     #[command(after_help = cad_info::EXAMPLES)]
     CadInfo(cad_info::Args),
+    /// Tessellate a STEP file into a watertight triangle surface tagged with its B-rep faces,
+    /// checked by a certificate (closed, manifold, outward, no self-intersection, Euler,
+    /// boundary loops, volume and area against the B-rep's).
+    #[command(after_help = tessellate::EXAMPLES)]
+    Tessellate(tessellate::Args),
 }
 
 /// Parses the arguments, runs the command and returns the process exit code.
@@ -76,6 +84,7 @@ pub fn main() -> ExitCode {
         Command::Delaunay(a) => delaunay::run(&a),
         Command::Mesh(a) => mesh::run(&a),
         Command::CadInfo(a) => cad_info::run(&a),
+        Command::Tessellate(a) => tessellate::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -15,7 +15,11 @@ pub struct EdgePoints {
 
 /// Points along `edge` with chord error at most `tol` and tangent turn at most `max_angle_deg`
 /// per segment; new points are appended to `vertices`.
-pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, vertices: &mut Vec<DVec3>) -> EdgePoints {
+///
+/// A straight edge is split into pieces no longer than `max_straight` (a straight edge on a
+/// curved face, such as a cone's generator, would otherwise make long thin triangles there:
+/// near an apex they fold over the small ones).
+pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_straight: f64, vertices: &mut Vec<DVec3>) -> EdgePoints {
     let (a, b) = (edge.range.min, edge.range.max);
     let Some(ci) = edge.curve.filter(|_| !edge.degenerate && a.is_finite() && b.is_finite()) else {
         // no curve or a point: the vertices only
@@ -33,7 +37,9 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, vert
             refine(&|t| curve.point(t), &|t| curve.derivative(t), t0, t1, tol, cos_max, 0, &mut ts);
         }
     } else {
-        ts.push(b);
+        let len = (curve.point(b) - curve.point(a)).length();
+        let n = if max_straight > 0.0 { ((len / max_straight).ceil() as usize).clamp(1, 64) } else { 1 };
+        ts.extend((1..=n).map(|k| if k == n { b } else { a + (b - a) * k as f64 / n as f64 }));
     }
     // in the direction start -> end
     if !edge.same_sense {

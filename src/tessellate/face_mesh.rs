@@ -12,12 +12,17 @@ use glam::{DVec2, DVec3};
 use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
+/// A vertex of the parameter-domain triangulation.
 #[derive(Clone, Copy, Debug)]
-struct V {
-    p: Point2<f64>,
+pub(super) struct V {
+    /// Position in scaled `(u, v)`.
+    pub(super) p: Point2<f64>,
     /// Global vertex index, or `None` for an interior point not yet lifted.
-    id: Option<u32>,
-    uv: DVec2,
+    pub(super) id: Option<u32>,
+    /// Position in `(u, v)`.
+    pub(super) uv: DVec2,
+    /// The point in 3D.
+    pub(super) p3: DVec3,
 }
 
 impl HasPosition for V {
@@ -74,6 +79,41 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         if pts.len() < 2 {
             return Err(format!("loop {} has fewer than two points", lp.source));
         }
+        // a loop through a pole (a cone's apex between two generators): u jumps there
+        // arbitrarily, so the loop is rotated to end at the pole and unwrapped from its new
+        // start; the pole then becomes a segment of the pole line (open_poles)
+        let n = pts.len();
+        let through_pole = |k: usize| is_pole(surf, pts[k].0) && pts[(k + n - 1) % n].1 != pts[k].1 && pts[(k + 1) % n].1 != pts[k].1;
+        // the turn in u along the loop, leaving out the steps into and out of poles
+        let turn: f64 = match dom.u_period {
+            Some(per) => (0..n)
+                .filter(|&i| !is_pole(surf, pts[i].0) && !is_pole(surf, pts[(i + 1) % n].0))
+                .map(|i| {
+                    let (a, b) = (pts[i].0.x, pts[(i + 1) % n].0.x);
+                    crate::cad::geom::unwrap_near(b, a, per) - a
+                })
+                .sum(),
+            None => 0.0,
+        };
+        let goes_around = dom.u_period.is_some_and(|per| turn.abs() > 0.75 * per);
+        // (cones only: a loop of a swept B-spline face through its pole is left to the general
+        // path, which meshes the corpus's wing_fuselage.step right)
+        let cone = matches!(surf, Surface::Cone(_));
+        if let Some(k) = (0..n).find(|&k| cone && n >= 3 && !goes_around && through_pole(k)) {
+            pts.rotate_left(k + 1);
+            if let Some(per) = dom.u_period {
+                let mut last = pts[0].0.x;
+                for pt in pts.iter_mut().skip(1) {
+                    if !is_pole(surf, pt.0) {
+                        pt.0.x = crate::cad::geom::unwrap_near(pt.0.x, last, per);
+                        last = pt.0.x;
+                    }
+                }
+            }
+            pts = open_poles(surf, pts);
+            loops.push(Mapped { pts, wrap: None, face_left: face.same_sense == lp.orientation });
+            continue;
+        }
         // closure: the last point comes back to the first, or a period away
         let mut wrap = None;
         if let (Some(id), Some(q)) = (last_id, prev) {
@@ -90,6 +130,42 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
     }
     Ok(loops)
+}
+
+/// True where `∂S/∂u` vanishes and `∂S/∂v` does not: a pole line `v = const`.
+fn is_pole(surf: &Surface, uv: DVec2) -> bool {
+    let (su, sv) = surf.first_derivatives(uv.x, uv.y);
+    su.length() <= 1e-7 * sv.length() && sv.length() > 0.0
+}
+
+/// A loop point at a pole of the parametrisation (a cone's apex, a sphere's pole: `∂S/∂u`
+/// vanishes, every `u` gives the same point) is a segment of the pole line in `(u, v)`: it is
+/// replaced by two points with the same vertex, at its neighbours' `u`, so the domain reaches
+/// the pole along its whole width instead of pinching to one arbitrary `u`.
+fn open_poles(surf: &Surface, pts: UvLoop) -> UvLoop {
+    let n = pts.len();
+    if n < 3 {
+        return pts;
+    }
+    let mut out = Vec::with_capacity(n + 2);
+    for k in 0..n {
+        let (uv, id) = pts[k];
+        let pole = is_pole(surf, uv);
+        let (prev, next) = (pts[(k + n - 1) % n], pts[(k + 1) % n]);
+        if pole && prev.1 != id && next.1 != id {
+            // the pole line from the previous point's u to the next one's, in steps of at most
+            // 1/32 turn (triangles meeting the pole then span little u: no folds there)
+            let (a, b) = (DVec2::new(prev.0.x, uv.y), DVec2::new(next.0.x, uv.y));
+            let steps = ((b.x - a.x).abs() * 32.0 / std::f64::consts::TAU).ceil().max(1.0) as usize;
+            out.push((a, id));
+            if (b - a).length() > 0.0 {
+                out.extend((1..=steps).map(|k| (a + (b - a) * (k as f64 / steps as f64), id)));
+            }
+        } else {
+            out.push((uv, id));
+        }
+    }
+    out
 }
 
 /// The boundary of a face without edge loops (a whole sphere or torus): the rectangle of the
@@ -150,6 +226,27 @@ fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut Vec<DVe
         out.push((uv(0, j), id_of(0, j, vertices)));
     }
     Ok(out)
+}
+
+/// Points strictly between `a` and `b` on the straight `(u, v)` segment, so that its image on
+/// the surface is within `tol` of the chords between them (midpoint test after uniform
+/// subdivision, at most 256 pieces).
+fn iso_points(surf: &Surface, a: DVec2, b: DVec2, tol: f64) -> Vec<DVec2> {
+    let at = |t: f64| a + (b - a) * t;
+    let mut n = 1usize;
+    while n < 256 {
+        let ok = (0..n).all(|k| {
+            let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
+            let (p0, p1) = (surf.point(at(t0).x, at(t0).y), surf.point(at(t1).x, at(t1).y));
+            let pm = surf.point(at(0.5 * (t0 + t1)).x, at(0.5 * (t0 + t1)).y);
+            (pm - 0.5 * (p0 + p1)).length() <= tol
+        });
+        if ok {
+            break;
+        }
+        n *= 2;
+    }
+    (1..n).map(|k| at(k as f64 / n as f64)).collect()
 }
 
 /// Signed area of a polygon (positive counter-clockwise).
@@ -234,10 +331,21 @@ fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, vertices
                 v
             };
             // b_seq runs from b0 to b0 - ga; shifted by +ga it runs from b0 + ga to b0
+            // points along the cut from a0 to b0, shared by its two sides (u and u + ga)
+            let b0 = b_seq[0].0;
+            let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, b0, tol)
+                .into_iter()
+                .map(|uv| {
+                    vertices.push(surf.point(uv.x, uv.y));
+                    (uv, vertices.len() as u32 - 1)
+                })
+                .collect();
             let mut poly = pa.clone();
             poly.push((a0.0 + DVec2::new(ga, 0.0), a0.1));
+            poly.extend(cut.iter().map(|&(p, id)| (p + DVec2::new(ga, 0.0), id)));
             poly.extend(b_seq.iter().map(|&(p, id)| (p + DVec2::new(ga, 0.0), id)));
-            // the last point equals b0 (unshifted start of b_seq + ga - ga)
+            // the last point equals b0 (unshifted start of b_seq + ga - ga); back along the cut
+            poly.extend(cut.iter().rev().copied());
             loops.push(poly);
         }
         1 => {
@@ -282,13 +390,23 @@ fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, vertices
                     vertices.len() as u32 - 1
                 }
             };
+            // points along the cut from a0 to the pole, shared by its two sides
+            let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, DVec2::new(a0.0.x, vp), tol)
+                .into_iter()
+                .map(|uv| {
+                    vertices.push(surf.point(uv.x, uv.y));
+                    (uv, vertices.len() as u32 - 1)
+                })
+                .collect();
             let mut poly = a.pts.clone();
             poly.push((a0.0 + DVec2::new(ga, 0.0), a0.1));
+            poly.extend(cut.iter().map(|&(p, id)| (p + DVec2::new(ga, 0.0), id)));
             // points along the pole line (all the same 3D point) keep the triangles there thin
             let n = 16;
             for k in 0..=n {
                 poly.push((DVec2::new(a0.0.x + ga * (1.0 - k as f64 / n as f64), vp), pid));
             }
+            poly.extend(cut.iter().rev().copied());
             loops.push(poly);
         }
         n => return Err(format!("{n} loops go around a periodic surface: not supported yet")),
@@ -333,7 +451,7 @@ fn inside(loops: &[Vec<DVec2>], p: DVec2) -> bool {
 
 /// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` and the largest normal curvature-like term, over a
 /// sample grid of the box `lo..hi`.
-fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
+pub(super) fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
     let n = 6;
     let (mut su, mut sv, mut cnt) = (0.0, 0.0, 0.0);
     let mut samples = Vec::new();
@@ -362,12 +480,29 @@ fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
     (su, sv, k)
 }
 
+/// One face's triangulation: 3D triangles and the same triangles in the face's parameter
+/// domain, with the boundary segments, for quadrature over the exact surface
+/// ([`super::quadrature`]).
+#[derive(Clone, Debug, Default)]
+pub struct FaceMesh {
+    /// Triangles with global vertex indices, oriented outward by the face's sense.
+    pub triangles: Vec<[u32; 3]>,
+    /// The parameter-domain triangles, counter-clockwise in `(u, v)` (periodic parameters
+    /// unwrapped consistently within a triangle): `uv[k]` is `triangles[k]` for
+    /// `k < triangles.len()`; the rest are triangles of the domain that collapse to a line or
+    /// point in 3D (along a pole), kept so that the domain is complete.
+    pub uv: Vec<[DVec2; 3]>,
+    /// Boundary segments of the parameter-domain triangulation: `(a, b)` global vertex
+    /// indices and their `(u, v)`, directed with the face on the left in `(u, v)`.
+    pub boundary: Vec<([u32; 2], [DVec2; 2])>,
+}
+
 /// The triangles of one face, with global vertex indices (new interior vertices appended to
 /// `vertices`), oriented outward by the face's sense.
 ///
 /// # Errors
 /// A message saying why the face could not be meshed.
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, vertices: &mut Vec<DVec3>) -> Result<Vec<[u32; 3]>, String> {
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let loops = uv_loops(model, fid, edges, tol, vertices)?;
@@ -390,7 +525,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
     for (l, sl) in loops.iter().zip(&scaled) {
         let mut hs = Vec::with_capacity(l.len());
         for ((uv, id), s) in l.iter().zip(sl) {
-            let h = cdt.insert(V { p: Point2::new(s.x, s.y), id: Some(*id), uv: *uv }).map_err(|e| format!("cannot insert a boundary point: {e:?}"))?;
+            let h = cdt.insert(V { p: Point2::new(s.x, s.y), id: Some(*id), uv: *uv, p3: vertices[*id as usize] }).map_err(|e| format!("cannot insert a boundary point: {e:?}"))?;
             hs.push(h);
         }
         handles.push(hs);
@@ -424,12 +559,13 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
                     // splits constraints through inserted points) or make slivers
                     if inside(&scaled, s) && clear.far(s, 0.3 * cell.min_element()) {
                         let uv = DVec2::new(s.x / su, s.y / sv);
-                        cdt.insert(V { p: Point2::new(s.x, s.y), id: None, uv }).map_err(|e| format!("cannot insert an interior point: {e:?}"))?;
+                        cdt.insert(V { p: Point2::new(s.x, s.y), id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| format!("cannot insert an interior point: {e:?}"))?;
                     }
                 }
             }
         }
     }
+    super::refine::refine(&mut cdt, surf, tol, opts)?;
     // lift and keep the triangles inside the loops
     let mut ids: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
     for v in cdt.vertices() {
@@ -437,7 +573,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         ids.push(match d.id {
             Some(id) => id,
             None => {
-                vertices.push(surf.point(d.uv.x, d.uv.y));
+                vertices.push(d.p3);
                 vertices.len() as u32 - 1
             }
         });
@@ -445,27 +581,50 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
     // inside = an odd number of constraint edges crossed from the outside (exact, unlike a
     // point-in-polygon test on thin triangles along nearly straight boundaries)
     let inside_faces = constraint_parity(&cdt);
-    let mut tris = Vec::new();
+    let mut out = FaceMesh::default();
     for f in cdt.inner_faces() {
         if !inside_faces[f.fix().index()] {
             continue;
         }
         let vs = f.vertices();
+        let uv = vs.map(|v| v.data().uv);
+        // boundary segments: constraint edges with the outside (or the outer face) beyond
+        for e in f.adjacent_edges() {
+            let beyond = e.rev().face().as_inner().is_none_or(|g| !inside_faces[g.fix().index()]);
+            if e.is_constraint_edge() && beyond {
+                let (a, b) = (e.from(), e.to());
+                out.boundary.push(([ids[a.fix().index()], ids[b.fix().index()]], [a.data().uv, b.data().uv]));
+            }
+        }
         let [a, b, cc] = vs.map(|v| ids[v.fix().index()]);
         if a == b || b == cc || a == cc {
+            // a triangle collapsed in 3D (along a pole line): zero area, but part of the domain
+            out.uv.push(uv);
+            out.triangles.push([u32::MAX; 3]);
             continue;
         }
-        tris.push(if face.same_sense { [a, b, cc] } else { [a, cc, b] });
+        out.uv.push(uv);
+        out.triangles.push(if face.same_sense { [a, b, cc] } else { [a, cc, b] });
     }
-    if tris.is_empty() {
+    // collapsed triangles: kept in the domain for quadrature only
+    let keep: Vec<bool> = out.triangles.iter().map(|t| t[0] != u32::MAX).collect();
+    let domain_only: Vec<[DVec2; 3]> = out.uv.iter().zip(&keep).filter(|(_, k)| !**k).map(|(u, _)| *u).collect();
+    let mut k = 0;
+    out.triangles.retain(|t| t[0] != u32::MAX);
+    out.uv.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
+    out.uv.extend(domain_only);
+    if out.triangles.is_empty() {
         return Err("no triangle inside the face's loops".into());
     }
-    Ok(tris)
+    Ok(out)
 }
 
 /// Per face index (outer face included): true when an odd number of constraint edges
 /// separates it from the outer face. A 0-1 breadth-first search over face adjacency.
-fn constraint_parity(cdt: &ConstrainedDelaunayTriangulation<V>) -> Vec<bool> {
+pub(super) fn constraint_parity(cdt: &ConstrainedDelaunayTriangulation<V>) -> Vec<bool> {
     let n = cdt.num_all_faces();
     let mut depth = vec![usize::MAX; n];
     let mut queue = std::collections::VecDeque::new();

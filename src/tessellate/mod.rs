@@ -16,8 +16,11 @@
 //! seam, loops that cross in parameter space) are listed in [`Tessellation::failed`], never
 //! left out silently. The result is meant to be checked with [`crate::mesh::topology`].
 
+pub mod certificate;
 pub mod edge_points;
 pub mod face_mesh;
+pub mod quadrature;
+mod refine;
 
 #[cfg(test)]
 mod tests;
@@ -34,7 +37,12 @@ use std::collections::BTreeMap;
 #[non_exhaustive]
 pub struct TessellateOptions {
     /// Largest distance between a segment or triangle and the exact geometry, as a fraction
-    /// of the model size (default 1e-3).
+    /// of the model size (default 2e-4). The vertices lie on the surface, so the mesh is
+    /// inscribed and encloses less than the B-rep by about `(2/3) δ A` (δ this tolerance in
+    /// mm, A the area): a relative volume error of `(2/3) δ A / V`. At 1e-3 that is 0.7 % for
+    /// a cylinder of radius a sixth of the model size and 1.5 % for thin parts (the corpus's
+    /// wing_fuselage.step, screw.step); 2e-4 keeps every closed corpus solid within 0.35 % of
+    /// OpenCASCADE's volume at a tenth of a second or less per part.
     pub chord_relative: f64,
     /// Largest turn of the tangent along one edge segment, degrees (default 20).
     pub max_angle_deg: f64,
@@ -44,7 +52,7 @@ pub struct TessellateOptions {
 
 impl Default for TessellateOptions {
     fn default() -> Self {
-        TessellateOptions { chord_relative: 1e-3, max_angle_deg: 20.0, max_grid: 200 }
+        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200 }
     }
 }
 
@@ -67,6 +75,17 @@ pub struct FailedFace {
     pub why: String,
 }
 
+/// One face's parameter-domain triangulation, kept for the certificate's quadrature.
+#[derive(Clone, Debug)]
+pub struct FaceDomain {
+    /// The face's triangles in [`Tessellation::surface`]: `triangles.start..triangles.end`.
+    pub triangles: std::ops::Range<usize>,
+    /// The triangles in `(u, v)` and the boundary segments (see [`face_mesh::FaceMesh`]).
+    pub uv: Vec<[glam::DVec2; 3]>,
+    /// Boundary segments, face on the left in `(u, v)`: global vertex ids and `(u, v)`.
+    pub boundary: Vec<([u32; 2], [glam::DVec2; 2])>,
+}
+
 /// The result: the surface and the faces left out.
 #[derive(Clone, Debug)]
 pub struct Tessellation {
@@ -74,6 +93,12 @@ pub struct Tessellation {
     pub surface: TriSurface,
     /// Faces that could not be meshed.
     pub failed: Vec<FailedFace>,
+    /// The points of every B-rep edge (index = edge index of the model).
+    pub edges: Vec<EdgePoints>,
+    /// Per face (index `FaceId - 1`), its domain triangulation; `None` for a failed face.
+    pub domains: Vec<Option<FaceDomain>>,
+    /// The absolute chord tolerance used (`chord_relative` times the model size), mm.
+    pub chord: f64,
 }
 
 /// Tessellates every face of `model`.
@@ -81,23 +106,47 @@ pub fn tessellate(model: &Model, opts: &TessellateOptions) -> Tessellation {
     let size = model.size();
     let tol = opts.chord_relative * size;
     let mut vertices: Vec<DVec3> = model.vertices.iter().map(|v| v.point).collect();
-    let edges: Vec<EdgePoints> = model.edges.iter().map(|e| edge_points::discretise(model, e, tol, opts.max_angle_deg, &mut vertices)).collect();
+    // straight edges bounding a curved face: pieces of at most sqrt(8 tol size) / 4, the
+    // grid spacing of a face curved with radius size / 16
+    let mut on_curved = vec![false; model.edges.len()];
+    for face in &model.faces {
+        if !matches!(model.surface(face.surface), crate::cad::geom::Surface::Plane(_)) {
+            for &l in &face.loops {
+                for c in &model.loops[l as usize].coedges {
+                    on_curved[c.edge as usize] = true;
+                }
+            }
+        }
+    }
+    let max_straight = (8.0 * tol * size).sqrt() / 4.0;
+    let edges: Vec<EdgePoints> = model
+        .edges
+        .iter()
+        .zip(&on_curved)
+        .map(|(e, &curved)| edge_points::discretise(model, e, tol, opts.max_angle_deg, if curved { max_straight } else { 0.0 }, &mut vertices))
+        .collect();
     let mut triangles = Vec::new();
     let mut face_tags = Vec::new();
     let mut failed = Vec::new();
     let mut tag_names = BTreeMap::new();
+    let mut domains = Vec::with_capacity(model.faces.len());
     for fid in model.face_ids() {
         let face = model.face(fid);
         match face_mesh::mesh_face(model, fid, &edges, tol, opts, &mut vertices) {
-            Ok(tris) => {
-                face_tags.extend(std::iter::repeat_n(fid, tris.len()));
-                triangles.extend(tris);
+            Ok(fm) => {
+                let start = triangles.len();
+                face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));
+                triangles.extend(fm.triangles);
                 if let Some(n) = &face.name {
                     tag_names.insert(fid, n.clone());
                 }
+                domains.push(Some(FaceDomain { triangles: start..triangles.len(), uv: fm.uv, boundary: fm.boundary }));
             }
-            Err(why) => failed.push(FailedFace { face: fid, source: face.source, why }),
+            Err(why) => {
+                failed.push(FailedFace { face: fid, source: face.source, why });
+                domains.push(None);
+            }
         }
     }
-    Tessellation { surface: TriSurface { vertices, triangles, face_tags, tag_names }, failed }
+    Tessellation { surface: TriSurface { vertices, triangles, face_tags, tag_names }, failed, edges, domains, chord: tol }
 }

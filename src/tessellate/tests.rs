@@ -101,3 +101,39 @@ fn constraint_parity_keeps_a_concave_face_concave() {
     }).sum();
     assert!((area - 3.0).abs() < 1e-12, "area {area}");
 }
+
+#[test]
+fn certificate_of_the_tetrahedron_passes_with_exact_b_rep_values() {
+    let m = tetrahedron();
+    let t = tessellate(&m, &TessellateOptions::default());
+    let c = certificate::certify(&m, &t, &certificate::CertifyOptions::default());
+    assert!(c.passed, "{:?}", c.failures);
+    assert_eq!(c.shells.len(), 1);
+    let sh = &c.shells[0];
+    // V - E + F = 4 - 6 + 4, as the mesh sees it
+    assert_eq!((sh.euler_mesh, sh.euler_brep, sh.genus_brep), (2, 2, Some(0)));
+    assert!((sh.volume_brep - 1.0 / 6.0).abs() < 1e-12 && (sh.volume_mesh - 1.0 / 6.0).abs() < 1e-12, "{sh:?}");
+    let area = 1.5 + 3f64.sqrt() / 2.0;
+    assert!((sh.area_brep - area).abs() < 1e-12, "{sh:?}");
+}
+
+#[test]
+fn certificate_names_the_face_of_a_hole() {
+    let m = tetrahedron();
+    let mut t = tessellate(&m, &TessellateOptions::default());
+    // drop face 4's triangle: the closed shell's triangles are open there
+    let k = t.surface.face_tags.iter().position(|&f| f == FaceId(4)).unwrap();
+    t.surface.triangles.remove(k);
+    t.surface.face_tags.remove(k);
+    if let Some(d) = t.domains[3].as_mut() {
+        d.triangles = 0..0;
+    }
+    for d in t.domains.iter_mut().flatten() {
+        if d.triangles.start > k {
+            d.triangles = d.triangles.start - 1..d.triangles.end - 1;
+        }
+    }
+    let c = certificate::certify(&m, &t, &certificate::CertifyOptions::default());
+    assert!(!c.passed && !c.closed);
+    assert!(c.failures.iter().any(|f| f.check == "closed" && f.face.is_some() && f.step_id.is_some()), "{:?}", c.failures);
+}

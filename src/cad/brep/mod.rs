@@ -10,10 +10,12 @@
 
 mod edge_flags;
 mod model;
+mod sew;
 mod summary;
 mod validate;
 
 pub use model::{Coedge, Dropped, Edge, EntityRef, Face, Loop, Model, Shell, Solid, Units, Vertex};
 pub use edge_flags::DEGENERATE_RELATIVE;
+pub use sew::{SEW_RELATIVE, SewReport};
 pub use summary::Summary;
 pub use validate::VERTEX_ON_CURVE_RELATIVE;

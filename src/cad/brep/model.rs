@@ -177,9 +177,18 @@ pub struct Model {
     pub units: Units,
     /// Items left out, with the reason.
     pub dropped: Vec<Dropped>,
+    /// What sewing did to the open shells of a surface model ([`Model::sew`]); `None` when
+    /// the model has no open shell.
+    pub sewing: Option<super::sew::SewReport>,
 }
 
 impl Model {
+    /// Shells that bound no solid: the shells of a surface model
+    /// (`SHELL_BASED_SURFACE_MODEL`, `OPEN_SHELL`s).
+    pub fn surface_model_shells(&self) -> usize {
+        self.shells.iter().filter(|s| s.solid.is_none()).count()
+    }
+
     /// The ids of all faces, `FaceId(1)` to `FaceId(n)`.
     pub fn face_ids(&self) -> impl Iterator<Item = FaceId> + '_ {
         (1..=self.faces.len() as u32).map(FaceId)

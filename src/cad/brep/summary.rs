@@ -11,6 +11,10 @@ pub struct Summary {
     pub solids: usize,
     /// Shells.
     pub shells: usize,
+    /// Shells bounding no solid (a surface model's).
+    pub surface_model_shells: usize,
+    /// What sewing the open shells did, if the model has any.
+    pub sewing: Option<super::sew::SewReport>,
     /// Faces.
     pub faces: usize,
     /// Edges.
@@ -47,6 +51,8 @@ impl Summary {
         Summary {
             solids: model.solids.len(),
             shells: model.shells.len(),
+            surface_model_shells: model.surface_model_shells(),
+            sewing: model.sewing.clone(),
             faces: model.faces.len(),
             edges: model.edges.len(),
             vertices: model.vertices.len(),

@@ -81,6 +81,8 @@ pub fn to_model(file: &StepFile) -> Result<Model, StepError> {
         return Err(StepError::NoShape { path: file.path.clone(), dropped });
     }
     model.mark_edges();
+    // surface models: free edges that are the same curve become one edge
+    model.sewing = model.sew();
     colour::assign(file, &mut model);
     Ok(model)
 }

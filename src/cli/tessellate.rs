@@ -1,0 +1,229 @@
+//! `fepre tessellate CAD -o OUT`: a watertight, certified triangle surface of a STEP file,
+//! every triangle tagged with its B-rep face.
+//!
+//! Reads the STEP file, tessellates every face at the chord deviation asked for, checks the
+//! result with [`crate::tessellate::certificate`] and writes it only when the certificate
+//! passes (or with `--force`). Exit codes: 0 written, 1 the file could not be read or the
+//! certificate failed (the message names the face and its STEP `#id`; no file is written),
+//! 2 bad usage.
+
+use crate::cad::brep::{Dropped, EntityRef, Model, Units};
+use crate::cad::step;
+use crate::cli::usage_error;
+use crate::core::FaceId;
+use crate::io::{self, Format, MeshData, WriteOptions};
+use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
+use crate::tessellate::{TessellateOptions, Tessellation, tessellate};
+use anyhow::Result;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Examples shown by `fepre tessellate --help`.
+pub const EXAMPLES: &str = "\
+Examples:
+  fepre tessellate part.step -o part.stl                 certified surface, default deviation (2e-4 of the model size)
+  fepre tessellate part.step -o part.msh --deviation 5e-5  finer; MSH 4.1 keeps each face as a physical group
+  fepre tessellate part.stp -o part.vtu --json           one JSON report: Euler per shell, volume, area, checks
+  fepre tessellate part.step -o part.obj --force         write even when a check fails (the report says which)
+
+The output format follows the extension: .stl, .obj (one group per face), .vtu (face ids as
+cell data), .msh (MSH 4.1, one physical group per face). The file is written only when the
+certificate passes: closed, manifold, oriented outward, no self-intersection, Euler
+characteristic and boundary loops as the B-rep's, volume and area within tolerance of the
+B-rep's own (quadrature over the exact surfaces).";
+
+/// Arguments of `fepre tessellate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// STEP file (.step, .stp; AP203, AP214, AP242).
+    pub cad: PathBuf,
+    /// Output surface: .stl, .obj, .vtu or .msh.
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Largest distance between the triangles and the exact surface, as a fraction of the
+    /// model size (the diagonal of its bounding box).
+    #[arg(long, value_name = "REL", default_value_t = TessellateOptions::default().chord_relative, value_parser = positive_fraction)]
+    pub deviation: f64,
+    /// Print one JSON object on standard output.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the surface even when the certificate fails (exit code 0, failures reported).
+    #[arg(long)]
+    pub force: bool,
+}
+
+fn positive_fraction(s: &str) -> Result<f64, String> {
+    let x = crate::cli::parse_fraction(s)?;
+    if x > 0.0 && x <= 0.1 { Ok(x) } else { Err(format!("'{s}' must be in (0, 0.1]")) }
+}
+
+/// Euler characteristic of one shell group, mesh and B-rep.
+#[derive(Debug, Serialize)]
+struct EulerEntry {
+    brep_shells: Vec<EntityRef>,
+    mesh: i64,
+    brep: i64,
+}
+
+/// A face that could not be meshed.
+#[derive(Debug, Serialize)]
+struct FailedFaceEntry {
+    face: FaceId,
+    step_id: EntityRef,
+    reason: String,
+}
+
+/// The JSON object `fepre tessellate --json` prints.
+#[derive(Debug, Serialize)]
+struct Report {
+    input: String,
+    output: Option<String>,
+    solids: usize,
+    /// Shells not bounding a solid (surface models).
+    surface_model_shells: usize,
+    /// What sewing the open shells did.
+    sewing: Option<crate::cad::brep::SewReport>,
+    faces: usize,
+    triangles: usize,
+    vertices: usize,
+    watertight: bool,
+    euler: Vec<EulerEntry>,
+    volume: f64,
+    area: f64,
+    units: Units,
+    deviation: f64,
+    chord_mm: f64,
+    dropped: Vec<Dropped>,
+    failed_faces: Vec<FailedFaceEntry>,
+    seconds: f64,
+    read_seconds: f64,
+    tessellate_seconds: f64,
+    certificate: Certificate,
+}
+
+/// The tessellation of a STEP file with its certificate: what `fepre tessellate` and
+/// `fepre mesh part.step` share.
+pub struct Certified {
+    /// The B-rep.
+    pub model: Model,
+    /// The surface.
+    pub tessellation: Tessellation,
+    /// Its certificate.
+    pub certificate: Certificate,
+    /// Seconds reading, tessellating.
+    pub seconds: [f64; 2],
+}
+
+/// Reads, tessellates and certifies `path`.
+///
+/// # Errors
+/// When the file cannot be read as STEP (the message names the line or `#id`).
+pub fn read_and_certify(path: &Path, deviation: f64) -> Result<Certified> {
+    let t0 = Instant::now();
+    let model = step::read(path)?;
+    let t1 = Instant::now();
+    let tessellation = tessellate(&model, &TessellateOptions::default().with_chord_relative(deviation));
+    let t2 = Instant::now();
+    let certificate = certify(&model, &tessellation, &CertifyOptions::default());
+    Ok(Certified { model, tessellation, certificate, seconds: [(t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()] })
+}
+
+/// The certificate's failures as one message, naming faces and STEP ids.
+pub fn failure_message(path: &Path, c: &Certificate, dropped: &[Dropped]) -> String {
+    let mut msg = format!("{}: the tessellation fails its certificate ({} failed checks)", path.display(), c.failure_count);
+    for d in dropped.iter().take(5) {
+        msg.push_str(&format!("\n  the reader dropped {} {}: {}", d.id, d.kind, d.why));
+    }
+    for f in c.failures.iter().take(5) {
+        msg.push_str("\n  ");
+        msg.push_str(f.check);
+        if let Some(face) = f.face {
+            msg.push_str(&format!(" face {}", face.0));
+        }
+        if let Some(id) = f.step_id {
+            msg.push_str(&format!(" ({id})"));
+        }
+        msg.push_str(": ");
+        msg.push_str(&f.message);
+    }
+    if c.failure_count > 5 {
+        msg.push_str(&format!("\n  ... {} more (--json lists up to 20)", c.failure_count - 5));
+    }
+    msg
+}
+
+/// Runs `fepre tessellate`.
+///
+/// # Errors
+/// An unreadable STEP file or a failed certificate without `--force` (exit 1); an output
+/// format that cannot hold a surface (exit 2).
+pub fn run(args: &Args) -> Result<()> {
+    let out = &args.output;
+    if !matches!(Format::from_path(out), Some(Format::Stl | Format::Obj | Format::Vtu | Format::Msh)) {
+        return Err(usage_error(format!("{}: the surface is written as .stl, .obj, .vtu or .msh", out.display())));
+    }
+    let t0 = Instant::now();
+    let c = read_and_certify(&args.cad, args.deviation)?;
+    let passed = c.certificate.passed;
+    if !passed && !args.force {
+        if args.json {
+            println!("{}", serde_json::to_string_pretty(&report(args, &c, None, t0))?);
+        }
+        anyhow::bail!("{}", failure_message(&args.cad, &c.certificate, &c.model.dropped));
+    }
+    io::write(out, &MeshData::Surface(c.tessellation.surface.clone()), &WriteOptions::default())?;
+    let r = report(args, &c, Some(out.display().to_string()), t0);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+    } else {
+        println!("solids       {} ({} surface-model shells)", r.solids, r.surface_model_shells);
+        if let Some(sw) = &r.sewing {
+            println!("sewn         {} edges and {} vertices merged (tolerance {:.3e} mm), free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
+        }
+        println!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
+        println!("triangles    {} ({} vertices)", r.triangles, r.vertices);
+        println!("watertight   {}", r.watertight);
+        let e: Vec<String> = r.euler.iter().map(|e| format!("{}/{}", e.mesh, e.brep)).collect();
+        println!("euler        {} (mesh/B-rep per shell)", e.join(" "));
+        println!("volume mm3   {:.9} (B-rep {:.9})", r.volume, r.certificate.volume[1]);
+        println!("area mm2     {:.9} (B-rep {:.9})", r.area, r.certificate.area[1]);
+        println!("certificate  {}", if passed { "passed" } else { "FAILED (written with --force)" });
+        if !passed {
+            println!("{}", failure_message(&args.cad, &r.certificate, &r.dropped));
+        }
+        println!("dropped      {}", r.dropped.len());
+        println!("seconds      {:.3}", r.seconds);
+        println!("wrote        {}", out.display());
+    }
+    Ok(())
+}
+
+fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Report {
+    let s = &c.tessellation.surface;
+    let cert = c.certificate.clone();
+    let volume: f64 = cert.shells.iter().filter(|x| x.brep_closed).map(|x| x.volume_mesh).sum();
+    Report {
+        input: args.cad.display().to_string(),
+        output,
+        solids: c.model.solids.len(),
+        surface_model_shells: c.model.surface_model_shells(),
+        sewing: c.model.sewing.clone(),
+        faces: c.model.faces.len(),
+        triangles: s.triangles.len(),
+        vertices: s.vertices.len(),
+        watertight: cert.closed && cert.manifold && cert.oriented && cert.shells.iter().all(|x| x.brep_closed),
+        euler: cert.shells.iter().map(|x| EulerEntry { brep_shells: x.brep_shells.clone(), mesh: x.euler_mesh, brep: x.euler_brep }).collect(),
+        volume,
+        area: cert.area[0],
+        units: c.model.units.clone(),
+        deviation: args.deviation,
+        chord_mm: c.tessellation.chord,
+        dropped: c.model.dropped.clone(),
+        failed_faces: c.tessellation.failed.iter().map(|f| FailedFaceEntry { face: f.face, step_id: f.source, reason: f.why.clone() }).collect(),
+        seconds: t0.elapsed().as_secs_f64(),
+        read_seconds: c.seconds[0],
+        tessellate_seconds: c.seconds[1],
+        certificate: cert,
+    }
+}
