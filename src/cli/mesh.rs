@@ -50,6 +50,9 @@ pub struct Args {
     pub json: bool,
 }
 
+/// Without `--size`, a STEP part's surface triangles are about its diagonal over this.
+const DEFAULT_DIVISIONS: f64 = 25.0;
+
 /// True for a `.step` or `.stp` path (any case).
 fn is_step(path: &std::path::Path) -> bool {
     path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
@@ -100,9 +103,13 @@ pub fn run(args: &Args) -> Result<()> {
     let progress = Progress::start(&format!("reading {}", args.surface.display()));
     let t0 = Instant::now();
     let (surface, seeds) = if is_step(&args.surface) {
-        // a CAD part: tessellated at the default deviation and certified first; its faces'
-        // ids become the boundary tags
-        let c = crate::cli::tessellate::read_and_certify(&args.surface, crate::tessellate::TessellateOptions::default().chord_relative)?;
+        // a CAD part: tessellated at the default deviation into well-shaped triangles of the
+        // size (or, without one, a 25th of the part's diagonal), and certified first; its
+        // faces' ids become the boundary tags
+        let size = args.size;
+        let edge = move |model_size: f64| size.unwrap_or(model_size / DEFAULT_DIVISIONS);
+        let opts = crate::tessellate::TessellateOptions::default();
+        let c = crate::cli::tessellate::read_and_certify_with(&args.surface, &opts, Some(&edge))?;
         if !c.certificate.passed {
             anyhow::bail!("{}", crate::cli::tessellate::failure_message(&args.surface, &c.certificate, &c.model.dropped));
         }
@@ -123,7 +130,8 @@ pub fn run(args: &Args) -> Result<()> {
     let options = MeshOptions::default()
         .with_max_radius_edge(args.max_radius_edge)
         .with_min_dihedral(args.min_dihedral)
-        .with_keep_surface(args.keep_surface);
+        .with_keep_surface(args.keep_surface)
+        .with_presize(!is_step(&args.surface));
     progress.stage(&format!("meshing {} triangles", surface.triangles.len()));
     let size = UniformSize(args.size.unwrap_or(f64::INFINITY));
     let (mesh, report) = mesh_surface(&surface, &seeds, &size, &options).with_context(|| args.surface.display().to_string())?;

@@ -120,10 +120,20 @@ pub struct Certified {
 /// # Errors
 /// When the file cannot be read as STEP (the message names the line or `#id`).
 pub fn read_and_certify(path: &Path, deviation: f64) -> Result<Certified> {
+    read_and_certify_with(path, &TessellateOptions::default().with_chord_relative(deviation), None)
+}
+
+/// [`read_and_certify`] with all the tessellation's options; `max_edge_of_size`, when given,
+/// sets [`TessellateOptions::max_edge`] from the model's size (the diagonal of its box).
+pub fn read_and_certify_with(path: &Path, opts: &TessellateOptions, max_edge_of_size: Option<&dyn Fn(f64) -> f64>) -> Result<Certified> {
     let t0 = Instant::now();
     let model = step::read(path)?;
     let t1 = Instant::now();
-    let tessellation = tessellate(&model, &TessellateOptions::default().with_chord_relative(deviation));
+    let mut opts = opts.clone();
+    if let Some(f) = max_edge_of_size {
+        opts = opts.with_max_edge(Some(f(model.size())));
+    }
+    let tessellation = tessellate(&model, &opts);
     let t2 = Instant::now();
     let certificate = certify(&model, &tessellation, &CertifyOptions::default());
     Ok(Certified { model, tessellation, certificate, seconds: [(t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()] })

@@ -48,11 +48,17 @@ pub struct TessellateOptions {
     pub max_angle_deg: f64,
     /// Most interior grid points per face direction (default 200).
     pub max_grid: usize,
+    /// Longest triangle edge wanted, in model units (default none). With it, every edge is
+    /// cut into pieces no longer than this and every face is refined to well-shaped triangles
+    /// of about this size (angles of 25° and more away from small input angles): what a
+    /// volume mesher wants as its boundary. Without it, triangles follow the chord and angle
+    /// criteria only and may be long and thin (a tessellation for display or volume).
+    pub max_edge: Option<f64>,
 }
 
 impl Default for TessellateOptions {
     fn default() -> Self {
-        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200 }
+        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200, max_edge: None }
     }
 }
 
@@ -60,6 +66,12 @@ impl TessellateOptions {
     /// Sets [`TessellateOptions::chord_relative`].
     pub fn with_chord_relative(mut self, r: f64) -> Self {
         self.chord_relative = r;
+        self
+    }
+
+    /// Sets [`TessellateOptions::max_edge`] (ignored unless positive and finite).
+    pub fn with_max_edge(mut self, h: Option<f64>) -> Self {
+        self.max_edge = h.filter(|h| h.is_finite() && *h > 0.0);
         self
     }
 }
@@ -123,7 +135,10 @@ pub fn tessellate(model: &Model, opts: &TessellateOptions) -> Tessellation {
         .edges
         .iter()
         .zip(&on_curved)
-        .map(|(e, &curved)| edge_points::discretise(model, e, tol, opts.max_angle_deg, if curved { max_straight } else { 0.0 }, &mut vertices))
+        .map(|(e, &curved)| {
+            let straight = if curved { max_straight } else { 0.0 };
+            edge_points::discretise(model, e, tol, opts.max_angle_deg, straight, opts.max_edge, &mut vertices)
+        })
         .collect();
     let mut triangles = Vec::new();
     let mut face_tags = Vec::new();

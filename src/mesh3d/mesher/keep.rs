@@ -186,8 +186,10 @@ fn apply(tr: &mut Tetra, v: u32, w: u32, sv: &[u32]) {
     tr.vtet[v as usize] = NONE;
 }
 
-/// Merges every boundary Steiner point it can; returns how many are left.
-pub(crate) fn keep_surface(tr: &mut Tetra, sm: &mut SurfaceModel) -> usize {
+/// Merges every boundary Steiner point it can; returns how many are left. With `no_worse`,
+/// a point is merged only where its new tets are no worse shaped than its star was (when the
+/// boundary may keep Steiner points, a merge is worth no bad tet).
+pub(crate) fn keep_surface(tr: &mut Tetra, sm: &mut SurfaceModel, no_worse: bool) -> usize {
     let mut sv = Vec::new();
     let mut sw = Vec::new();
     loop {
@@ -196,11 +198,12 @@ pub(crate) fn keep_surface(tr: &mut Tetra, sm: &mut SurfaceModel) -> usize {
             (0..sm.location.len() as u32).filter(|&v| matches!(sm.location[v as usize], Location::Segment(_) | Location::Facet(_))).collect();
         for v in points {
             star(tr, v, &mut sv);
+            let floor = if no_worse { sv.iter().map(|&t| shape(tr.tets[t as usize].v.map(|x| tr.point(x)))).fold(f64::INFINITY, f64::min) } else { f64::NEG_INFINITY };
             let mut best: Option<(f64, u32)> = None;
             for w in sm.merge_targets(v) {
                 star(tr, w, &mut sw);
                 if let Some(q) = check(tr, v, w, &sv, &sw) {
-                    if best.is_none_or(|b| q > b.0) {
+                    if q >= floor && best.is_none_or(|b| q > b.0) {
                         best = Some((q, w));
                     }
                 }

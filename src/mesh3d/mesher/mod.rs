@@ -52,11 +52,17 @@ pub struct MeshOptions {
     pub seed: u64,
     /// Run the optimisation (flips, smoothing, insertion) after refinement.
     pub optimize: bool,
+    /// Without `keep_surface`: cut the surface to the size before meshing (default). Turn it
+    /// off for a surface already made of well-shaped triangles of the size wanted (a
+    /// tessellation with [`crate::tessellate::TessellateOptions::max_edge`]): the points that
+    /// boundary recovery puts on it are then merged back where they can be, as with
+    /// `keep_surface`, and the others stay (their triangles inherit their tags).
+    pub presize: bool,
 }
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, max_size: None, keep_surface: false, seed: 0x5eed, optimize: true }
+        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, max_size: None, keep_surface: false, seed: 0x5eed, optimize: true, presize: true }
     }
 }
 
@@ -84,6 +90,11 @@ impl MeshOptions {
     /// Sets [`MeshOptions::keep_surface`].
     pub fn with_keep_surface(mut self, keep: bool) -> Self {
         self.keep_surface = keep;
+        self
+    }
+    /// Sets [`MeshOptions::presize`].
+    pub fn with_presize(mut self, presize: bool) -> Self {
+        self.presize = presize;
         self
     }
 }
@@ -217,7 +228,7 @@ pub fn mesh_surface(
     stage("check", &mut clock);
     let mut points = surface.vertices.clone();
     let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
-    if !options.keep_surface {
+    if !options.keep_surface && options.presize {
         // the boundary may change: cut it to the size, and its thin triangles into better ones
         let h = |p: DVec3| {
             let s = size.size_at(p).min(options.max_size.unwrap_or(f64::INFINITY));
@@ -251,10 +262,14 @@ pub fn mesh_surface(
     keep::drop_exterior(&mut tr, &labels);
     if options.keep_surface {
         // merging is easiest once the material has points of its own near the boundary
-        let left = keep::keep_surface(&mut tr, &mut sm);
+        let left = keep::keep_surface(&mut tr, &mut sm, false);
         if left > 0 {
             return Err(MeshingError::KeepSurface { left, recovered: rec.segment_points + rec.facet_points });
         }
+        stage("keep", &mut clock);
+    } else if !options.presize {
+        // a surface sized already: recovery's points go back where they can
+        keep::keep_surface(&mut tr, &mut sm, true);
         stage("keep", &mut clock);
     }
     {
