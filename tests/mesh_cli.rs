@@ -46,3 +46,26 @@ fn bad_usage_exits_2() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!std::path::Path::new("x.mesh").exists());
 }
+
+#[test]
+fn meshes_the_bundled_step_bracket_the_readme_runs() {
+    // the README's main job: STEP -> sized, certified tessellation -> quality tets, CAD face ids
+    // as boundary tags
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bracket.mesh");
+    let o = fepre().args(["mesh", "cad_fixtures/bracket.step", "--json", "-o"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let loaded = fepre::io::read(&out, &fepre::io::ReadOptions::default()).unwrap();
+    let fepre::io::MeshData::Volume(m) = loaded.mesh else { panic!("not a tet mesh") };
+    assert_eq!(m.validate(), Ok(()));
+    // the analytic volume of the default bracket, to the tessellation's chord
+    let analytic = fepre::cad::parts::bracket::Bracket::default().volume();
+    assert!((m.volume() - analytic).abs() < 0.005 * analytic, "volume {} vs {analytic}", m.volume());
+    let model = fepre::cad::step::read(std::path::Path::new("cad_fixtures/bracket.step")).unwrap();
+    let tags: std::collections::BTreeSet<u32> = m.boundary_tags.iter().map(|t| t.0).collect();
+    assert_eq!(tags.len(), model.faces.len(), "every CAD face tags some boundary triangles");
+    // quality: a regression guard, measured 12.0 .. 153.5 degrees, radius-edge 2.2
+    let (lo, hi, re) = (v["min_dihedral_deg"].as_f64().unwrap(), v["max_dihedral_deg"].as_f64().unwrap(), v["max_radius_edge"].as_f64().unwrap());
+    assert!(lo >= 10.0 && hi <= 160.0 && re <= 2.5, "{lo} .. {hi}, radius-edge {re}");
+}

@@ -58,7 +58,7 @@ fn is_step(path: &std::path::Path) -> bool {
     path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
 }
 
-fn positive(s: &str) -> Result<f64, String> {
+pub(crate) fn positive(s: &str) -> Result<f64, String> {
     let x: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
     if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("'{s}' must be a finite number > 0")) }
 }

@@ -26,6 +26,7 @@ Examples:
   fepre tessellate part.step -o part.msh --deviation 5e-5  finer; MSH 4.1 keeps each face as a physical group
   fepre tessellate part.stp -o part.vtu --json           one JSON report: Euler per shell, volume, area, checks
   fepre tessellate part.step -o part.obj --force         write even when a check fails (the report says which)
+  fepre tessellate part.step -o part.stl --max-edge 2    well-shaped triangles of edge about 2 mm (a volume mesher's input)
 
 The output format follows the extension: .stl, .obj (one group per face), .vtu (face ids as
 cell data), .msh (MSH 4.1, one physical group per face). The file is written only when the
@@ -45,6 +46,10 @@ pub struct Args {
     /// model size (the diagonal of its bounding box).
     #[arg(long, value_name = "REL", default_value_t = TessellateOptions::default().chord_relative, value_parser = positive_fraction)]
     pub deviation: f64,
+    /// Longest triangle edge (model units, mm for STEP): edges are cut to it and faces refined
+    /// to well-shaped triangles of about this size, as a volume mesher wants its boundary.
+    #[arg(long, value_name = "H", value_parser = crate::cli::mesh::positive)]
+    pub max_edge: Option<f64>,
     /// Print one JSON object on standard output.
     #[arg(long)]
     pub json: bool,
@@ -93,6 +98,7 @@ struct Report {
     area: f64,
     units: Units,
     deviation: f64,
+    max_edge: Option<f64>,
     chord_mm: f64,
     dropped: Vec<Dropped>,
     failed_faces: Vec<FailedFaceEntry>,
@@ -174,7 +180,8 @@ pub fn run(args: &Args) -> Result<()> {
         return Err(usage_error(format!("{}: the surface is written as .stl, .obj, .vtu or .msh", out.display())));
     }
     let t0 = Instant::now();
-    let c = read_and_certify(&args.cad, args.deviation)?;
+    let opts = TessellateOptions::default().with_chord_relative(args.deviation).with_max_edge(args.max_edge);
+    let c = read_and_certify_with(&args.cad, &opts, None)?;
     let passed = c.certificate.passed;
     if !passed && !args.force {
         if args.json {
@@ -228,6 +235,7 @@ fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Re
         area: cert.area[0],
         units: c.model.units.clone(),
         deviation: args.deviation,
+        max_edge: args.max_edge,
         chord_mm: c.tessellation.chord,
         dropped: c.model.dropped.clone(),
         failed_faces: c.tessellation.failed.iter().map(|f| FailedFaceEntry { face: f.face, step_id: f.source, reason: f.why.clone() }).collect(),

@@ -137,3 +137,34 @@ fn certificate_names_the_face_of_a_hole() {
     assert!(!c.passed && !c.closed);
     assert!(c.failures.iter().any(|f| f.check == "closed" && f.face.is_some() && f.step_id.is_some()), "{:?}", c.failures);
 }
+
+/// Corner angles (degrees) of a 3D triangle.
+fn corner_angles(p: [DVec3; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| {
+        let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
+        a.angle_between(b).to_degrees()
+    })
+}
+
+#[test]
+fn max_edge_gives_well_shaped_triangles_of_the_size() {
+    // the bracket (planes, holes, a fillet): chord-only triangles are long and thin along the
+    // holes; with max_edge they are of the size and well shaped, and still certified
+    let parts = crate::cad::parts::default_parts().unwrap();
+    let (_, m) = parts.iter().find(|(n, _)| n.contains("bracket")).expect("the bracket");
+    let h = m.size() / 25.0;
+    let thin = |t: &Tessellation| {
+        let s = &t.surface;
+        s.triangles.iter().filter(|tri| corner_angles(tri.map(|i| s.vertices[i as usize])).iter().any(|&a| a < 20.0)).count() as f64
+            / s.triangles.len() as f64
+    };
+    let plain = tessellate(m, &TessellateOptions::default());
+    let sized = tessellate(m, &TessellateOptions::default().with_max_edge(Some(h)));
+    assert!(thin(&plain) > 0.05, "chord-only thin share {}", thin(&plain));
+    assert!(thin(&sized) < 0.01, "sized thin share {}", thin(&sized));
+    let s = &sized.surface;
+    let longest = s.triangles.iter().flat_map(|t| [0, 1, 2].map(|k| s.vertices[t[k] as usize].distance(s.vertices[t[(k + 1) % 3] as usize]))).fold(0.0, f64::max);
+    assert!(longest <= 2.0 * h, "longest edge {longest} for size {h}");
+    let c = certificate::certify(m, &sized, &certificate::CertifyOptions::default());
+    assert!(c.passed, "{:?}", c.failures);
+}
