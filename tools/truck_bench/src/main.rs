@@ -14,7 +14,7 @@
 //!   stands for fepre's model size), as the corpus README measured it; then
 //!   `put_together_same_attrs` and edge counts; truck ignores the file's length unit, so its
 //!   volume is scaled by the unit fepre reads;
-//! - fepre: `cad::step::read` and `tessellate` at the default options (chord 1e-3 × the model's
+//! - fepre: `cad::step::read` and `tessellate` at chord 1e-3 (not the default 2e-4: truck gets the same tolerance; chord 1e-3 × the model's
 //!   diagonal: the same deviation), then `mesh::topology`'s report.
 //!
 //! Times are of reading + tessellating only (not of the checks). "closed" means every shell's
@@ -128,7 +128,7 @@ fn fepre_one(path: &Path) -> Outcome {
         Ok(m) => m,
         Err(e) => return Outcome { why: e.to_string(), ..Default::default() },
     };
-    let t = tessellate(&model, &TessellateOptions::default());
+    let t = tessellate(&model, &TessellateOptions::default().with_chord_relative(1e-3));
     let seconds = start.elapsed().as_secs_f64();
     let r = surface_report(&t.surface, &ReportOptions::default().with_self_intersections(false));
     Outcome {
