@@ -160,6 +160,10 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
             }
         }
         if !changed {
+            // nothing could be split: every subface must be there now, or the facet is named
+            if let Some((f, t)) = sm.subfaces().find(|&(_, [a, b, c])| tr.face_of(a, b, c, &mut buf).is_none()) {
+                return Err(fail(sm, f, &format!("subface {t:?} could not be recovered (no Steiner point could be inserted for it)")));
+            }
             return Ok(stats);
         }
         if stats.segment_points + stats.facet_points > budget {
