@@ -9,6 +9,23 @@ pub const MAX_DEGREE: usize = 25;
 
 const M: usize = MAX_DEGREE + 1;
 
+/// Checks control points (finite) and their weights (as many, positive, finite); returns the
+/// weights to keep: `None` when there are none or all are equal (the spline is polynomial).
+pub fn check_points_weights(points: &[glam::DVec3], weights: Option<Vec<f64>>) -> Result<Option<Vec<f64>>, String> {
+    if let Some(w) = &weights {
+        if w.len() != points.len() {
+            return Err(format!("{} weights for {} control points", w.len(), points.len()));
+        }
+        if let Some(x) = w.iter().find(|&&x| !(x > 0.0 && x.is_finite())) {
+            return Err(format!("weight {x} is not positive"));
+        }
+    }
+    if points.iter().any(|p| !p.is_finite()) {
+        return Err("a control point is not finite".into());
+    }
+    Ok(weights.filter(|w| w.iter().any(|&x| x != w[0])))
+}
+
 /// Checks a knot vector (with repeated knots written out) for `n` control points of degree
 /// `degree`: length `n + degree + 1`, finite, non-decreasing, no knot repeated more than
 /// `degree + 1` times, and a non-empty domain `[knots[degree], knots[n]]`.

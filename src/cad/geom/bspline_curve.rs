@@ -1,7 +1,7 @@
 //! B-spline curves, polynomial or rational (STEP `B_SPLINE_CURVE_WITH_KNOTS`, and the complex
 //! instance with `RATIONAL_B_SPLINE_CURVE`), evaluated exactly by Cox–de Boor.
 
-use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, find_span, span_count};
+use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, check_points_weights, find_span, span_count};
 use super::derivs::CurveDerivs;
 use super::domain::{CurveDomain, Interval};
 use super::frame::Rigid;
@@ -24,19 +24,8 @@ impl BSplineCurve {
     /// `weights`, if given, must be positive and as many as the points.
     pub fn new(degree: usize, knots: Vec<f64>, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<BSplineCurve, String> {
         check_knots(degree, &knots, points.len())?;
-        if let Some(w) = &weights {
-            if w.len() != points.len() {
-                return Err(format!("{} weights for {} control points", w.len(), points.len()));
-            }
-            if let Some(x) = w.iter().find(|&&x| !(x > 0.0 && x.is_finite())) {
-                return Err(format!("weight {x} is not positive"));
-            }
-        }
-        if points.iter().any(|p| !p.is_finite()) {
-            return Err("a control point is not finite".into());
-        }
         // all weights equal: polynomial
-        let weights = weights.filter(|w| w.iter().any(|&x| x != w[0]));
+        let weights = check_points_weights(&points, weights)?;
         Ok(BSplineCurve { degree, knots, points, weights, samples: OnceLock::new() })
     }
 

@@ -1,7 +1,7 @@
 //! B-spline surfaces, polynomial or rational (STEP `B_SPLINE_SURFACE_WITH_KNOTS`, and the
 //! complex instance with `RATIONAL_B_SPLINE_SURFACE`), evaluated exactly by Cox–de Boor.
 
-use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, find_span};
+use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, check_points_weights, find_span};
 use super::derivs::SurfaceDerivs;
 use super::domain::{Interval, SurfaceDomain};
 use super::frame::Rigid;
@@ -41,18 +41,8 @@ impl BSplineSurface {
         }
         check_knots(degree_u, &knots_u, nu).map_err(|e| format!("u: {e}"))?;
         check_knots(degree_v, &knots_v, nv).map_err(|e| format!("v: {e}"))?;
-        if let Some(w) = &weights {
-            if w.len() != points.len() {
-                return Err(format!("{} weights for {} control points", w.len(), points.len()));
-            }
-            if let Some(x) = w.iter().find(|&&x| !(x > 0.0 && x.is_finite())) {
-                return Err(format!("weight {x} is not positive"));
-            }
-        }
-        if points.iter().any(|p| !p.is_finite()) {
-            return Err("a control point is not finite".into());
-        }
-        let weights = weights.filter(|w| w.iter().any(|&x| x != w[0]));
+        // all weights equal: polynomial
+        let weights = check_points_weights(&points, weights)?;
         Ok(BSplineSurface { degree: [degree_u, degree_v], knots_u, knots_v, nu, nv, points, weights, samples: OnceLock::new() })
     }
 

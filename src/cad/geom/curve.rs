@@ -8,7 +8,7 @@ use super::domain::{CurveDomain, Interval, unwrap_near, wrap_into};
 use super::ellipse::Ellipse;
 use super::frame::Rigid;
 use super::line::Line;
-use super::newton::refine_curve;
+use super::newton::{CurveSamples, even_samples, refine_curve, span_samples};
 use super::polyline::Polyline;
 use glam::DVec3;
 use std::fmt;
@@ -201,5 +201,21 @@ impl Curve {
             prev = q;
         }
         len
+    }
+}
+
+impl Curve {
+    /// Samples for a global start of a projection onto a surface swept from this curve:
+    /// every knot span of a B-spline, else evenly over its domain (an unbounded one limited
+    /// to `[-1e6, 1e6]` mm).
+    pub fn sweep_samples(&self) -> CurveSamples {
+        let r = self.domain().range;
+        let t = match self {
+            Curve::BSpline(b) => span_samples(b.knots(), b.degree(), b.control_points().len(), (b.degree() + 1).max(3), 512),
+            _ if r.is_bounded() => even_samples(r.min, r.max, 64),
+            _ => even_samples(r.clamp(-1e6), r.clamp(1e6), 256),
+        };
+        let p = t.iter().map(|&t| self.point(t)).collect();
+        CurveSamples { t, p }
     }
 }

@@ -4,7 +4,7 @@ use super::curve::Curve;
 use super::derivs::SurfaceDerivs;
 use super::domain::{Interval, SurfaceDomain};
 use super::frame::Rigid;
-use super::newton::{CurveSamples, even_samples, refine_surface, span_samples};
+use super::newton::{CurveSamples, refine_surface};
 use glam::{DVec2, DVec3};
 use std::sync::OnceLock;
 
@@ -46,16 +46,7 @@ impl Extrusion {
     }
 
     fn curve_samples(&self) -> &CurveSamples {
-        self.samples.get_or_init(|| {
-            let r = self.curve.domain().range;
-            let t = match &self.curve {
-                Curve::BSpline(b) => span_samples(b.knots(), b.degree(), b.control_points().len(), (b.degree() + 1).max(3), 512),
-                _ if r.is_bounded() => even_samples(r.min, r.max, 64),
-                _ => even_samples(r.clamp(-1e6), r.clamp(1e6), 256),
-            };
-            let p = t.iter().map(|&t| self.curve.point(t)).collect();
-            CurveSamples { t, p }
-        })
+        self.samples.get_or_init(|| self.curve.sweep_samples())
     }
 
     /// For each curve sample the best `v` in closed form, then Newton from the three best.
