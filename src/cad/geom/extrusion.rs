@@ -4,7 +4,7 @@ use super::curve::Curve;
 use super::derivs::SurfaceDerivs;
 use super::domain::{Interval, SurfaceDomain};
 use super::frame::Rigid;
-use super::newton::{CurveSamples, refine_surface};
+use super::newton::{CurveSamples, refine_from_best};
 use glam::{DVec2, DVec3};
 use std::sync::OnceLock;
 
@@ -53,7 +53,7 @@ impl Extrusion {
     pub fn project(&self, p: DVec3) -> DVec2 {
         let d2 = self.direction.length_squared();
         let samples = self.curve_samples();
-        let mut best: Vec<(f64, DVec2)> = samples
+        let best: Vec<(f64, DVec2)> = samples
             .t
             .iter()
             .zip(&samples.p)
@@ -62,17 +62,8 @@ impl Extrusion {
                 ((c + v * self.direction - p).length_squared(), DVec2::new(u, v))
             })
             .collect();
-        best.sort_by(|a, b| a.0.total_cmp(&b.0));
         let dom = self.domain();
-        let mut out = (f64::INFINITY, DVec2::ZERO);
-        for &(_, start) in best.iter().take(3) {
-            let r = refine_surface(|u, v| self.derivs(u, v), &dom, p, start);
-            let d = (self.point(r.x, r.y) - p).length_squared();
-            if d < out.0 {
-                out = (d, r);
-            }
-        }
-        out.1
+        refine_from_best(|u, v| self.derivs(u, v), &dom, p, best, DVec2::ZERO)
     }
 
     /// The surface moved.

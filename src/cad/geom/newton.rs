@@ -58,6 +58,22 @@ pub fn refine_curve(eval: impl Fn(f64) -> CurveDerivs, domain: &CurveDomain, tar
     }
 }
 
+/// Newton ([`refine_surface`]) from the three starts nearest to `target` (`starts` holds
+/// squared distance and `(u, v)`); the result closest to `target`, or `fallback` if there is
+/// no start.
+pub fn refine_from_best(eval: impl Fn(f64, f64) -> SurfaceDerivs, domain: &SurfaceDomain, target: DVec3, mut starts: Vec<(f64, DVec2)>, fallback: DVec2) -> DVec2 {
+    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out = (f64::INFINITY, fallback);
+    for &(_, start) in starts.iter().take(3) {
+        let r = refine_surface(&eval, domain, target, start);
+        let d = (eval(r.x, r.y).p - target).length_squared();
+        if d < out.0 {
+            out = (d, r);
+        }
+    }
+    out.1
+}
+
 /// The parameters of the point of a surface closest to `target`, by Newton's method on the
 /// gradient of the squared distance from `start` (Gauss–Newton where the Hessian is not
 /// positive definite), with step halving. Periodic parameters come back in the domain's window.

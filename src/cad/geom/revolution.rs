@@ -4,7 +4,7 @@ use super::curve::Curve;
 use super::derivs::SurfaceDerivs;
 use super::domain::{Interval, SurfaceDomain, angle_0_2pi};
 use super::frame::Rigid;
-use super::newton::{CurveSamples, refine_surface};
+use super::newton::{CurveSamples, refine_from_best};
 use glam::{DVec2, DVec3};
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
@@ -82,17 +82,8 @@ impl Revolution {
             let d = (self.origin + self.turn(u, w).0 - p).length_squared();
             best.push((d, DVec2::new(u, t)));
         }
-        best.sort_by(|a, b| a.0.total_cmp(&b.0));
         let dom = self.domain();
-        let mut out = (f64::INFINITY, DVec2::new(0.0, dom.v.min));
-        for &(_, start) in best.iter().take(3) {
-            let r = refine_surface(|u, v| self.derivs(u, v), &dom, p, start);
-            let d = (self.point(r.x, r.y) - p).length_squared();
-            if d < out.0 {
-                out = (d, r);
-            }
-        }
-        out.1
+        refine_from_best(|u, v| self.derivs(u, v), &dom, p, best, DVec2::new(0.0, dom.v.min))
     }
 
     /// The surface moved.
