@@ -4,12 +4,11 @@
 //! `cargo run --release --example tessellate_corpus [-- CHORD_RELATIVE]`
 //! (corpus: `$FEPRE_CORPUS`, else `../shared/cad_corpus`).
 
-use fepre::cad::step;
 use fepre::mesh::topology::{ReportOptions, surface_report};
-use fepre::tessellate::certificate::{CertifyOptions, certify};
-use fepre::tessellate::{TessellateOptions, tessellate};
+use fepre::pipeline::tessellate_file;
+use fepre::tessellate::TessellateOptions;
+use fepre::tessellate::certificate::CertifyOptions;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// file, OpenCASCADE volume mm^3 and area mm^2 (cadquery-ocp 8.0.1, `shared/tools/occ/ocpref.py`).
 const FILES: &[(&str, f64, f64)] = &[
@@ -45,26 +44,20 @@ fn main() {
     }
     println!("{:<28} {:>7} {:>8} {:>8} {:>6} {:>14} {:>9} {:>8} {:>7}", "file", "read s", "tess s", "tris", "closed", "volume", "err %", "area %", "failed");
     for &(name, occ, occ_area) in FILES {
-        let t0 = Instant::now();
-        let model = match step::read(&dir.join(name)) {
-            Ok(m) => m,
+        let (model, c, seconds) = match tessellate_file(&dir.join(name), &opts, None, &CertifyOptions::default()) {
+            Ok(x) => x,
             Err(e) => {
                 println!("{name}: {e}");
                 continue;
             }
         };
-        let t1 = Instant::now();
-        let t = tessellate(&model, &opts);
-        let t2 = Instant::now();
+        let (t, cert, cert_s) = (&c.tessellation, &c.certificate, seconds.certify);
         let r = surface_report(&t.surface, &ReportOptions::default().with_self_intersections(false));
-        let t3 = Instant::now();
-        let cert = certify(&model, &t, &CertifyOptions::default());
-        let cert_s = t3.elapsed().as_secs_f64();
         println!(
             "{:<28} {:>7.3} {:>8.3} {:>8} {:>6} {:>14.6} {:>9.4} {:>8.4} {:>7}",
             name,
-            (t1 - t0).as_secs_f64(),
-            (t2 - t1).as_secs_f64(),
+            seconds.read,
+            seconds.tessellate,
             t.surface.triangles.len(),
             r.closed && r.manifold && r.oriented,
             r.volume,

@@ -11,10 +11,12 @@
 //! - layer 6 [`cli`]: the command line, one file per subcommand.
 
 pub mod cad;
+pub mod attributes;
 pub mod cli;
 pub mod core;
 pub mod io;
 pub mod mesh;
 pub mod mesh3d;
+pub mod pipeline;
 pub mod quality;
 pub mod tessellate;

@@ -16,9 +16,9 @@
 mod common;
 
 use common::tools;
-use fepre::cad::step;
-use fepre::tessellate::certificate::{CertifyOptions, certify};
-use fepre::tessellate::{TessellateOptions, tessellate};
+use fepre::pipeline::tessellate_file;
+use fepre::tessellate::TessellateOptions;
+use fepre::tessellate::certificate::CertifyOptions;
 use std::collections::BTreeMap;
 use std::process::Command;
 
@@ -54,9 +54,8 @@ fn every_corpus_step_file_agrees_with_opencascade() {
             continue;
         };
         let num = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
-        let model = step::read(path).unwrap();
-        let t = tessellate(&model, &TessellateOptions::default());
-        let cert = certify(&model, &t, &CertifyOptions::default().with_self_intersections(false));
+        let (model, c, _) = tessellate_file(path, &TessellateOptions::default(), None, &CertifyOptions::default().with_self_intersections(false)).unwrap();
+        let (t, cert) = (&c.tessellation, &c.certificate);
         let (volume, area) = (cert.volume[0], cert.area[0]);
         let (occ_volume, occ_area) = (num("volume_mm3"), num("area_mm2"));
         let occ_solids = num("solids") as usize;

@@ -13,22 +13,21 @@
 
 mod common;
 
-use fepre::cad::step;
-use fepre::tessellate::certificate::{CertifyOptions, certify};
-use fepre::tessellate::{TessellateOptions, tessellate};
+use fepre::pipeline::tessellate_file;
+use fepre::tessellate::TessellateOptions;
+use fepre::tessellate::certificate::CertifyOptions;
 
 #[test]
 fn surface_models_are_reported_sewn_and_tessellated_conformingly() {
     for (name, shells, merged, free_after) in [("sewfaces.step", 2, 4, 6), ("cube_filet.stp", 1, 0, 40)] {
         let Some(path) = common::corpus_file(name) else { return };
-        let model = step::read(&path).unwrap();
+        let (model, c, _) = tessellate_file(&path, &TessellateOptions::default(), None, &CertifyOptions::default()).unwrap();
         assert_eq!(model.solids.len(), 0, "{name}");
         assert_eq!(model.surface_model_shells(), shells, "{name}");
         let sew = model.sewing.clone().expect("open shells are sewn");
         eprintln!("{name}: {sew:?}");
         assert_eq!((sew.merged_edges, sew.free_edges_after), (merged, free_after), "{name}: {sew:?}");
-        let t = tessellate(&model, &TessellateOptions::default());
-        let cert = certify(&model, &t, &CertifyOptions::default());
+        let cert = &c.certificate;
         assert!(cert.passed, "{name}: {:?}", cert.failures);
         // sewn into one group (sewfaces: its two shells share the merged arcs)
         assert_eq!(cert.shells.len(), 1, "{name}: {:?}", cert.shells.iter().map(|x| &x.brep_shells).collect::<Vec<_>>());

@@ -15,7 +15,7 @@ pub const EXAMPLES: &str = "\
 Examples:
   fepre cad-info part.step                 counts, units, surface kinds, dropped items
   fepre cad-info assembly.stp --json       the same as one JSON object
-  fepre cad-info part.step --mesh -o p.msh tessellate: closed? volume? and write the tagged surface";
+  fepre cad-info part.step --mesh          tessellate too: closed? volume? (fepre tessellate writes it, certified)";
 
 /// Arguments of `fepre cad-info`.
 #[derive(Debug, clap::Args)]
@@ -31,13 +31,9 @@ pub struct Args {
     /// Also tessellate the faces and report the surface: triangles, closed, volume.
     #[arg(long)]
     pub mesh: bool,
-    /// Chord tolerance of `--mesh`, as a fraction of the model size.
-    #[arg(long, value_name = "REL", default_value_t = 2e-4, value_parser = crate::cli::parse_fraction)]
-    pub chord: f64,
-    /// Write the tessellation (implies `--mesh`) to this mesh file (.stl .obj .msh .vtu ...;
-    /// face ids kept where the format holds tags).
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// Chord deviation of `--mesh`, as a fraction of the model size (as `fepre tessellate`).
+    #[arg(long, value_name = "REL", alias = "chord", default_value_t = 2e-4, value_parser = crate::cli::parse_fraction)]
+    pub deviation: f64,
 }
 
 /// What `--mesh` adds.
@@ -75,11 +71,9 @@ pub fn run(args: &Args) -> Result<()> {
     let t0 = Instant::now();
     let model = step::read(&args.file)?;
     let seconds = t0.elapsed().as_secs_f64();
-    let mut surface = None;
-    let mesh = (args.mesh || args.output.is_some()).then(|| {
+    let mesh = args.mesh.then(|| {
         let t1 = Instant::now();
-        let t = crate::tessellate::tessellate(&model, &crate::tessellate::TessellateOptions::default().with_chord_relative(args.chord));
-        surface = Some(t.surface.clone());
+        let t = crate::tessellate::tessellate(&model, &crate::tessellate::TessellateOptions::default().with_chord_relative(args.deviation));
         let r = crate::mesh::topology::surface_report(&t.surface, &crate::mesh::topology::ReportOptions::default().with_self_intersections(false));
         MeshInfo {
             triangles: t.surface.triangles.len(),
@@ -94,9 +88,6 @@ pub fn run(args: &Args) -> Result<()> {
             seconds: t1.elapsed().as_secs_f64(),
         }
     });
-    if let (Some(out), Some(s)) = (&args.output, surface) {
-        crate::io::write(out, &crate::io::MeshData::Surface(s), &crate::io::WriteOptions::default())?;
-    }
     let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds, mesh };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

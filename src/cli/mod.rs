@@ -8,6 +8,7 @@ pub mod delaunay;
 pub mod inspect;
 pub mod mesh;
 pub mod progress;
+pub mod run;
 pub mod tessellate;
 
 use clap::{Parser, Subcommand};
@@ -25,6 +26,7 @@ Examples:
   fepre cad-info part.step                 what fepre reads from a STEP file: counts, units, dropped items
   fepre tessellate part.step -o part.stl   certified watertight surface of a STEP file, face tags kept
   fepre mesh part.step -o part.mesh        STEP straight to quality tets (tessellated and certified first)
+  fepre run job.toml                       a job file: selectors on CAD faces, sizes per face, outputs
 
 Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
 
@@ -66,6 +68,10 @@ pub enum Command {
     /// boundary loops, volume and area against the B-rep's).
     #[command(after_help = tessellate::EXAMPLES)]
     Tessellate(tessellate::Args),
+    /// Run a job file (TOML): the input, units, selectors on CAD faces, density (sizes per
+    /// face, by distance, by curvature, in boxes), mesh options and outputs.
+    #[command(after_help = run::EXAMPLES)]
+    Run(run::Args),
 }
 
 /// Parses the arguments, runs the command and returns the process exit code.
@@ -85,6 +91,7 @@ pub fn main() -> ExitCode {
         Command::Mesh(a) => mesh::run(&a),
         Command::CadInfo(a) => cad_info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
+        Command::Run(a) => run::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -118,6 +125,12 @@ pub struct UsageError(pub String);
 /// Wraps a message as a [`UsageError`].
 pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
     anyhow::Error::new(UsageError(message.into()))
+}
+
+/// Parses a finite number `> 0`.
+pub fn positive(s: &str) -> Result<f64, String> {
+    let x: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
+    if x.is_finite() && x > 0.0 { Ok(x) } else { Err(format!("'{s}' must be a finite number > 0")) }
 }
 
 /// Parses a non-negative finite fraction (relative tolerances).

@@ -8,15 +8,16 @@
 //! 2 bad usage.
 
 use crate::cad::brep::{Dropped, EntityRef, Model, Units};
-use crate::cad::step;
 use crate::cli::usage_error;
-use crate::core::FaceId;
+use crate::core::size_field::UniformSize;
+use crate::core::{FaceId, SizeField};
 use crate::io::{self, Format, MeshData, WriteOptions};
-use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
-use crate::tessellate::{TessellateOptions, Tessellation, tessellate};
+use crate::pipeline;
+use crate::tessellate::certificate::Certificate;
+use crate::tessellate::{TessellateOptions, Tessellation};
 use anyhow::Result;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 /// Examples shown by `fepre tessellate --help`.
@@ -48,7 +49,7 @@ pub struct Args {
     pub deviation: f64,
     /// Longest triangle edge (model units, mm for STEP): edges are cut to it and faces refined
     /// to well-shaped triangles of about this size, as a volume mesher wants its boundary.
-    #[arg(long, value_name = "H", value_parser = crate::cli::mesh::positive)]
+    #[arg(long, value_name = "H", value_parser = crate::cli::positive)]
     pub max_edge: Option<f64>,
     /// Print one JSON object on standard output.
     #[arg(long)]
@@ -108,65 +109,12 @@ struct Report {
     certificate: Certificate,
 }
 
-/// The tessellation of a STEP file with its certificate: what `fepre tessellate` and
-/// `fepre mesh part.step` share.
-pub struct Certified {
-    /// The B-rep.
-    pub model: Model,
-    /// The surface.
-    pub tessellation: Tessellation,
-    /// Its certificate.
-    pub certificate: Certificate,
-    /// Seconds reading, tessellating.
-    pub seconds: [f64; 2],
-}
-
-/// Reads, tessellates and certifies `path`.
-///
-/// # Errors
-/// When the file cannot be read as STEP (the message names the line or `#id`).
-pub fn read_and_certify(path: &Path, deviation: f64) -> Result<Certified> {
-    read_and_certify_with(path, &TessellateOptions::default().with_chord_relative(deviation), None)
-}
-
-/// [`read_and_certify`] with all the tessellation's options; `max_edge_of_size`, when given,
-/// sets [`TessellateOptions::max_edge`] from the model's size (the diagonal of its box).
-pub fn read_and_certify_with(path: &Path, opts: &TessellateOptions, max_edge_of_size: Option<&dyn Fn(f64) -> f64>) -> Result<Certified> {
-    let t0 = Instant::now();
-    let model = step::read(path)?;
-    let t1 = Instant::now();
-    let mut opts = opts.clone();
-    if let Some(f) = max_edge_of_size {
-        opts = opts.with_max_edge(Some(f(model.size())));
-    }
-    let tessellation = tessellate(&model, &opts);
-    let t2 = Instant::now();
-    let certificate = certify(&model, &tessellation, &CertifyOptions::default());
-    Ok(Certified { model, tessellation, certificate, seconds: [(t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()] })
-}
-
-/// The certificate's failures as one message, naming faces and STEP ids.
-pub fn failure_message(path: &Path, c: &Certificate, dropped: &[Dropped]) -> String {
-    let mut msg = format!("{}: the tessellation fails its certificate ({} failed checks)", path.display(), c.failure_count);
-    for d in dropped.iter().take(5) {
-        msg.push_str(&format!("\n  the reader dropped {} {}: {}", d.id, d.kind, d.why));
-    }
-    for f in c.failures.iter().take(5) {
-        msg.push_str("\n  ");
-        msg.push_str(f.check);
-        if let Some(face) = f.face {
-            msg.push_str(&format!(" face {}", face.0));
-        }
-        if let Some(id) = f.step_id {
-            msg.push_str(&format!(" ({id})"));
-        }
-        msg.push_str(": ");
-        msg.push_str(&f.message);
-    }
-    if c.failure_count > 5 {
-        msg.push_str(&format!("\n  ... {} more (--json lists up to 20)", c.failure_count - 5));
-    }
-    msg
+/// What `fepre tessellate` made: the B-rep, its certified tessellation, the seconds.
+struct Certified {
+    model: Model,
+    tessellation: Tessellation,
+    certificate: Certificate,
+    seconds: [f64; 2],
 }
 
 /// Runs `fepre tessellate`.
@@ -180,14 +128,16 @@ pub fn run(args: &Args) -> Result<()> {
         return Err(usage_error(format!("{}: the surface is written as .stl, .obj, .vtu or .msh", out.display())));
     }
     let t0 = Instant::now();
-    let opts = TessellateOptions::default().with_chord_relative(args.deviation).with_max_edge(args.max_edge);
-    let c = read_and_certify_with(&args.cad, &opts, None)?;
+    let opts = TessellateOptions::default().with_chord_relative(args.deviation);
+    let size = args.max_edge.map(UniformSize);
+    let (model, c, seconds) = pipeline::tessellate_file(&args.cad, &opts, size.as_ref().map(|s| s as &dyn SizeField), &crate::tessellate::certificate::CertifyOptions::default())?;
+    let c = Certified { model, tessellation: c.tessellation, certificate: c.certificate, seconds: [seconds.read, seconds.tessellate] };
     let passed = c.certificate.passed;
     if !passed && !args.force {
         if args.json {
             println!("{}", serde_json::to_string_pretty(&report(args, &c, None, t0))?);
         }
-        anyhow::bail!("{}", failure_message(&args.cad, &c.certificate, &c.model.dropped));
+        anyhow::bail!("{}", pipeline::failure_message(&args.cad, &c.certificate, &c.model.dropped));
     }
     io::write(out, &MeshData::Surface(c.tessellation.surface.clone()), &WriteOptions::default())?;
     let r = report(args, &c, Some(out.display().to_string()), t0);
@@ -207,7 +157,7 @@ pub fn run(args: &Args) -> Result<()> {
         println!("area mm2     {:.9} (B-rep {:.9})", r.area, r.certificate.area[1]);
         println!("certificate  {}", if passed { "passed" } else { "FAILED (written with --force)" });
         if !passed {
-            println!("{}", failure_message(&args.cad, &r.certificate, &r.dropped));
+            println!("{}", pipeline::failure_message(&args.cad, &r.certificate, &r.dropped));
         }
         println!("dropped      {}", r.dropped.len());
         println!("seconds      {:.3}", r.seconds);

@@ -1,10 +1,8 @@
 //! Discretisation of B-rep edges: each edge once, shared by the faces that use it.
 
 use crate::cad::brep::{Edge, Model};
+use crate::core::SizeField;
 use glam::DVec3;
-
-/// The most pieces [`discretise`] cuts one edge into for the length bound.
-pub const MAX_PIECES: usize = 100_000;
 
 /// The points of one edge, from its start vertex to its end vertex.
 #[derive(Clone, Debug, Default)]
@@ -23,9 +21,9 @@ pub struct EdgePoints {
 /// curved face, such as a cone's generator, would otherwise make long thin triangles there:
 /// near an apex they fold over the small ones).
 ///
-/// With `max_edge`, every piece is then cut into equal parameter steps no longer than it
-/// (at most [`MAX_PIECES`] in all).
-pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_straight: f64, max_edge: Option<f64>, vertices: &mut Vec<DVec3>) -> EdgePoints {
+/// With a size field, the points are then spaced by it (see [`super::sizing`]), never
+/// farther apart than the chord and angle criteria allow.
+pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> EdgePoints {
     let (a, b) = (edge.range.min, edge.range.max);
     let Some(ci) = edge.curve.filter(|_| !edge.degenerate && a.is_finite() && b.is_finite()) else {
         // no curve or a point: the vertices only
@@ -47,18 +45,8 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
         let n = if max_straight > 0.0 { ((len / max_straight).ceil() as usize).clamp(1, 64) } else { 1 };
         ts.extend((1..=n).map(|k| if k == n { b } else { a + (b - a) * k as f64 / n as f64 }));
     }
-    if let Some(h) = max_edge {
-        let mut out = Vec::with_capacity(ts.len());
-        out.push(ts[0]);
-        for w in ts.windows(2) {
-            let (t0, t1) = (w[0], w[1]);
-            let len = curve.point(t0).distance(curve.point(t1));
-            let n = (len / h).ceil();
-            let n = if n.is_finite() && n > 1.0 { (n as usize).min(MAX_PIECES / ts.len().max(1)).max(1) } else { 1 };
-            out.extend((1..n).map(|k| t0 + (t1 - t0) * k as f64 / n as f64));
-            out.push(t1);
-        }
-        ts = out;
+    if let Some(size) = size {
+        ts = super::sizing::edge_params(&|t| curve.point(t), &ts, size);
     }
     // in the direction start -> end
     if !edge.same_sense {

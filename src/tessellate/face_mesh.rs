@@ -7,10 +7,10 @@ use super::TessellateOptions;
 use super::edge_points::EdgePoints;
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
-use crate::core::FaceId;
+use crate::core::{FaceId, SizeField};
 use glam::{DVec2, DVec3};
 use spade::handles::FixedVertexHandle;
-use spade::{AngleLimit, ConstrainedDelaunayTriangulation, HasPosition, Point2, RefinementParameters, Triangulation};
+use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 /// A vertex of the parameter-domain triangulation.
 #[derive(Clone, Copy, Debug)]
@@ -25,7 +25,7 @@ pub(super) struct V {
     pub(super) p3: DVec3,
 }
 
-/// A point spade's refinement inserts: lifted by [`lift_new`] once refinement is done.
+/// A point spade's refinement inserts: lifted by [`super::sizing::lift_new`] once refinement is done.
 impl From<Point2<f64>> for V {
     fn from(p: Point2<f64>) -> V {
         V { p, id: None, uv: DVec2::NAN, p3: DVec3::NAN }
@@ -509,7 +509,7 @@ pub struct FaceMesh {
 ///
 /// # Errors
 /// A message saying why the face could not be meshed.
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let loops = uv_loops(model, fid, edges, tol, vertices)?;
@@ -573,19 +573,10 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         }
     }
     super::refine::refine(&mut cdt, surf, tol, opts)?;
-    if let Some(h) = opts.max_edge {
-        // well-shaped triangles of about the size wanted, in the scaled parameters (lengths
-        // there are 3D lengths where the speeds are near their means); the sides are kept, as
-        // the faces around share their points. After the deviation's refinement, whose
+    if let Some(size) = size {
+        // well-shaped triangles of the local size, after the deviation's refinement, whose
         // centroids make thin triangles that this mends
-        let params = RefinementParameters::<f64>::new()
-            .with_angle_limit(AngleLimit::from_deg(25.0))
-            .keep_constraint_edges()
-            .exclude_outer_faces(true)
-            .with_max_allowed_area(0.5 * h * h)
-            .with_max_additional_vertices(MAX_QUALITY_POINTS);
-        cdt.refine(params);
-        lift_new(&mut cdt, surf, su, sv);
+        super::sizing::refine_face(&mut cdt, surf, su, sv, size);
     }
     // lift and keep the triangles inside the loops
     let mut ids: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
@@ -641,21 +632,6 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         return Err("no triangle inside the face's loops".into());
     }
     Ok(out)
-}
-
-/// Points the quality refinement for [`TessellateOptions::max_edge`] adds to one face at most.
-const MAX_QUALITY_POINTS: usize = 500_000;
-
-/// Gives the points spade's refinement inserted their `(u, v)` (the scaled position over the
-/// speeds `su`, `sv`) and their 3D point on the surface.
-fn lift_new(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surface, su: f64, sv: f64) {
-    let new: Vec<FixedVertexHandle> = cdt.vertices().filter(|v| v.data().id.is_none() && v.data().uv.is_nan()).map(|v| v.fix()).collect();
-    for h in new {
-        let d = cdt.vertex_data_mut(h);
-        let uv = DVec2::new(d.p.x / su, d.p.y / sv);
-        d.uv = uv;
-        d.p3 = surf.point(uv.x, uv.y);
-    }
 }
 
 /// Per face index (outer face included): true when an odd number of constraint edges

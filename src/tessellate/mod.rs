@@ -21,12 +21,13 @@ pub mod edge_points;
 pub mod face_mesh;
 pub mod quadrature;
 mod refine;
+mod sizing;
 
 #[cfg(test)]
 mod tests;
 
 use crate::cad::brep::{EntityRef, Model};
-use crate::core::FaceId;
+use crate::core::{FaceId, SizeField};
 use crate::mesh::TriSurface;
 use edge_points::EdgePoints;
 use glam::DVec3;
@@ -48,17 +49,11 @@ pub struct TessellateOptions {
     pub max_angle_deg: f64,
     /// Most interior grid points per face direction (default 200).
     pub max_grid: usize,
-    /// Longest triangle edge wanted, in model units (default none). With it, every edge is
-    /// cut into pieces no longer than this and every face is refined to well-shaped triangles
-    /// of about this size (angles of 25° and more away from small input angles): what a
-    /// volume mesher wants as its boundary. Without it, triangles follow the chord and angle
-    /// criteria only and may be long and thin (a tessellation for display or volume).
-    pub max_edge: Option<f64>,
 }
 
 impl Default for TessellateOptions {
     fn default() -> Self {
-        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200, max_edge: None }
+        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200 }
     }
 }
 
@@ -69,9 +64,9 @@ impl TessellateOptions {
         self
     }
 
-    /// Sets [`TessellateOptions::max_edge`] (ignored unless positive and finite).
-    pub fn with_max_edge(mut self, h: Option<f64>) -> Self {
-        self.max_edge = h.filter(|h| h.is_finite() && *h > 0.0);
+    /// Sets [`TessellateOptions::max_angle_deg`].
+    pub fn with_max_angle_deg(mut self, deg: f64) -> Self {
+        self.max_angle_deg = deg;
         self
     }
 }
@@ -113,10 +108,24 @@ pub struct Tessellation {
     pub chord: f64,
 }
 
-/// Tessellates every face of `model`.
+/// Tessellates every face of `model` by the chord and angle criteria: triangles follow the
+/// surface within the chord but may be long and thin (a tessellation for display, volume and
+/// area).
 pub fn tessellate(model: &Model, opts: &TessellateOptions) -> Tessellation {
-    let size = model.size();
-    let tol = opts.chord_relative * size;
+    tessellate_with(model, opts, None)
+}
+
+/// Tessellates every face of `model` to a size field: edges are spaced by it and faces
+/// refined to well-shaped triangles of the local size (angles of 25° and more away from small
+/// input angles), never coarser than the chord and angle criteria allow. What a volume mesher
+/// wants as its boundary.
+pub fn tessellate_sized(model: &Model, opts: &TessellateOptions, size: &dyn SizeField) -> Tessellation {
+    tessellate_with(model, opts, Some(size))
+}
+
+fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>) -> Tessellation {
+    let model_size = model.size();
+    let tol = opts.chord_relative * model_size;
     let mut vertices: Vec<DVec3> = model.vertices.iter().map(|v| v.point).collect();
     // straight edges bounding a curved face: pieces of at most sqrt(8 tol size) / 4, the
     // grid spacing of a face curved with radius size / 16
@@ -130,14 +139,14 @@ pub fn tessellate(model: &Model, opts: &TessellateOptions) -> Tessellation {
             }
         }
     }
-    let max_straight = (8.0 * tol * size).sqrt() / 4.0;
+    let max_straight = (8.0 * tol * model_size).sqrt() / 4.0;
     let edges: Vec<EdgePoints> = model
         .edges
         .iter()
         .zip(&on_curved)
         .map(|(e, &curved)| {
             let straight = if curved { max_straight } else { 0.0 };
-            edge_points::discretise(model, e, tol, opts.max_angle_deg, straight, opts.max_edge, &mut vertices)
+            edge_points::discretise(model, e, tol, opts.max_angle_deg, straight, size, &mut vertices)
         })
         .collect();
     let mut triangles = Vec::new();
@@ -147,7 +156,7 @@ pub fn tessellate(model: &Model, opts: &TessellateOptions) -> Tessellation {
     let mut domains = Vec::with_capacity(model.faces.len());
     for fid in model.face_ids() {
         let face = model.face(fid);
-        match face_mesh::mesh_face(model, fid, &edges, tol, opts, &mut vertices) {
+        match face_mesh::mesh_face(model, fid, &edges, tol, opts, size, &mut vertices) {
             Ok(fm) => {
                 let start = triangles.len();
                 face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));

@@ -147,9 +147,9 @@ fn corner_angles(p: [DVec3; 3]) -> [f64; 3] {
 }
 
 #[test]
-fn max_edge_gives_well_shaped_triangles_of_the_size() {
+fn a_size_field_gives_well_shaped_triangles_of_the_size() {
     // the bracket (planes, holes, a fillet): chord-only triangles are long and thin along the
-    // holes; with max_edge they are of the size and well shaped, and still certified
+    // holes; sized they are of the size and well shaped, and still certified
     let parts = crate::cad::parts::default_parts().unwrap();
     let (_, m) = parts.iter().find(|(n, _)| n.contains("bracket")).expect("the bracket");
     let h = m.size() / 25.0;
@@ -159,7 +159,7 @@ fn max_edge_gives_well_shaped_triangles_of_the_size() {
             / s.triangles.len() as f64
     };
     let plain = tessellate(m, &TessellateOptions::default());
-    let sized = tessellate(m, &TessellateOptions::default().with_max_edge(Some(h)));
+    let sized = super::tessellate_sized(m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(h));
     assert!(thin(&plain) > 0.05, "chord-only thin share {}", thin(&plain));
     assert!(thin(&sized) < 0.01, "sized thin share {}", thin(&sized));
     let s = &sized.surface;

@@ -44,8 +44,6 @@ pub struct MeshOptions {
     pub max_radius_edge: f64,
     /// Minimum dihedral angle (degrees) the optimisation aims for.
     pub min_dihedral: f64,
-    /// Largest edge length wanted anywhere (on top of the size field), if any.
-    pub max_size: Option<f64>,
     /// Keep the input surface exactly: no Steiner point stays on it.
     pub keep_surface: bool,
     /// Seed of the randomised insertion order (the result does not depend on it).
@@ -54,7 +52,7 @@ pub struct MeshOptions {
     pub optimize: bool,
     /// Without `keep_surface`: cut the surface to the size before meshing (default). Turn it
     /// off for a surface already made of well-shaped triangles of the size wanted (a
-    /// tessellation with [`crate::tessellate::TessellateOptions::max_edge`]): the points that
+    /// tessellation by [`crate::tessellate::tessellate_sized`]): the points that
     /// boundary recovery puts on it are then merged back where they can be, as with
     /// `keep_surface`, and the others stay (their triangles inherit their tags).
     pub presize: bool,
@@ -62,7 +60,7 @@ pub struct MeshOptions {
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, max_size: None, keep_surface: false, seed: 0x5eed, optimize: true, presize: true }
+        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, keep_surface: false, seed: 0x5eed, optimize: true, presize: true }
     }
 }
 
@@ -75,11 +73,6 @@ impl MeshOptions {
     /// Sets [`MeshOptions::min_dihedral`].
     pub fn with_min_dihedral(mut self, d: f64) -> Self {
         self.min_dihedral = d;
-        self
-    }
-    /// Sets [`MeshOptions::max_size`].
-    pub fn with_max_size(mut self, h: Option<f64>) -> Self {
-        self.max_size = h;
         self
     }
     /// Sets [`MeshOptions::optimize`].
@@ -230,10 +223,7 @@ pub fn mesh_surface(
     let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
     if !options.keep_surface && options.presize {
         // the boundary may change: cut it to the size, and its thin triangles into better ones
-        let h = |p: DVec3| {
-            let s = size.size_at(p).min(options.max_size.unwrap_or(f64::INFINITY));
-            if s > 0.0 { s } else { f64::INFINITY }
-        };
+        let h = |p: DVec3| size.size_at(p);
         let scale = feature_scale(surface, options.seed);
         sm.presize(&mut points, &h, &scale);
         stage("presize", &mut clock);
@@ -250,11 +240,22 @@ pub fn mesh_surface(
     // a tenth of the shortest boundary edge: the smallest tet refinement splits
     let r_min = 0.1 * sm.all_subsegments().map(|(_, [a, b])| tr.point(a).distance(tr.point(b))).fold(f64::INFINITY, f64::min);
     // a budget of points: four times the boundary's for quality, plus what the size asks for
+    // (the tets of the size in the box, summed over an 8^3 grid of cells)
     let max_points = {
         let (lo, hi) = surface.vertices.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
-        let d = hi - lo;
-        let h = size.size_at((lo + hi) * 0.5).min(options.max_size.unwrap_or(f64::INFINITY));
-        let by_size = if h.is_finite() && h > 0.0 { 3.0 * d.x * d.y * d.z / (0.118 * h * h * h) / 5.0 } else { 0.0 };
+        let cell = (hi - lo) / 8.0;
+        let mut by_size = 0.0;
+        for i in 0..8 {
+            for j in 0..8 {
+                for k in 0..8 {
+                    let c = lo + cell * DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5);
+                    let h = size.size_at(c);
+                    if h.is_finite() && h > 0.0 {
+                        by_size += 3.0 * cell.x * cell.y * cell.z / (0.118 * h * h * h) / 5.0;
+                    }
+                }
+            }
+        }
         4 * tr.num_points() + 10_000 + by_size.min(5e7) as usize
     };
     let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points)?;

@@ -9,7 +9,7 @@
 //! instead: above each of its walls at the height of a well-shaped tet, and half-way from
 //! its centroid to the centre. New tets inherit the region of the tet they replace.
 
-use crate::core::SizeField;
+use crate::core::{RegionId, SizeField};
 use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::recover::circumcenter;
 use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
@@ -96,16 +96,13 @@ fn inside_candidates(tr: &Tetra, t: u32, wall: Option<(u32, usize)>) -> Vec<DVec
 }
 
 /// The priority of tet `t` if it is bad.
-fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions, r_min: f64) -> Option<u64> {
+fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions, r_min: f64, region: RegionId) -> Option<u64> {
     let (c, r, lmin) = tet_sphere(tr, t);
     if !r.is_finite() || lmin <= 0.0 || r <= r_min {
         return None;
     }
     let ratio = r / lmin;
-    let mut h = size.size_at(c);
-    if let Some(m) = opts.max_size {
-        h = h.min(m);
-    }
+    let h = size.size_in(c, region);
     let too_big = h.is_finite() && h > 0.0 && r > 0.75 * h;
     if ratio > opts.max_radius_edge || too_big {
         // worst ratio first; size-driven splits after quality ones of equal ratio
@@ -173,11 +170,16 @@ pub(crate) fn refine(
     max_points: usize,
 ) -> Result<Refined, MeshingError> {
     let mut out = Refined::default();
-    let badness = |tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions| badness(tr, t, size, opts, r_min);
+    // the region's tag for a label (labels are 1-based)
+    let tags = labels.tags.clone();
+    let badness = |tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions, label: u32| {
+        let region = label.checked_sub(1).and_then(|k| tags.get(k as usize)).copied().unwrap_or_default();
+        badness(tr, t, size, opts, r_min, region)
+    };
     let mut heap = BinaryHeap::new();
     for t in tr.live().collect::<Vec<_>>() {
         if labels.get(t) != 0 {
-            if let Some(q) = badness(tr, t, size, opts) {
+            if let Some(q) = badness(tr, t, size, opts, labels.get(t)) {
                 heap.push(Bad(q, t, tr.tets[t as usize].v));
             }
         }
@@ -194,7 +196,7 @@ pub(crate) fn refine(
             out.stopped = true;
             break;
         }
-        let Some(_) = badness(tr, t, size, opts) else { continue };
+        let Some(_) = badness(tr, t, size, opts, labels.get(t)) else { continue };
         let (c, _, _) = tet_sphere(tr, t);
         let p = tr.add_point(c);
         tr.created.clear();
@@ -206,7 +208,7 @@ pub(crate) fn refine(
                 let region = labels.get(t);
                 for s in tr.created.drain(..).collect::<Vec<_>>() {
                     labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
-                    if let Some(q) = badness(tr, s, size, opts) {
+                    if let Some(q) = badness(tr, s, size, opts, region) {
                         heap.push(Bad(q, s, tr.tets[s as usize].v));
                     }
                 }
@@ -231,7 +233,7 @@ pub(crate) fn refine(
                     if let Inserted::Yes(_) = res {
                         for s in tr.created.drain(..).collect::<Vec<_>>() {
                             labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
-                            if let Some(q) = badness(tr, s, size, opts) {
+                            if let Some(q) = badness(tr, s, size, opts, region) {
                                 heap.push(Bad(q, s, tr.tets[s as usize].v));
                             }
                         }

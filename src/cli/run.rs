@@ -1,0 +1,98 @@
+//! `fepre run job.toml`: runs a job file through [`crate::pipeline`] and prints what it did.
+
+use crate::pipeline::job::JobFile;
+use crate::pipeline::run::{RunReport, run_job};
+use anyhow::Result;
+use std::path::PathBuf;
+
+/// Examples shown by `fepre run --help`.
+pub const EXAMPLES: &str = "\
+Examples:
+  fepre run cad_fixtures/bracket.toml          the bracket with half the size on its holes
+  fepre run job.toml --check                   check the job and print what each selector selects; mesh nothing
+  fepre run job.toml --json                    one JSON report (faces, selectors, sizes, quality, outputs)
+
+A job file (every key in docs/job-file.md):
+  units = \"mm\"
+  [input]
+  file = \"bracket.step\"                        # relative to the job file
+  [selectors]
+  holes = { name = \"hole_*\" }                  # also: faces, colour, step_id, solid, plane, cylinder,
+                                               # inside, nearest, largest, smallest, union, intersection, difference
+  [density]
+  size = 4.5                                   # global; grading, min, max, curvature, deviation
+  face = [{ faces = \"holes\", size = 2.25 }]    # also: distance, point, box
+  [mesh]
+  method = \"delaunay\"                          # max_radius_edge, min_dihedral, keep_surface
+  [[output]]
+  file = \"bracket.msh\"                         # .msh .vtu .mesh .ele (tets), .stl .obj (surface), .json (report)
+
+Errors in the job name the key with its line and column; nothing is written then.";
+
+/// Arguments of `fepre run`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The job file (TOML).
+    pub job: PathBuf,
+    /// Check the job and print what each selector selects; mesh and write nothing.
+    #[arg(long)]
+    pub check: bool,
+    /// Print one JSON object on standard output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `fepre run`.
+///
+/// # Errors
+/// A job error (naming the key and line), an unreadable input, a selector that selects
+/// nothing, a failed certificate, a mesher error, a requirement not met: exit 1.
+pub fn run(args: &Args) -> Result<()> {
+    let progress = crate::cli::progress::Progress::start(&format!("running {}", args.job.display()));
+    let jf = JobFile::read(&args.job)?;
+    let report = run_job(&jf, args.check)?;
+    progress.finish();
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print(&report, args.check);
+    }
+    Ok(())
+}
+
+fn print(r: &RunReport, check: bool) {
+    println!("input            {}", r.input);
+    println!("faces            {}", r.faces.len());
+    for (name, faces) in &r.selectors {
+        let names: Vec<String> = faces
+            .iter()
+            .map(|f| match r.faces.iter().find(|x| x.id == *f).and_then(|x| x.name.clone()) {
+                Some(n) => format!("{} ({n})", f.0),
+                None => f.0.to_string(),
+            })
+            .collect();
+        println!("selector         {name}: {} faces: {}", faces.len(), names.join(", "));
+    }
+    println!("size             {:.4} (global)", r.global_size);
+    if check {
+        println!("check            the job is valid; nothing meshed or written");
+        return;
+    }
+    if let Some(m) = &r.mesh {
+        println!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
+        println!("nodes            {}", m.nodes);
+        println!("tets             {}", m.tets);
+        println!("volume           {:.9}", m.volume);
+        println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg);
+        println!("max radius-edge  {:.3}", m.max_radius_edge);
+        if m.refinement_stopped {
+            println!("warning          refinement stopped at its point budget (small input angles)");
+        }
+        if m.tets_under_1_deg > 0 {
+            println!("warning          {} tets have a dihedral angle under 1°; [require] min_dihedral makes this an error", m.tets_under_1_deg);
+        }
+    }
+    for o in &r.outputs {
+        println!("wrote            {o}");
+    }
+}

@@ -1,0 +1,419 @@
+//! Job files: one TOML file names the input, the units, the selectors, the density, the
+//! mesh method and options, and the outputs (every key is described in `docs/job-file.md`).
+//!
+//! ```toml
+//! units = "mm"
+//! [input]
+//! file = "bracket.step"
+//! [selectors]
+//! holes = { name = "hole_*" }
+//! [density]
+//! size = 4.5
+//! face = [{ faces = "holes", size = 2.25 }]
+//! [mesh]
+//! method = "delaunay"
+//! [[output]]
+//! file = "bracket.msh"
+//! ```
+//!
+//! Unknown keys, wrong types and bad values are errors naming the key with its line and
+//! column ([`PipelineError::Job`]); paths are relative to the job file's folder.
+
+use super::PipelineError;
+use crate::attributes::values::Positive;
+use crate::attributes::{Density, SelectError, Selector};
+use crate::mesh3d::mesher::MeshOptions;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// A job, as read from its file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Job {
+    /// Unit of every length in the job (sizes, points, boxes, offsets, radii); default `mm`.
+    #[serde(default)]
+    pub units: LengthUnit,
+    /// What to read.
+    pub input: Input,
+    /// Named selectors.
+    #[serde(default)]
+    pub selectors: BTreeMap<String, Spanned<Selector>>,
+    /// The mesh size.
+    #[serde(default)]
+    pub density: Density,
+    /// The volume mesh.
+    #[serde(default)]
+    pub mesh: MeshSection,
+    /// What the result must reach, or the run fails.
+    #[serde(default)]
+    pub require: Require,
+    /// What to write.
+    #[serde(default)]
+    pub output: Vec<Output>,
+}
+
+/// A length unit.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LengthUnit {
+    /// Millimetres (the unit of fepre's B-rep).
+    #[default]
+    Mm,
+    /// Centimetres.
+    Cm,
+    /// Metres.
+    M,
+    /// Inches.
+    #[serde(alias = "in")]
+    Inch,
+}
+
+impl LengthUnit {
+    /// Millimetres per unit.
+    pub fn to_mm(self) -> f64 {
+        match self {
+            LengthUnit::Mm => 1.0,
+            LengthUnit::Cm => 10.0,
+            LengthUnit::M => 1000.0,
+            LengthUnit::Inch => 25.4,
+        }
+    }
+}
+
+/// `[input]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Input {
+    /// The part: a STEP file or a surface mesh.
+    pub file: Spanned<PathBuf>,
+    /// The length unit of a mesh file's coordinates (default: the job's `units`); STEP files
+    /// carry their own.
+    pub units: Option<LengthUnit>,
+}
+
+/// The volume meshing method.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Delaunay refinement with boundary recovery and optimisation.
+    #[default]
+    Delaunay,
+    /// Octree (isosurface stuffing): not built yet.
+    Octree,
+}
+
+/// `[mesh]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSection {
+    /// The method (default `delaunay`).
+    pub method: Option<Spanned<Method>>,
+    /// See [`MeshOptions::max_radius_edge`] (at least 1.1; default 1.5).
+    pub max_radius_edge: Option<Spanned<f64>>,
+    /// See [`MeshOptions::min_dihedral`] (0 to 35; default 18).
+    pub min_dihedral: Option<Spanned<f64>>,
+    /// See [`MeshOptions::keep_surface`].
+    #[serde(default)]
+    pub keep_surface: bool,
+    /// See [`MeshOptions::optimize`] (default true).
+    pub optimize: Option<bool>,
+}
+
+/// `[require]`: what the result must reach; a run that falls short fails and writes nothing.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Require {
+    /// Smallest dihedral angle of every tet, degrees.
+    pub min_dihedral: Option<f64>,
+    /// Largest radius-edge ratio of every tet.
+    pub max_radius_edge: Option<Positive>,
+}
+
+/// What an `[[output]]` writes.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OutputKind {
+    /// The tet mesh (`.msh`, `.vtu`, `.mesh`, `.ele`).
+    Mesh,
+    /// The surface meshed (`.stl`, `.obj`, `.off`, `.msh`, `.vtu`).
+    Surface,
+    /// The JSON report of the run.
+    Report,
+}
+
+/// `[[output]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Output {
+    /// The file (relative to the job file's folder); its extension picks the format.
+    pub file: Spanned<PathBuf>,
+    /// What to write (default: a report for `.json`, the surface for `.stl`/`.obj`/`.off`,
+    /// the tet mesh otherwise).
+    pub kind: Option<OutputKind>,
+}
+
+impl Output {
+    /// What this output writes.
+    pub fn kind(&self) -> OutputKind {
+        self.kind.unwrap_or_else(|| {
+            let ext = self.file.get_ref().extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+            match ext.as_str() {
+                "json" => OutputKind::Report,
+                "stl" | "obj" | "off" => OutputKind::Surface,
+                _ => OutputKind::Mesh,
+            }
+        })
+    }
+}
+
+/// A job file read and checked: the job, its text (for messages) and its folder.
+#[derive(Debug)]
+pub struct JobFile {
+    /// The job.
+    pub job: Job,
+    /// The file.
+    pub path: PathBuf,
+    /// Its text.
+    pub text: String,
+}
+
+impl JobFile {
+    /// Reads and checks a job file.
+    ///
+    /// # Errors
+    /// [`PipelineError::Job`] naming the key, line and column: a syntax error, an unknown key,
+    /// a wrong type, a bad value.
+    pub fn read(path: &Path) -> Result<JobFile, PipelineError> {
+        let text = std::fs::read_to_string(path).map_err(|e| PipelineError::Job { path: path.to_path_buf(), line: 0, column: 0, message: format!("cannot read: {e}") })?;
+        JobFile::parse(path, text)
+    }
+
+    /// Checks the text of a job file (`path` is used for messages and relative paths).
+    ///
+    /// # Errors
+    /// As [`JobFile::read`].
+    pub fn parse(path: &Path, text: String) -> Result<JobFile, PipelineError> {
+        let job: Job = match toml::from_str(&text) {
+            Ok(j) => j,
+            Err(e) => {
+                let span = e.span().unwrap_or(0..0);
+                let key = key_at(&text, span.start);
+                let message = match key {
+                    Some(k) if !e.message().contains(&format!("`{k}`")) => format!("key `{k}`: {}", e.message().trim()),
+                    _ => e.message().trim().to_string(),
+                };
+                return Err(error_at(path, &text, span.start, message));
+            }
+        };
+        let jf = JobFile { job, path: path.to_path_buf(), text };
+        jf.check_values()?;
+        Ok(jf)
+    }
+
+    fn check_values(&self) -> Result<(), PipelineError> {
+        let m = &self.job.mesh;
+        if let Some(method) = m.method.as_ref().filter(|x| *x.get_ref() == Method::Octree) {
+            return Err(self.error_at(method.span().start, "key `method`: \"octree\" is not built yet; use \"delaunay\"".into()));
+        }
+        if let Some(r) = &m.max_radius_edge {
+            if !(r.get_ref().is_finite() && *r.get_ref() >= 1.1) {
+                return Err(self.error_at(r.span().start, format!("key `max_radius_edge`: {} is below 1.1: no tetrahedral mesh reaches it", r.get_ref())));
+            }
+        }
+        if let Some(d) = &m.min_dihedral {
+            if !(d.get_ref().is_finite() && (0.0..=35.0).contains(d.get_ref())) {
+                return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35]", d.get_ref())));
+            }
+        }
+        for o in &self.job.output {
+            let kind = o.kind();
+            let ext = crate::io::Format::from_path(o.file.get_ref());
+            use crate::io::Format as F;
+            let ok = match kind {
+                OutputKind::Report => o.file.get_ref().extension().is_some_and(|e| e.eq_ignore_ascii_case("json")),
+                OutputKind::Mesh => matches!(ext, Some(F::Medit | F::TetGen | F::Vtu | F::Msh)),
+                OutputKind::Surface => matches!(ext, Some(F::Stl | F::Obj | F::Off | F::Vtu | F::Msh)),
+            };
+            if !ok {
+                return Err(self.error_at(o.file.span().start, format!("key `file`: {} cannot hold a {kind:?} (mesh: .msh .vtu .mesh .ele; surface: .stl .obj .off .msh .vtu; report: .json)", o.file.get_ref().display()).to_lowercase()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The job file's folder (relative paths start there).
+    pub fn folder(&self) -> PathBuf {
+        self.path.parent().map(Path::to_path_buf).unwrap_or_default()
+    }
+
+    /// `p` relative to the job file's folder.
+    pub fn resolve(&self, p: &Path) -> PathBuf {
+        if p.is_absolute() { p.to_path_buf() } else { self.folder().join(p) }
+    }
+
+    /// The selectors without their spans.
+    pub fn selectors(&self) -> BTreeMap<String, Selector> {
+        self.job.selectors.iter().map(|(k, v)| (k.clone(), v.get_ref().clone())).collect()
+    }
+
+    /// [`MeshOptions`] of the `[mesh]` section.
+    pub fn mesh_options(&self) -> MeshOptions {
+        let m = &self.job.mesh;
+        let mut o = MeshOptions::default().with_keep_surface(m.keep_surface);
+        if let Some(r) = &m.max_radius_edge {
+            o = o.with_max_radius_edge(*r.get_ref());
+        }
+        if let Some(d) = &m.min_dihedral {
+            o = o.with_min_dihedral(*d.get_ref());
+        }
+        if let Some(on) = m.optimize {
+            o = o.with_optimize(on);
+        }
+        o
+    }
+
+    /// A job error at byte `offset` of the file.
+    pub fn error_at(&self, offset: usize, message: String) -> PipelineError {
+        error_at(&self.path, &self.text, offset, message)
+    }
+
+    /// A selector error, placed at the selector it names (or, for a name that is not
+    /// defined, where the name is used).
+    pub fn select_error(&self, e: &SelectError) -> PipelineError {
+        let at = match e {
+            SelectError::Unknown { missing, .. } => find_quoted(&self.text, missing),
+            SelectError::Empty(n) | SelectError::Cycle(n, _) | SelectError::Invalid { name: n, .. } => self.job.selectors.get(n).map(|s| s.span().start).or_else(|| find_quoted(&self.text, n)),
+        };
+        match at {
+            Some(o) => self.error_at(o, e.to_string()),
+            None => PipelineError::Job { path: self.path.clone(), line: 0, column: 0, message: e.to_string() },
+        }
+    }
+}
+
+/// 1-based line and column of byte `offset` in `text`.
+pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..floor_boundary(text, offset)];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
+fn error_at(path: &Path, text: &str, offset: usize, message: String) -> PipelineError {
+    let (line, column) = line_column(text, offset);
+    PipelineError::Job { path: path.to_path_buf(), line, column, message }
+}
+
+/// The key whose value starts at or before `offset` on its line (`size` in `size = -1`, the
+/// last `key =` before the offset in an inline table).
+fn key_at(text: &str, offset: usize) -> Option<String> {
+    let offset = floor_boundary(text, offset);
+    let start = text[..offset].rfind('\n').map_or(0, |k| k + 1);
+    let end = text[offset..].find('\n').map_or(text.len(), |k| offset + k);
+    let line = &text[start..end];
+    let upto = &line[..offset - start];
+    // the last `=` before the offset, or on the line when the offset is at the key itself
+    let eq = upto.rfind('=').or_else(|| line.find('='))?;
+    let head = &line[..eq];
+    let key = head.rsplit(|c: char| c == '{' || c == ',' || c == '[').next()?.trim();
+    let key = key.trim_matches('"');
+    (!key.is_empty() && key.chars().all(|c| c.is_alphanumeric() || "_-.\"".contains(c))).then(|| key.to_string())
+}
+
+/// The largest char boundary of `text` at or below `offset`.
+fn floor_boundary(text: &str, offset: usize) -> usize {
+    let mut o = offset.min(text.len());
+    while !text.is_char_boundary(o) {
+        o -= 1;
+    }
+    o
+}
+
+/// The byte offset of `"name"` (or `'name'`) in `text`.
+fn find_quoted(text: &str, name: &str) -> Option<usize> {
+    text.find(&format!("\"{name}\"")).or_else(|| text.find(&format!("'{name}'")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(s: &str) -> Result<JobFile, PipelineError> {
+        JobFile::parse(Path::new("job.toml"), s.to_string())
+    }
+
+    fn err(s: &str) -> (usize, String) {
+        match parse(s) {
+            Err(PipelineError::Job { line, message, .. }) => (line, message),
+            other => panic!("expected a job error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_full_job_reads() {
+        let j = parse(
+            r#"
+units = "mm"
+[input]
+file = "part.step"
+[selectors]
+holes = { name = "hole_*" }
+top = { plane = { normal = [0, 0, 1], offset = 8 } }
+both = { union = ["holes", "top"] }
+[density]
+size = 4
+grading = 1.3
+face = [{ faces = "holes", size = 2 }]
+distance = [{ faces = "top", size = 1, growth = 0.2, max = 3 }]
+box = [{ min = [0, 0, 0], max = [1, 1, 1], size = 0.5 }]
+point = [{ at = [1, 2, 3], size = 0.5, radius = 1 }]
+[mesh]
+method = "delaunay"
+min_dihedral = 15
+[[output]]
+file = "part.msh"
+[[output]]
+file = "part.json"
+"#,
+        )
+        .unwrap();
+        assert_eq!(j.job.selectors.len(), 3);
+        assert_eq!(j.job.density.face.len(), 1);
+        assert_eq!(j.job.output[1].kind(), OutputKind::Report);
+        assert_eq!(j.mesh_options().min_dihedral, 15.0);
+    }
+
+    #[test]
+    fn errors_name_the_key_and_its_line() {
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[density]\nsise = 3\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("sise"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[density]\nsize = \"big\"\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("size"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[density]\nsize = -1\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("size") && m.contains("> 0"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[density]\nbox = [{ min = [0, 0, 2], max = [1, 1, 1], size = 1 }]\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("above max"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[selectors]\nx = { nam = \"a\" }\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("nam"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[mesh]\nmax_radius_edge = 0.5\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("max_radius_edge"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[[output]]\nfile = \"a.stl\"\nkind = \"mesh\"\n");
+        assert_eq!(line, 4, "{m}");
+        let (_, m) = err("[density]\nsize = 1\n");
+        assert!(m.contains("input"), "{m}");
+    }
+
+    #[test]
+    fn line_and_column_count_from_one() {
+        assert_eq!(line_column("ab\ncd", 0), (1, 1));
+        assert_eq!(line_column("ab\ncd", 4), (2, 2));
+    }
+}

@@ -1,0 +1,24 @@
+//! Layer 6: the pipeline as a library. Typed stages, after the lecture's "FE analysis in a
+//! CAD environment" figure: read ([`Part::open`]: a STEP part or a surface mesh) → selectors
+//! and density ([`Part::density_field`]) → tessellate and certify ([`Part::tessellate`], CAD
+//! parts) → mesh ([`Part::mesh`]) → write ([`Part::write`]); later the FE model and decks.
+//! [`Part`] keeps the B-rep, the certified surface, the certificate, the mesh and every
+//! report. Job files ([`job`]) describe a run in TOML; [`run::run_job`] carries one out.
+//!
+//! `cli/` parses arguments, calls this and prints: no meshing decision is made there.
+//!
+//! ```no_run
+//! use fepre::pipeline::{Part, run::{Plan, run_plan}};
+//! let mut part = Part::open("part.step".as_ref())?;
+//! let report = run_plan(&mut part, &Plan { unit: 1.0, ..Plan::default() }, false)?;
+//! part.write("part.msh".as_ref())?;
+//! # Ok::<(), fepre::pipeline::PipelineError>(())
+//! ```
+
+mod error;
+pub mod job;
+pub mod part;
+pub mod run;
+
+pub use error::PipelineError;
+pub use part::{Certified, Part, failure_message, tessellate_file};

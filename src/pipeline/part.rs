@@ -1,0 +1,324 @@
+//! A part going through the pipeline: what was read (a B-rep or a tagged surface), its face
+//! catalogue, the certified tessellation, the tet mesh, and every stage's report.
+
+use super::PipelineError;
+use crate::attributes::density::RegionSizes;
+use crate::attributes::{Density, DensityField, FaceCatalogue, FaceInfo, Selection, Selector};
+use crate::cad::brep::{Dropped, Model};
+use crate::cad::step;
+use crate::core::{RegionId, SizeField};
+use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
+use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh3d::mesher::{MeshOptions, MeshReport, RegionSeed, Seeds, mesh_surface};
+use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
+use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use std::time::Instant;
+
+/// Without a size, a CAD part's elements are about its diagonal over this.
+pub const DEFAULT_DIVISIONS: f64 = 25.0;
+
+/// The largest chord deviation (a fraction of the diagonal) of the tessellation a CAD part is
+/// meshed from, where the job gives none: the size governs, this bounds how far the boundary
+/// leaves the CAD surface where the size is coarse for a curved face. See
+/// [`Part::mesh_deviation`].
+pub const MESH_DEVIATION: f64 = 1e-3;
+
+/// The smallest default chord deviation, a fraction of the diagonal (the tessellator's own
+/// default).
+pub const MESH_DEVIATION_MIN: f64 = 2e-4;
+
+/// The volume error the default deviation allows, a fraction of the part's volume.
+pub const MESH_VOLUME_ERROR: f64 = 2e-3;
+
+/// The largest turn of an edge's tangent along one segment, degrees, in a tessellation to a
+/// size: at least 8 segments on a full circle, as Gmsh puts at least 7 (`MinimumCirclePoints`).
+pub const MESH_MAX_ANGLE_DEG: f64 = 45.0;
+
+/// The chord deviation of the geometry tessellation selectors and distances use.
+const CATALOGUE_DEVIATION: f64 = 1e-3;
+
+/// Seconds spent per stage.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct StageSeconds {
+    /// Reading the file.
+    pub read: f64,
+    /// Tessellating a CAD part.
+    pub tessellate: f64,
+    /// Certifying the tessellation.
+    pub certify: f64,
+    /// Volume meshing.
+    pub mesh: f64,
+}
+
+/// A tessellation of a B-rep and its certificate.
+#[derive(Clone, Debug)]
+pub struct Certified {
+    /// The surface and each face's domain.
+    pub tessellation: Tessellation,
+    /// Its checks.
+    pub certificate: Certificate,
+}
+
+/// One part and what the pipeline made of it.
+#[derive(Debug)]
+pub struct Part {
+    /// The file it was read from.
+    pub path: PathBuf,
+    /// The B-rep of a CAD part (names, colours, STEP `#id`s, surface kinds).
+    pub model: Option<Model>,
+    /// The surface to mesh: as read, or the certified tessellation of a CAD part.
+    pub surface: Option<TriSurface>,
+    /// Holes and region seeds (from a `.poly` file).
+    pub seeds: Seeds,
+    /// Region sizes (from the maximum tet volumes of a `.poly` file's regions).
+    pub region_sizes: Vec<(RegionId, f64)>,
+    /// The certified tessellation of a CAD part.
+    pub certified: Option<Certified>,
+    /// The tet mesh.
+    pub mesh: Option<TetMesh>,
+    /// What the mesher did.
+    pub mesh_report: Option<MeshReport>,
+    /// Seconds per stage.
+    pub seconds: StageSeconds,
+    catalogue: OnceLock<FaceCatalogue>,
+}
+
+/// True for a `.step` or `.stp` path (any case).
+pub fn is_step(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
+}
+
+impl Part {
+    /// Reads a STEP part or a surface mesh (STL, OBJ, glTF, OFF, Medit, TetGen `.poly`/`.smesh`,
+    /// MSH).
+    ///
+    /// # Errors
+    /// The file cannot be read (the error names the line or entity), or holds no surface.
+    pub fn open(path: &Path) -> Result<Part, PipelineError> {
+        let t0 = Instant::now();
+        let mut part = if is_step(path) {
+            Part::from_model(path, step::read(path)?)
+        } else {
+            let loaded = io::read(path, &ReadOptions::default())?;
+            let surface = match loaded.mesh {
+                MeshData::Surface(s) => s,
+                other => return Err(PipelineError::NotASurface { path: path.to_path_buf(), kind: other.kind() }),
+            };
+            let mut part = Part::from_surface(path, surface);
+            part.seeds = Seeds {
+                holes: loaded.seeds.holes.clone(),
+                regions: loaded.seeds.regions.iter().map(|&(point, tag, _)| RegionSeed { point, tag }).collect(),
+            };
+            // a regular tet of volume V has edges (6 sqrt(2) V)^(1/3)
+            part.region_sizes = loaded.seeds.regions.iter().filter_map(|&(_, tag, v)| v.filter(|v| *v > 0.0 && v.is_finite()).map(|v| (tag, (6.0 * 2f64.sqrt() * v).cbrt()))).collect();
+            part
+        };
+        part.seconds.read = t0.elapsed().as_secs_f64();
+        Ok(part)
+    }
+
+    /// A part from a B-rep model (built in code, or read elsewhere).
+    pub fn from_model(path: &Path, model: Model) -> Part {
+        Part { model: Some(model), surface: None, ..Part::empty(path) }
+    }
+
+    /// A part from a tagged surface.
+    pub fn from_surface(path: &Path, surface: TriSurface) -> Part {
+        Part { surface: Some(surface), ..Part::empty(path) }
+    }
+
+    fn empty(path: &Path) -> Part {
+        Part {
+            path: path.to_path_buf(),
+            model: None,
+            surface: None,
+            seeds: Seeds::default(),
+            region_sizes: Vec::new(),
+            certified: None,
+            mesh: None,
+            mesh_report: None,
+            seconds: StageSeconds::default(),
+            catalogue: OnceLock::new(),
+        }
+    }
+
+    /// True for a B-rep part.
+    pub fn is_cad(&self) -> bool {
+        self.model.is_some()
+    }
+
+    /// The diagonal of the part's box.
+    pub fn diagonal(&self) -> f64 {
+        match (&self.model, &self.surface) {
+            (Some(m), _) => m.size(),
+            (None, Some(s)) if s.bbox().diagonal() > 0.0 => s.bbox().diagonal(),
+            _ => 1.0,
+        }
+    }
+
+    /// The global size where the job gives none: a CAD part's diagonal over
+    /// [`DEFAULT_DIVISIONS`]; for a surface mesh the diagonal itself (no size: as coarse as
+    /// quality allows).
+    pub fn default_size(&self) -> f64 {
+        if self.is_cad() { self.diagonal() / DEFAULT_DIVISIONS } else { self.diagonal() }
+    }
+
+    /// The default chord deviation of a CAD part's tessellation for meshing, a fraction of
+    /// its diagonal: the inscribed tessellation loses about `(2/3) δ A_c` of volume (`A_c` the
+    /// curved area), so `δ` is what keeps that under [`MESH_VOLUME_ERROR`] of the volume,
+    /// between [`MESH_DEVIATION_MIN`] and [`MESH_DEVIATION`].
+    pub fn mesh_deviation(&self) -> f64 {
+        let cat = self.catalogue();
+        let curved: f64 = cat.faces.iter().filter(|f| !matches!(f.shape, crate::attributes::FaceShape::Plane { .. })).map(|f| f.area).sum();
+        let volume = cat.volume();
+        let by_volume = if curved > 0.0 { 1.5 * MESH_VOLUME_ERROR * volume / curved / self.diagonal() } else { MESH_DEVIATION };
+        by_volume.clamp(MESH_DEVIATION_MIN, MESH_DEVIATION)
+    }
+
+    /// What selectors and sizes know of each face (built on first use; for a CAD part from a
+    /// tessellation of its B-rep).
+    pub fn catalogue(&self) -> &FaceCatalogue {
+        self.catalogue.get_or_init(|| match (&self.model, &self.surface) {
+            (Some(m), _) => FaceCatalogue::from_model(m, &tessellate(m, &TessellateOptions::default().with_chord_relative(CATALOGUE_DEVIATION))),
+            (None, Some(s)) => FaceCatalogue::from_surface(s),
+            _ => FaceCatalogue::default(),
+        })
+    }
+
+    /// The faces: id, unique name, colour, STEP `#id`, solid, surface (for reports).
+    pub fn face_table(&self) -> Vec<FaceInfo> {
+        self.catalogue().faces.clone()
+    }
+
+    /// The size field of `density` on this part, its lengths times `unit`.
+    ///
+    /// # Errors
+    /// A selector that fails or selects nothing; an inconsistent density.
+    pub fn density_field(&self, density: &Density, selectors: &BTreeMap<String, Selector>, unit: f64) -> Result<DensityField, PipelineError> {
+        let cat = self.catalogue();
+        let mut sel = Selection::new(selectors, cat);
+        DensityField::build(density, &mut sel, cat, unit, self.default_size()).map_err(|source| PipelineError::Density { path: self.path.clone(), source })
+    }
+
+    /// Tessellates a CAD part to `size` and certifies the result; the certified surface becomes
+    /// the surface to mesh. Does nothing for a surface mesh.
+    ///
+    /// # Errors
+    /// [`PipelineError::Certificate`] when a check fails (the message names faces and STEP
+    /// `#id`s); the failed tessellation is kept in [`Part::certified`] for reports.
+    pub fn tessellate(&mut self, size: &dyn SizeField, opts: &TessellateOptions) -> Result<&Certificate, PipelineError> {
+        let Some(model) = &self.model else {
+            return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
+        };
+        let t0 = Instant::now();
+        let tessellation = tessellate_sized(model, opts, size);
+        let t1 = Instant::now();
+        let certificate = certify(model, &tessellation, &CertifyOptions::default());
+        self.seconds.tessellate = (t1 - t0).as_secs_f64();
+        self.seconds.certify = t1.elapsed().as_secs_f64();
+        let passed = certificate.passed;
+        if passed {
+            self.surface = Some(tessellation.surface.clone());
+        }
+        let message = (!passed).then(|| failure_message(&self.path, &certificate, &model.dropped));
+        self.certified = Some(Certified { tessellation, certificate });
+        match message {
+            Some(message) => Err(PipelineError::Certificate { path: self.path.clone(), message }),
+            None => Ok(&self.certified.as_ref().expect("just set").certificate),
+        }
+    }
+
+    /// Meshes the part's surface into tets of `size` (a CAD part is tessellated to the same
+    /// size first, at the deviation `opts` gives).
+    ///
+    /// # Errors
+    /// A failed certificate, or a surface the mesher refuses (open, self-intersecting, ...).
+    pub fn mesh(&mut self, size: &dyn SizeField, tess: &TessellateOptions, opts: &MeshOptions) -> Result<&TetMesh, PipelineError> {
+        if self.is_cad() && self.certified.is_none() {
+            self.tessellate(size, tess)?;
+        }
+        let Some(surface) = &self.surface else {
+            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
+        };
+        // a sized tessellation is meshed as it is; a surface mesh is cut to the size first
+        let opts = opts.clone().with_presize(opts.presize && !self.is_cad());
+        let t0 = Instant::now();
+        let sized;
+        let field: &dyn SizeField = if self.region_sizes.is_empty() {
+            size
+        } else {
+            sized = RegionSizes::new(size, self.region_sizes.clone());
+            &sized
+        };
+        let (mesh, report) = mesh_surface(surface, &self.seeds, field, &opts).map_err(|source| PipelineError::Meshing { path: self.path.clone(), source })?;
+        self.seconds.mesh = t0.elapsed().as_secs_f64();
+        self.mesh_report = Some(report);
+        Ok(self.mesh.insert(mesh))
+    }
+
+    /// Writes the tet mesh (its format from the extension: `.mesh`, `.ele`/`.node`, `.vtu`,
+    /// `.msh`) or, for a surface format (`.stl`, `.obj`, `.off`), the surface.
+    ///
+    /// # Errors
+    /// Nothing to write, or a format that cannot hold it ([`PipelineError::Usage`]); the
+    /// writer's errors. A failed write leaves no file.
+    pub fn write(&self, out: &Path) -> Result<(), PipelineError> {
+        match Format::from_path(out) {
+            Some(Format::Medit | Format::TetGen | Format::Vtu | Format::Msh) if self.mesh.is_some() => {
+                io::write(out, &MeshData::Volume(self.mesh.clone().expect("checked")), &WriteOptions::default())?;
+            }
+            Some(Format::Stl | Format::Obj | Format::Off | Format::Vtu | Format::Msh) if self.surface.is_some() => {
+                io::write(out, &MeshData::Surface(self.surface.clone().expect("checked")), &WriteOptions::default())?;
+            }
+            _ => return Err(PipelineError::Usage { path: out.to_path_buf(), message: "tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh".into() }),
+        }
+        Ok(())
+    }
+}
+
+/// Reads a STEP file, tessellates it (to `size` where given) and certifies the result. A failed
+/// certificate is returned, not an error: the caller decides (`fepre tessellate --force`).
+///
+/// # Errors
+/// The file cannot be read as STEP (the error names the line or `#id`).
+pub fn tessellate_file(path: &Path, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> Result<(Model, Certified, StageSeconds), PipelineError> {
+    let t0 = Instant::now();
+    let model = step::read(path)?;
+    let t1 = Instant::now();
+    let tessellation = match size {
+        Some(s) => tessellate_sized(&model, opts, s),
+        None => tessellate(&model, opts),
+    };
+    let t2 = Instant::now();
+    let certificate = certify(&model, &tessellation, checks);
+    let seconds = StageSeconds { read: (t1 - t0).as_secs_f64(), tessellate: (t2 - t1).as_secs_f64(), certify: t2.elapsed().as_secs_f64(), mesh: 0.0 };
+    Ok((model, Certified { tessellation, certificate }, seconds))
+}
+
+/// The certificate's failures as one message, naming faces and STEP ids.
+pub fn failure_message(path: &Path, c: &Certificate, dropped: &[Dropped]) -> String {
+    let mut msg = format!("{}: the tessellation fails its certificate ({} failed checks)", path.display(), c.failure_count);
+    for d in dropped.iter().take(5) {
+        msg.push_str(&format!("\n  the reader dropped {} {}: {}", d.id, d.kind, d.why));
+    }
+    for f in c.failures.iter().take(5) {
+        msg.push_str("\n  ");
+        msg.push_str(f.check);
+        if let Some(face) = f.face {
+            msg.push_str(&format!(" face {}", face.0));
+        }
+        if let Some(id) = f.step_id {
+            msg.push_str(&format!(" ({id})"));
+        }
+        msg.push_str(": ");
+        msg.push_str(&f.message);
+    }
+    if c.failure_count > 5 {
+        msg.push_str(&format!("\n  ... {} more (--json lists up to 20)", c.failure_count - 5));
+    }
+    msg
+}

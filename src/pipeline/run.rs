@@ -1,0 +1,207 @@
+//! Running a part through the pipeline: selectors evaluated, the size field built, the CAD
+//! part tessellated to it and certified, the volume meshed, the requirements checked, the
+//! outputs written. `fepre run job.toml` and `fepre mesh` both come here.
+
+use super::job::{JobFile, OutputKind};
+use super::part::{MESH_MAX_ANGLE_DEG, Part};
+use super::PipelineError;
+use crate::attributes::{Density, FaceInfo, SelectError, Selection, Selector};
+use crate::core::FaceId;
+use crate::mesh3d::mesher::{MeshOptions, MeshReport};
+use crate::quality::tet_mesh_quality;
+use crate::tessellate::TessellateOptions;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// What to do with a part.
+#[derive(Clone, Debug, Default)]
+pub struct Plan {
+    /// Named selectors.
+    pub selectors: BTreeMap<String, Selector>,
+    /// The density (lengths in `unit`s).
+    pub density: Density,
+    /// Part units per density unit.
+    pub unit: f64,
+    /// Volume mesher options.
+    pub mesh: MeshOptions,
+    /// Smallest dihedral angle every tet must have (degrees), or the run fails.
+    pub require_min_dihedral: Option<f64>,
+    /// Largest radius-edge ratio every tet must have, or the run fails.
+    pub require_max_radius_edge: Option<f64>,
+}
+
+impl Plan {
+    /// The tessellation options of a CAD part: the density's deviation (default
+    /// [`Part::mesh_deviation`]) and at least 8 segments per circle.
+    pub fn tessellate_options(&self, part: &Part) -> TessellateOptions {
+        let deviation = self.density.deviation.map_or_else(|| part.mesh_deviation(), |d| d.0);
+        TessellateOptions::default().with_chord_relative(deviation).with_max_angle_deg(MESH_MAX_ANGLE_DEG)
+    }
+}
+
+/// The quality of a tet mesh, as reports give it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct MeshSummary {
+    /// Nodes.
+    pub nodes: usize,
+    /// Tets.
+    pub tets: usize,
+    /// Regions.
+    pub regions: usize,
+    /// Volume.
+    pub volume: f64,
+    /// Smallest dihedral angle, degrees.
+    pub min_dihedral_deg: f64,
+    /// Largest dihedral angle, degrees.
+    pub max_dihedral_deg: f64,
+    /// Largest radius-edge ratio.
+    pub max_radius_edge: f64,
+    /// Tets with a dihedral angle under 5°.
+    pub tets_under_5_deg: usize,
+    /// Tets with a dihedral angle under 1°.
+    pub tets_under_1_deg: usize,
+    /// Refinement stopped at its budget before every tet met the radius-edge bound.
+    pub refinement_stopped: bool,
+}
+
+/// What a run did.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct RunReport {
+    /// The input file.
+    pub input: String,
+    /// The faces: id, name, colour, STEP `#id`, solid, surface.
+    pub faces: Vec<FaceInfo>,
+    /// What each selector selects.
+    pub selectors: BTreeMap<String, Vec<FaceId>>,
+    /// The global size, in part units.
+    pub global_size: f64,
+    /// Triangles of the surface meshed.
+    pub surface_triangles: usize,
+    /// The tessellation's certificate passed (CAD parts).
+    pub certificate_passed: Option<bool>,
+    /// The tet mesh.
+    pub mesh: Option<MeshSummary>,
+    /// What the mesher did.
+    pub mesher: Option<MeshReport>,
+    /// Files written.
+    pub outputs: Vec<String>,
+    /// Seconds per stage.
+    pub seconds: super::part::StageSeconds,
+}
+
+/// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
+///
+/// # Errors
+/// The first selector that fails.
+pub fn evaluate_selectors(part: &Part, selectors: &BTreeMap<String, Selector>) -> Result<BTreeMap<String, Vec<FaceId>>, SelectError> {
+    let mut sel = Selection::new(selectors, part.catalogue());
+    let mut out = BTreeMap::new();
+    for name in selectors.keys() {
+        out.insert(name.clone(), sel.faces(name)?.into_iter().collect());
+    }
+    Ok(out)
+}
+
+/// Runs `plan` on `part`: selectors, size field, tessellation and certificate (CAD), volume
+/// mesh, requirements. With `check_only`, stops after the selectors and the size field.
+///
+/// # Errors
+/// A selector or density error, a failed certificate, a mesher error, a requirement not met.
+pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunReport, PipelineError> {
+    let selected = evaluate_selectors(part, &plan.selectors).map_err(|source| PipelineError::Select { path: part.path.clone(), source })?;
+    let field = part.density_field(&plan.density, &plan.selectors, plan.unit)?;
+    let mut report = RunReport { input: part.path.display().to_string(), faces: part.face_table(), selectors: selected, global_size: field.global(), ..RunReport::default() };
+    if check_only {
+        return Ok(report);
+    }
+    let tess = plan.tessellate_options(part);
+    let result = part.mesh(&field, &tess, &plan.mesh).map(|_| ());
+    report.certificate_passed = part.certified.as_ref().map(|c| c.certificate.passed);
+    result?;
+    report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());
+    let mesh = part.mesh.as_ref().expect("meshed");
+    let q = tet_mesh_quality(mesh);
+    let r = part.mesh_report.clone().unwrap_or_default();
+    let under5 = q.tets_min_dihedral_below_5;
+    let under1 = under_one_degree(mesh);
+    report.mesh = Some(MeshSummary {
+        nodes: mesh.vertices.len(),
+        tets: mesh.tets.len(),
+        regions: r.regions,
+        volume: mesh.volume(),
+        min_dihedral_deg: q.min_dihedral_deg,
+        max_dihedral_deg: q.max_dihedral_deg,
+        max_radius_edge: q.max_radius_edge,
+        tets_under_5_deg: under5,
+        tets_under_1_deg: under1,
+        refinement_stopped: r.refinement_stopped,
+    });
+    report.mesher = Some(r);
+    report.seconds = part.seconds.clone();
+    if let Some(d) = plan.require_min_dihedral {
+        if q.min_dihedral_deg < d {
+            return Err(PipelineError::Requirement { path: part.path.clone(), message: format!("the smallest dihedral angle is {:.3}°, below the {d}° required ({under5} tets under 5°, {under1} under 1°)", q.min_dihedral_deg) });
+        }
+    }
+    if let Some(r) = plan.require_max_radius_edge {
+        if q.max_radius_edge > r {
+            return Err(PipelineError::Requirement { path: part.path.clone(), message: format!("the largest radius-edge ratio is {:.3}, above the {r} required", q.max_radius_edge) });
+        }
+    }
+    Ok(report)
+}
+
+/// Runs a job file: reads the input, runs its plan and writes its outputs (nothing is written
+/// when anything fails before).
+///
+/// # Errors
+/// Job errors name the key and line; the others name the file and the face or entity.
+pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineError> {
+    let job = &jf.job;
+    let input = jf.resolve(job.input.file.get_ref());
+    let mut part = Part::open(&input)?;
+    let unit = if part.is_cad() { job.units.to_mm() } else { job.units.to_mm() / job.input.units.unwrap_or(job.units).to_mm() };
+    let plan = Plan {
+        selectors: jf.selectors(),
+        density: job.density.clone(),
+        unit,
+        mesh: jf.mesh_options(),
+        require_min_dihedral: job.require.min_dihedral,
+        require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
+    };
+    let mut report = match run_plan(&mut part, &plan, check_only) {
+        Ok(r) => r,
+        Err(PipelineError::Select { source, .. }) | Err(PipelineError::Density { source: crate::attributes::DensityError::Select(source), .. }) => return Err(jf.select_error(&source)),
+        Err(e) => return Err(e),
+    };
+    if check_only {
+        return Ok(report);
+    }
+    let mut reports: Vec<PathBuf> = Vec::new();
+    for o in &job.output {
+        let path = jf.resolve(o.file.get_ref());
+        match o.kind() {
+            OutputKind::Report => reports.push(path.clone()),
+            OutputKind::Mesh => part.write(&path)?,
+            OutputKind::Surface => {
+                let s = part.surface.clone().unwrap_or_default();
+                crate::io::write(&path, &crate::io::MeshData::Surface(s), &crate::io::WriteOptions::default())?;
+            }
+        }
+        report.outputs.push(path.display().to_string());
+    }
+    for path in reports {
+        let text = serde_json::to_string_pretty(&report).unwrap_or_default();
+        crate::io::atomic::write_atomic(&path, |w| {
+            use std::io::Write as _;
+            w.write_all(text.as_bytes()).map_err(crate::io::atomic::write_err(&path))
+        })?;
+    }
+    Ok(report)
+}
+
+/// Tets with a dihedral angle under 1°.
+fn under_one_degree(mesh: &crate::mesh::TetMesh) -> usize {
+    mesh.tets.iter().filter(|t| crate::quality::tetrahedron::tet_min_max_dihedral(&t.map(|v| mesh.vertices[v as usize])).0 < 1.0).count()
+}
