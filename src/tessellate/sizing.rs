@@ -40,7 +40,8 @@ pub(super) fn edge_params(point: &dyn Fn(f64) -> DVec3, ts: &[f64], size: &dyn S
         for k in 1..=m {
             let t = t0 + (t1 - t0) * k as f64 / m as f64;
             let p = point(t);
-            let h = size.size_at(0.5 * (prev + p)).min(piece);
+            // the size on the curve, halfway along the step
+            let h = size.size_at(point(t - 0.5 * (t1 - t0) / m as f64)).min(piece);
             if h > 0.0 && h.is_finite() {
                 s += prev.distance(p) / h;
             }
