@@ -119,3 +119,34 @@ fn curvature_sizing_puts_the_asked_segments_per_radian_on_circles() {
         assert!(worst <= chord, "{name}: the surface is {worst} from its triangles, chord {chord}");
     }
 }
+
+#[test]
+fn poly_region_volumes_become_region_sizes() {
+    // a unit cube whose one region asks for tets of volume 1e-3 at most (TetGen's `-a` per
+    // region): the edge of the regular tet of that volume is its size
+    let dir = tempfile::tempdir().unwrap();
+    let poly = dir.path().join("cube.poly");
+    let nodes = "8 3 0 0\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n";
+    let faces = [[1, 4, 3, 2], [5, 6, 7, 8], [1, 2, 6, 5], [2, 3, 7, 6], [3, 4, 8, 7], [4, 1, 5, 8]];
+    let mut text = String::from(nodes);
+    text.push_str("6 1\n");
+    for (k, f) in faces.iter().enumerate() {
+        text.push_str(&format!("1 0 {}\n4 {} {} {} {}\n", k + 1, f[0], f[1], f[2], f[3]));
+    }
+    text.push_str("0\n1\n1 0.5 0.5 0.5 7 0.001\n");
+    std::fs::write(&poly, text).unwrap();
+    let mut part = Part::open(&poly).unwrap();
+    assert_eq!(part.region_sizes.len(), 1, "{:?}", part.seeds);
+    let h = part.region_sizes[0].1;
+    assert!((h - (6.0 * 2f64.sqrt() * 0.001).cbrt()).abs() < 1e-12);
+    let plan = Plan { unit: 1.0, ..Plan::default() };
+    fepre::pipeline::run::run_plan(&mut part, &plan, false).expect("meshes");
+    let m = part.mesh.as_ref().unwrap();
+    assert_eq!(m.validate(), Ok(()));
+    assert!(m.region_tags.iter().all(|r| r.0 == 7), "the region keeps its attribute");
+    let vols: Vec<f64> = (0..m.tets.len()).map(|t| m.tet_volume(t)).collect();
+    let med = median(vols);
+    println!("{} tets, median volume {med:.2e}", m.tets.len());
+    assert!(m.tets.len() >= 600, "the region size refines the cube: {} tets", m.tets.len());
+    assert!(med <= 0.001, "median tet volume {med}");
+}

@@ -269,8 +269,11 @@ impl<'a> RegionSizes<'a> {
 }
 
 impl SizeField for RegionSizes<'_> {
+    /// Where the region is not known (on the boundary, which the mesher cuts to this size
+    /// first): the smallest of the region sizes, so that no region's tets are held back by a
+    /// coarser boundary.
     fn size_at(&self, p: DVec3) -> f64 {
-        self.base.size_at(p)
+        self.sizes.iter().fold(self.base.size_at(p), |h, &(_, s)| h.min(s))
     }
 
     fn size_in(&self, p: DVec3, region: crate::core::RegionId) -> f64 {
