@@ -9,6 +9,7 @@ pub mod predicates;
 pub mod size_field;
 pub mod spatial_order;
 pub mod tolerance;
+pub(crate) mod union_find;
 
 pub use aabb::Aabb;
 pub use ids::{FaceId, RegionId};

@@ -9,6 +9,7 @@
 //! along the facet's sides are exactly the subsegments of its segments.
 
 use crate::core::FaceId;
+use crate::core::union_find::UnionFind;
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
@@ -80,14 +81,6 @@ const COPLANAR_SINE: f64 = 1e-6;
 /// retriangulation of the whole facet).
 const MAX_MERGED: u32 = 64;
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        parent[x as usize] = parent[parent[x as usize] as usize];
-        x = parent[x as usize];
-    }
-    x
-}
-
 impl SurfaceModel {
     /// The model of `triangles` (vertex indices into `points`) with their tags; with `merge`,
     /// coplanar neighbours with one tag form one facet.
@@ -105,8 +98,7 @@ impl SurfaceModel {
                 on_edge.entry((a.min(b), a.max(b))).or_default().push(i as u32);
             }
         }
-        let mut parent: Vec<u32> = (0..triangles.len() as u32).collect();
-        let mut members: Vec<u32> = vec![1; triangles.len()];
+        let mut uf = UnionFind::new(triangles.len());
         if merge {
             let mut edges: Vec<(&(u32, u32), &Vec<u32>)> = on_edge.iter().collect();
             edges.sort_unstable_by_key(|e| *e.0);
@@ -118,11 +110,9 @@ impl SurfaceModel {
                 let (nx, ny) = (normal(&triangles[x as usize]), normal(&triangles[y as usize]));
                 let scale = nx.length() * ny.length();
                 if scale > 0.0 && nx.dot(ny) > 0.0 && nx.cross(ny).length() <= COPLANAR_SINE * scale {
-                    let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
                     // facets stay small enough to retriangulate at every split cheaply
-                    if rx != ry && members[rx as usize] + members[ry as usize] <= MAX_MERGED {
-                        parent[rx.max(ry) as usize] = rx.min(ry);
-                        members[rx.min(ry) as usize] += members[rx.max(ry) as usize];
+                    if uf.find(x) != uf.find(y) && uf.size(x) + uf.size(y) <= MAX_MERGED {
+                        uf.union(x, y);
                     }
                 }
             }
@@ -131,7 +121,7 @@ impl SurfaceModel {
         let mut facet_of_tri = vec![0u32; triangles.len()];
         let mut facets: Vec<Facet> = Vec::new();
         for i in 0..triangles.len() as u32 {
-            let r = find(&mut parent, i);
+            let r = uf.find(i);
             let f = *facet_of_root.entry(r).or_insert_with(|| {
                 facets.push(Facet {
                     triangles: Vec::new(),
