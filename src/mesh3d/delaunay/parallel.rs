@@ -19,6 +19,7 @@
 //! The result is the unique perturbed Delaunay tetrahedralization whatever the number of
 //! threads, and it is put in canonical form afterwards.
 
+use crate::core::ids::NONE;
 use crate::core::spatial_order::brio_rounds;
 use crate::mesh3d::delaunay::cavity::{Located, Marks, Owner, Scratch, dig, fill, locate};
 use crate::mesh3d::delaunay::kernel::Kernel;
@@ -28,8 +29,6 @@ use crate::mesh3d::delaunay::{DelaunayTimings, PassTiming};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU8, AtomicU32, AtomicUsize, Ordering::Relaxed};
 
-/// No tet.
-const NONE: u32 = u32::MAX;
 /// Fresh slots a thread takes at a time.
 const CHUNK: usize = 2048;
 

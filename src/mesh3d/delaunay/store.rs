@@ -5,9 +5,12 @@
 
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
-/// Vertex id marking a deleted tet slot.
+/// Vertex id marking a deleted tet slot (every vertex of a free slot is `DEAD`).
 pub(crate) const DEAD: u32 = u32::MAX - 1;
-/// The ghost vertex (the point at infinity).
+/// The ghost vertex (the point at infinity), vertex 3 of the ghost tets that close the hull.
+/// The one definition, used by the Delaunay drivers and the mesher; it shares its value with
+/// [`NONE`](crate::core::ids::NONE) (no index) but is a vertex, so it has its own name. Neither
+/// leaves the crate.
 pub(crate) const GHOST: u32 = u32::MAX;
 
 /// One tet: its vertices and its neighbour references, in one 32-byte record so that a visit

@@ -9,15 +9,13 @@
 //! tets closing the convex hull, as in the Delaunay module. Wall flags are one bit per tet face.
 
 use crate::core::Sign;
+use crate::core::ids::NONE;
 use crate::core::spatial_order::brio_order;
 use crate::mesh::tet_mesh::TET_FACES;
 use crate::mesh3d::delaunay::cavity::{Everything, IN, Located, Marks, OUT, Scratch, Walls, dig_walled, fill, link_star, locate, locate_walled};
 use crate::mesh3d::delaunay::kernel::{FloatKernel, Kernel};
 use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet};
 use glam::DVec3;
-
-/// No tet.
-pub(crate) const NONE: u32 = u32::MAX;
 
 /// Wall bits: bit `f` of `walls[t]` is set when face `f` of tet `t` is a subface.
 struct WallBits<'a>(&'a [u8]);
