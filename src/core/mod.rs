@@ -3,6 +3,7 @@
 
 pub mod aabb;
 pub mod bvh;
+pub(crate) mod cdt;
 pub mod ids;
 pub mod intersection;
 pub mod predicates;
