@@ -69,3 +69,35 @@ fn meshes_the_bundled_step_bracket_the_readme_runs() {
     let (lo, hi, re) = (v["min_dihedral_deg"].as_f64().unwrap(), v["max_dihedral_deg"].as_f64().unwrap(), v["max_radius_edge"].as_f64().unwrap());
     assert!(lo >= 10.0 && hi <= 160.0 && re <= 2.5, "{lo} .. {hi}, radius-edge {re}");
 }
+
+#[test]
+fn a_step_part_meshes_to_the_same_bytes_for_any_thread_count_and_load() {
+    // no clock steers the result: one thread on a quiet machine and two threads beside a
+    // thread spinning flat out give the same file, byte for byte
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = |threads: &str| {
+        let out = dir.path().join(format!("bracket_{threads}.mesh"));
+        let o = fepre().env("RAYON_NUM_THREADS", threads).args(["mesh", "cad_fixtures/bracket.step", "-o"]).arg(&out).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(&out).unwrap()
+    };
+    let quiet = mesh("1");
+    let stop = Arc::new(AtomicBool::new(false));
+    let spinner = {
+        let stop = stop.clone();
+        std::thread::spawn(move || {
+            let mut x = 0u64;
+            while !stop.load(Ordering::Relaxed) {
+                x = std::hint::black_box(x.wrapping_mul(6364136223846793005).wrapping_add(1));
+            }
+            x
+        })
+    };
+    let busy = mesh("2");
+    stop.store(true, Ordering::Relaxed);
+    spinner.join().unwrap();
+    assert!(!quiet.is_empty());
+    assert!(quiet == busy, "the mesh depends on the thread count or the load ({} and {} bytes)", quiet.len(), busy.len());
+}

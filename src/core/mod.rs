@@ -3,12 +3,14 @@
 
 pub mod aabb;
 pub mod bvh;
+pub(crate) mod cdt;
 pub mod ids;
 pub mod intersection;
 pub mod predicates;
 pub mod size_field;
 pub mod spatial_order;
 pub mod tolerance;
+pub(crate) mod union_find;
 
 pub use aabb::Aabb;
 pub use ids::{FaceId, RegionId};

@@ -43,6 +43,7 @@ use super::Tessellation;
 use super::quadrature::{SegmentIndex, face_integrals};
 use crate::cad::brep::{EntityRef, Model};
 use crate::core::FaceId;
+use crate::core::union_find::UnionFind;
 use crate::mesh::topology::{ReportOptions, intersecting_pairs, surface_report};
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
@@ -167,14 +168,7 @@ pub struct Certificate {
 /// Faces joined by shared (non-degenerate) edges: the group index of every face.
 fn face_groups(model: &Model) -> (Vec<u32>, usize) {
     let n = model.faces.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            p[x as usize] = p[p[x as usize] as usize];
-            x = p[x as usize];
-        }
-        x
-    }
+    let mut uf = UnionFind::new(n);
     let mut first_face_of_edge: FxHashMap<u32, u32> = FxHashMap::default();
     for (f, face) in model.faces.iter().enumerate() {
         for &l in &face.loops {
@@ -183,21 +177,11 @@ fn face_groups(model: &Model) -> (Vec<u32>, usize) {
                     continue;
                 }
                 let g = *first_face_of_edge.entry(c.edge).or_insert(f as u32);
-                let (a, b) = (find(&mut parent, g), find(&mut parent, f as u32));
-                if a != b {
-                    parent[a.max(b) as usize] = a.min(b);
-                }
+                uf.union(g, f as u32);
             }
         }
     }
-    let mut ids: FxHashMap<u32, u32> = FxHashMap::default();
-    let mut group = vec![0u32; n];
-    for (f, g) in group.iter_mut().enumerate() {
-        let r = find(&mut parent, f as u32);
-        let k = ids.len() as u32;
-        *g = *ids.entry(r).or_insert(k);
-    }
-    (group, ids.len())
+    uf.labels()
 }
 
 /// The number of boundary loops the patch of face `f` should have (module docs): the

@@ -7,6 +7,7 @@ use super::TessellateOptions;
 use super::edge_points::EdgePoints;
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
+use crate::core::cdt;
 use crate::core::{FaceId, SizeField};
 use glam::{DVec2, DVec3};
 use spade::handles::FixedVertexHandle;
@@ -522,17 +523,16 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
         return Err("parameters of the boundary are not finite".into());
     }
     let (su, sv, k) = surface_scales(surf, lo, hi);
-    // spade refuses coordinates below ~1e-142 in magnitude other than zero: flush them
-    let flush = |x: f64| if x.abs() < 1e-30 { 0.0 } else { x };
-    let scale = |p: DVec2| DVec2::new(flush(p.x * su), flush(p.y * sv));
+    // flushed as spade will see them (`core::cdt`'s guard), for the inside tests too
+    let scale = |p: DVec2| DVec2::new(cdt::flush(p.x * su), cdt::flush(p.y * sv));
     let scaled: Vec<Vec<DVec2>> = loops.iter().map(|l| l.iter().map(|(p, _)| scale(*p)).collect()).collect();
 
-    let mut cdt: ConstrainedDelaunayTriangulation<V> = ConstrainedDelaunayTriangulation::new();
+    let mut tri: ConstrainedDelaunayTriangulation<V> = ConstrainedDelaunayTriangulation::new();
     let mut handles: Vec<Vec<FixedVertexHandle>> = Vec::new();
     for (l, sl) in loops.iter().zip(&scaled) {
         let mut hs = Vec::with_capacity(l.len());
         for ((uv, id), s) in l.iter().zip(sl) {
-            let h = cdt.insert(V { p: Point2::new(s.x, s.y), id: Some(*id), uv: *uv, p3: vertices[*id as usize] }).map_err(|e| format!("cannot insert a boundary point: {e:?}"))?;
+            let h = cdt::insert(&mut tri, *s, |p| V { p, id: Some(*id), uv: *uv, p3: vertices[*id as usize] }).map_err(|e| format!("cannot insert a boundary point: {e}"))?;
             hs.push(h);
         }
         handles.push(hs);
@@ -544,7 +544,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
             if a == b {
                 continue;
             }
-            if cdt.try_add_constraint(a, b).is_empty() && !cdt.exists_constraint(a, b) {
+            if tri.try_add_constraint(a, b).is_empty() && !tri.exists_constraint(a, b) {
                 return Err("boundary segments cross in parameter space".into());
             }
         }
@@ -566,21 +566,21 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
                     // splits constraints through inserted points) or make slivers
                     if inside(&scaled, s) && clear.far(s, 0.3 * cell.min_element()) {
                         let uv = DVec2::new(s.x / su, s.y / sv);
-                        cdt.insert(V { p: Point2::new(s.x, s.y), id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| format!("cannot insert an interior point: {e:?}"))?;
+                        cdt::insert(&mut tri, s, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| format!("cannot insert an interior point: {e}"))?;
                     }
                 }
             }
         }
     }
-    super::refine::refine(&mut cdt, surf, tol, opts)?;
+    super::refine::refine(&mut tri, surf, tol, opts)?;
     if let Some(size) = size {
         // well-shaped triangles of the local size, after the deviation's refinement, whose
         // centroids make thin triangles that this mends
-        super::sizing::refine_face(&mut cdt, surf, su, sv, size);
+        super::sizing::refine_face(&mut tri, surf, su, sv, size);
     }
     // lift and keep the triangles inside the loops
-    let mut ids: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
-    for v in cdt.vertices() {
+    let mut ids: Vec<u32> = Vec::with_capacity(tri.num_vertices());
+    for v in tri.vertices() {
         let d = v.data();
         ids.push(match d.id {
             Some(id) => id,
@@ -592,9 +592,9 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opt
     }
     // inside = an odd number of constraint edges crossed from the outside (exact, unlike a
     // point-in-polygon test on thin triangles along nearly straight boundaries)
-    let inside_faces = constraint_parity(&cdt);
+    let inside_faces = constraint_parity(&tri);
     let mut out = FaceMesh::default();
-    for f in cdt.inner_faces() {
+    for f in tri.inner_faces() {
         if !inside_faces[f.fix().index()] {
             continue;
         }

@@ -9,7 +9,8 @@ use super::TessellateOptions;
 use super::face_mesh::{V, constraint_parity};
 use crate::cad::geom::Surface;
 use glam::{DVec2, DVec3};
-use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+use crate::core::cdt;
+use spade::{ConstrainedDelaunayTriangulation, Triangulation};
 
 /// Rounds of [`refine`] at most.
 const REFINE_ROUNDS: usize = 10;
@@ -44,13 +45,13 @@ fn deviation(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3], free_edge: [bool; 3]
 /// interior grid follows the largest curvature of the face's box, this follows the surface
 /// where the grid is too coarse (speeds varying over the face, grids capped at
 /// `max_grid`) and removes long triangles across curved directions.
-pub(super) fn refine(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surface, tol: f64, opts: &TessellateOptions) -> Result<(), String> {
+pub(super) fn refine(tri: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surface, tol: f64, opts: &TessellateOptions) -> Result<(), String> {
     let cos_max = (2.0 * opts.max_angle_deg).to_radians().cos();
     let mut added = 0;
     for _ in 0..REFINE_ROUNDS {
-        let inside = constraint_parity(cdt);
+        let inside = constraint_parity(tri);
         let mut new_points = Vec::new();
-        for f in cdt.inner_faces() {
+        for f in tri.inner_faces() {
             if !inside[f.fix().index()] {
                 continue;
             }
@@ -64,17 +65,17 @@ pub(super) fn refine(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surfa
             let free = [0, 1, 2].map(|i| !edges[i].is_constraint_edge());
             if deviation(surf, p, uv, free, cos_max) > tol {
                 let sp = vs.map(|v| v.data().p);
-                let c = Point2::new((sp[0].x + sp[1].x + sp[2].x) / 3.0, (sp[0].y + sp[1].y + sp[2].y) / 3.0);
+                let c = DVec2::new((sp[0].x + sp[1].x + sp[2].x) / 3.0, (sp[0].y + sp[1].y + sp[2].y) / 3.0);
                 let cuv = (uv[0] + uv[1] + uv[2]) / 3.0;
-                new_points.push(V { p: c, id: None, uv: cuv, p3: surf.point(cuv.x, cuv.y) });
+                new_points.push((c, cuv));
             }
         }
         if new_points.is_empty() {
             break;
         }
         added += new_points.len();
-        for v in new_points {
-            cdt.insert(v).map_err(|e| format!("cannot insert a refinement point: {e:?}"))?;
+        for (c, uv) in new_points {
+            cdt::insert(tri, c, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| format!("cannot insert a refinement point: {e}"))?;
         }
         if added > REFINE_POINTS {
             break;

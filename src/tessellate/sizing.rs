@@ -7,7 +7,8 @@ use crate::cad::geom::Surface;
 use crate::core::SizeField;
 use glam::{DVec2, DVec3};
 use spade::handles::FixedVertexHandle;
-use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
+use crate::core::cdt;
+use spade::{ConstrainedDelaunayTriangulation, Triangulation};
 
 /// The most points one edge gets from the size.
 pub const MAX_EDGE_POINTS: usize = 100_000;
@@ -78,8 +79,7 @@ pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &
     }
     // the coarsest size of the face first: spade's area bound (lengths in the scaled
     // parameters are 3D lengths where the speeds are near their means)
-    let base = RefinementParameters::<f64>::new().with_angle_limit(AngleLimit::from_deg(25.0)).keep_constraint_edges().exclude_outer_faces(true).with_max_additional_vertices(MAX_FACE_POINTS);
-    cdt.refine(base.clone().with_max_allowed_area(AREA_FACTOR * hmax * hmax));
+    cdt.refine(cdt::quality_refinement((2.0 * AREA_FACTOR).sqrt() * hmax, MAX_FACE_POINTS));
     lift_new(cdt, surf, su, sv);
     // then the centroids of triangles bigger than the local size, round after round
     let mut added = 0;
@@ -119,11 +119,11 @@ pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &
         for c in new_points {
             let uv = DVec2::new(c.x / su, c.y / sv);
             // a point spade cannot take (on top of another) is left out
-            let _ = cdt.insert(V { p: Point2::new(c.x, c.y), id: None, uv, p3: surf.point(uv.x, uv.y) });
+            let _ = cdt::insert(cdt, c, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) });
         }
     }
     // and the shape again
-    cdt.refine(base);
+    cdt.refine(cdt::quality_refinement(f64::INFINITY, MAX_FACE_POINTS));
     lift_new(cdt, surf, su, sv);
 }
 

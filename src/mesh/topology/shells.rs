@@ -5,87 +5,14 @@
 //! (CSR), and per shell its counts, orientation, orientability, vertex-manifoldness, area,
 //! signed volume, tags and box. Three union-finds over flat arrays: triangles across every
 //! edge, corners across two-triangle edges (fans), and triangles with a flip parity across
-//! two-triangle edges (orientability).
+//! two-triangle edges (orientability), all `core::union_find`.
 
 use super::Prepared;
 use super::edges::{EdgeTable, ends, forward};
+use crate::core::union_find::{ParityUnionFind, UnionFind};
 use crate::core::{Aabb, FaceId};
 use crate::mesh::TriSurface;
 use glam::DVec3;
-
-/// Union-find with path halving; the smaller index becomes the root (deterministic).
-struct UnionFind {
-    parent: Vec<u32>,
-}
-
-impl UnionFind {
-    fn new(n: usize) -> Self {
-        UnionFind { parent: (0..n as u32).collect() }
-    }
-
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.parent[x as usize] != x {
-            let g = self.parent[self.parent[x as usize] as usize];
-            self.parent[x as usize] = g;
-            x = g;
-        }
-        x
-    }
-
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            self.parent[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
-
-    fn is_root(&self, x: usize) -> bool {
-        self.parent[x] == x as u32
-    }
-}
-
-/// Union-find whose elements carry a parity relative to their root.
-struct ParityUnionFind {
-    parent: Vec<u32>,
-    parity: Vec<bool>,
-}
-
-impl ParityUnionFind {
-    fn new(n: usize) -> Self {
-        ParityUnionFind { parent: (0..n as u32).collect(), parity: vec![false; n] }
-    }
-
-    fn find(&mut self, x: u32) -> (u32, bool) {
-        let (mut r, mut p) = (x, false);
-        while self.parent[r as usize] != r {
-            p ^= self.parity[r as usize];
-            r = self.parent[r as usize];
-        }
-        // compress: every node on the path points to the root with its own parity
-        let (mut y, mut py) = (x, p);
-        while self.parent[y as usize] != y {
-            let next = self.parent[y as usize];
-            let b = self.parity[y as usize];
-            self.parent[y as usize] = r;
-            self.parity[y as usize] = py;
-            py ^= b;
-            y = next;
-        }
-        (r, p)
-    }
-
-    /// Requires `parity(a) ^ parity(b) == rel`; false if that contradicts earlier unions.
-    fn union(&mut self, a: u32, b: u32, rel: bool) -> bool {
-        let ((ra, pa), (rb, pb)) = (self.find(a), self.find(b));
-        if ra == rb {
-            return pa ^ pb == rel;
-        }
-        let (root, child) = (ra.min(rb), ra.max(rb));
-        self.parent[child as usize] = root;
-        self.parity[child as usize] = pa ^ pb ^ rel;
-        true
-    }
-}
 
 /// Statistics of one shell.
 #[derive(Clone, Debug)]
@@ -141,18 +68,7 @@ fn label_shells(tris: &[[u32; 3]], et: &EdgeTable) -> (Vec<u32>, usize) {
             uf.union(h[0].tri, x.tri);
         }
     }
-    let mut label = vec![u32::MAX; tris.len()];
-    let mut count = 0u32;
-    let mut shell_of = vec![0u32; tris.len()];
-    for (t, sh) in shell_of.iter_mut().enumerate() {
-        let r = uf.find(t as u32) as usize;
-        if label[r] == u32::MAX {
-            label[r] = count;
-            count += 1;
-        }
-        *sh = label[r];
-    }
-    (shell_of, count as usize)
+    uf.labels()
 }
 
 /// Analyses the shells of the prepared surface; `tags` are the surface's face tags (indexed
@@ -229,7 +145,7 @@ pub(crate) fn analyse(m: &Prepared, et: &EdgeTable, tags: &[FaceId]) -> Analysis
     let nv = m.verts.len();
     let mut fans = vec![0u32; nv];
     for c in 0..3 * tris.len() {
-        if corners.is_root(c) {
+        if corners.is_root(c as u32) {
             let v = tris[c / 3][c % 3] as usize;
             fans[v] += 1;
             shells[shell_of[c / 3] as usize].vertices += 1;
@@ -241,7 +157,7 @@ pub(crate) fn analyse(m: &Prepared, et: &EdgeTable, tags: &[FaceId]) -> Analysis
         // several fans of one vertex: within one shell they are a non-manifold vertex of
         // that shell and count as one vertex of it
         let mut pairs: Vec<(u32, u32)> = (0..3 * tris.len())
-            .filter(|&c| corners.is_root(c) && fans[tris[c / 3][c % 3] as usize] > 1)
+            .filter(|&c| corners.is_root(c as u32) && fans[tris[c / 3][c % 3] as usize] > 1)
             .map(|c| (tris[c / 3][c % 3], shell_of[c / 3]))
             .collect();
         pairs.sort_unstable();

@@ -19,17 +19,16 @@
 //! The result is the unique perturbed Delaunay tetrahedralization whatever the number of
 //! threads, and it is put in canonical form afterwards.
 
+use crate::core::ids::NONE;
 use crate::core::spatial_order::brio_rounds;
 use crate::mesh3d::delaunay::cavity::{Located, Marks, Owner, Scratch, dig, fill, locate};
 use crate::mesh3d::delaunay::kernel::Kernel;
-use crate::mesh3d::delaunay::store::{AtomicTet, DEAD, GHOST, SharedTets, Tet, TetStore};
+use crate::mesh3d::delaunay::store::{AtomicTet, DEAD, GHOST, SharedTets, Tet, TetStore, cavity_slots};
 use crate::mesh3d::delaunay::triangulation::Triangulation;
 use crate::mesh3d::delaunay::{DelaunayTimings, PassTiming};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU8, AtomicU32, AtomicUsize, Ordering::Relaxed};
 
-/// No tet.
-const NONE: u32 = u32::MAX;
 /// Fresh slots a thread takes at a time.
 const CHUNK: usize = 2048;
 
@@ -145,35 +144,23 @@ impl<K: Kernel> Shared<'_, K> {
                 }
             };
             let ok = dig(k, &s, &range, &mut marks, &mut sc, t0, p);
-            let m = sc.boundary.len();
-            let c = sc.cavity.len();
-            // slots: the cavity's own, then this thread's free ones, then fresh chunks
-            let mut enough = ok;
-            if ok {
-                sc.slots.clear();
-                sc.slots.extend_from_slice(&sc.cavity[..c.min(m)]);
-                while sc.slots.len() < m {
-                    if let Some(t) = free.pop() {
-                        sc.slots.push(t);
-                        continue;
-                    }
+            // slots: the cavity's own, then this thread's free ones, then fresh chunks; when
+            // they run out, the slots go back and the point waits for later
+            let enough = ok && {
+                let new_slot = |_: &mut SharedTets<'_>| {
                     if fresh == fresh_end {
                         let at = self.next_fresh.fetch_add(CHUNK, Relaxed);
                         if at >= self.tets.len() {
-                            enough = false;
-                            break;
+                            return None;
                         }
                         fresh = at;
                         fresh_end = (at + CHUNK).min(self.tets.len());
                     }
-                    sc.slots.push(fresh as u32);
                     fresh += 1;
-                }
-                if !enough {
-                    // give the slots back, keep the point for later
-                    free.extend(sc.slots.drain(c.min(m)..));
-                }
-            }
+                    Some(fresh as u32 - 1)
+                };
+                cavity_slots(&mut s, &sc.cavity, sc.boundary.len(), &mut free, &mut sc.slots, new_slot)
+            };
             for &t in &sc.cavity {
                 marks.set(t, 0);
             }
@@ -187,10 +174,6 @@ impl<K: Kernel> Shared<'_, K> {
                 }
                 out.postponed.extend_from_slice(&pts[i + 1..]);
                 break;
-            }
-            for &t in &sc.cavity[m.min(c)..] {
-                s.set_v(t, [DEAD; 4]);
-                free.push(t);
             }
             hint = fill(&mut s, &mut sc.edges, &sc.boundary, &sc.slots, p);
             self.near[p as usize].store(hint, Relaxed);

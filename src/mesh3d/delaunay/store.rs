@@ -5,9 +5,12 @@
 
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
-/// Vertex id marking a deleted tet slot.
+/// Vertex id marking a deleted tet slot (every vertex of a free slot is `DEAD`).
 pub(crate) const DEAD: u32 = u32::MAX - 1;
-/// The ghost vertex (the point at infinity).
+/// The ghost vertex (the point at infinity), vertex 3 of the ghost tets that close the hull.
+/// The one definition, used by the Delaunay drivers and the mesher; it shares its value with
+/// [`NONE`](crate::core::ids::NONE) (no index) but is a vertex, so it has its own name. Neither
+/// leaves the crate.
 pub(crate) const GHOST: u32 = u32::MAX;
 
 /// One tet: its vertices and its neighbour references, in one 32-byte record so that a visit
@@ -103,4 +106,103 @@ impl TetStore for SharedTets<'_> {
 #[inline]
 pub(crate) fn is_finite(v: &[u32; 4]) -> bool {
     v[3] != GHOST && v[0] != DEAD
+}
+
+/// Frees slot `t`: its vertices become [`DEAD`] and it goes on `free` (reused last in, first
+/// out). Nothing may refer to it any more.
+#[inline]
+pub(crate) fn free_slot<S: TetStore>(s: &mut S, free: &mut Vec<u32>, t: u32) {
+    s.set_v(t, [DEAD; 4]);
+    free.push(t);
+}
+
+/// The slots for re-triangulating a cavity, the one rule of every insertion (serial, parallel,
+/// the mesher's walled one): the `m` new tets (one per boundary face) take the cavity's own
+/// slots first, in cavity order, then slots popped from `free`, then slots from `new_slot`
+/// (which appends or reserves a dead record in `s`, or says there is no room); `slots` gets
+/// them in that order. Cavity slots left over are freed ([`free_slot`], in cavity order).
+///
+/// Returns false when `new_slot` ran out: then nothing is freed, and the slots taken beyond the
+/// cavity's own go (in the order taken) onto `free`, so the caller can postpone the point.
+pub(crate) fn cavity_slots<S: TetStore>(
+    s: &mut S,
+    cavity: &[u32],
+    m: usize,
+    free: &mut Vec<u32>,
+    slots: &mut Vec<u32>,
+    mut new_slot: impl FnMut(&mut S) -> Option<u32>,
+) -> bool {
+    let c = cavity.len();
+    slots.clear();
+    slots.extend_from_slice(&cavity[..c.min(m)]);
+    while slots.len() < m {
+        let t = match free.pop() {
+            Some(t) => t,
+            None => match new_slot(s) {
+                Some(t) => t,
+                None => {
+                    free.extend(slots.drain(c.min(m)..));
+                    return false;
+                }
+            },
+        };
+        slots.push(t);
+    }
+    for &t in &cavity[m.min(c)..] {
+        free_slot(s, free, t);
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn store(n: usize) -> Vec<Tet> {
+        (0..n as u32).map(|i| Tet { v: [i; 4], n: [0; 4] }).collect()
+    }
+
+    fn grow(s: &mut Vec<Tet>) -> Option<u32> {
+        s.push(Tet { v: [DEAD; 4], n: [0; 4] });
+        Some(s.len() as u32 - 1)
+    }
+
+    #[test]
+    fn more_faces_than_cavity_tets_take_free_then_new_slots() {
+        let mut s = store(6);
+        let (mut free, mut slots) = (vec![4, 5], Vec::new());
+        assert!(cavity_slots(&mut s, &[2, 1], 5, &mut free, &mut slots, grow));
+        assert_eq!(slots, [2, 1, 5, 4, 6]);
+        assert!(free.is_empty());
+        assert_eq!(s.len(), 7);
+    }
+
+    #[test]
+    fn fewer_faces_than_cavity_tets_free_the_rest() {
+        let mut s = store(6);
+        let (mut free, mut slots) = (vec![0], Vec::new());
+        assert!(cavity_slots(&mut s, &[3, 1, 4, 2], 2, &mut free, &mut slots, grow));
+        assert_eq!(slots, [3, 1]);
+        assert_eq!(free, [0, 4, 2]);
+        assert_eq!(s[4].v, [DEAD; 4]);
+        assert_eq!(s[2].v, [DEAD; 4]);
+        assert_eq!(s[3].v, [3; 4]);
+        assert_eq!(s.len(), 6);
+    }
+
+    #[test]
+    fn running_out_gives_the_slots_taken_back() {
+        let mut s = store(6);
+        let (mut free, mut slots) = (vec![5], Vec::new());
+        let mut room = 1;
+        let ok = cavity_slots(&mut s, &[1], 4, &mut free, &mut slots, |s| {
+            (room > 0).then(|| {
+                room -= 1;
+                grow(s).unwrap()
+            })
+        });
+        assert!(!ok);
+        assert_eq!(free, [5, 6]);
+        assert_eq!(s[1].v, [1; 4]);
+    }
 }

@@ -16,7 +16,7 @@ use crate::core::Sign;
 use crate::mesh::tet_mesh::TET_FACES;
 use crate::mesh3d::delaunay::cavity::{Everything, Located, Scratch, dig, fill, link_star, locate};
 use crate::mesh3d::delaunay::kernel::Kernel;
-use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet};
+use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet, cavity_slots};
 
 /// An incremental Delaunay tetrahedralization over a kernel.
 pub(crate) struct Triangulation<'k, K: Kernel> {
@@ -74,23 +74,13 @@ impl<'k, K: Kernel> Triangulation<'k, K> {
             Located::Blocked | Located::Wall(..) | Located::Lost => unreachable!("the serial insertion owns every tet and has no walls"),
         };
         dig(self.kernel, &self.tets, &Everything, &mut self.mark, &mut self.sc, t0, p);
-        // slots: the cavity's own first, then free ones, then new ones
-        let m = self.sc.boundary.len();
-        let c = self.sc.cavity.len();
-        self.sc.slots.clear();
-        self.sc.slots.extend_from_slice(&self.sc.cavity[..c.min(m)]);
-        while self.sc.slots.len() < m {
-            let s = match self.free.pop() {
-                Some(s) => s,
-                None => self.push([DEAD; 4]),
-            };
-            self.sc.slots.push(s);
-        }
-        for i in m..c {
-            let t = self.sc.cavity[i];
-            self.tets[t as usize].v = [DEAD; 4];
-            self.free.push(t);
-        }
+        let mark = &mut self.mark;
+        let new_slot = |tets: &mut Vec<Tet>| {
+            tets.push(Tet { v: [DEAD; 4], n: [0; 4] });
+            mark.push(0);
+            Some(tets.len() as u32 - 1)
+        };
+        cavity_slots(&mut self.tets, &self.sc.cavity, self.sc.boundary.len(), &mut self.free, &mut self.sc.slots, new_slot);
         // clear the marks before the slots are rewritten
         for &t in &self.sc.cavity {
             self.mark[t as usize] = 0;

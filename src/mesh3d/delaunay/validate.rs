@@ -52,13 +52,19 @@ pub enum DelaunayViolation {
         /// True if inside exactly, false if only under the symbolic perturbation.
         exact: bool,
     },
-    /// The boundary is not a closed convex surface.
-    #[error("the hull is not convex or not closed at face {face:?} (point {point} beyond it)")]
+    /// The boundary is not convex: a hull face sees a vertex of its neighbour across an edge.
+    #[error("the hull is not convex at face {face:?} (point {point} beyond it)")]
     NotConvex {
         /// An outward hull face.
         face: [u32; 3],
-        /// A vertex beyond its plane, or `u32::MAX` if the hull is not closed there.
+        /// A vertex beyond its plane.
         point: u32,
+    },
+    /// The boundary is not closed: an edge of this hull face is on no other hull face.
+    #[error("the hull is not closed at face {face:?}")]
+    HullOpen {
+        /// An outward hull face.
+        face: [u32; 3],
     },
     /// A point is neither a vertex nor a listed duplicate of one.
     #[error("point {point} is missing from the tetrahedralization")]
@@ -157,7 +163,7 @@ pub(crate) fn validate(d: &Delaunay, points: &[DVec3]) -> Result<(), DelaunayVio
     edges.sort_unstable();
     for &([a, b], h) in &edges {
         let Ok(k) = edges.binary_search_by(|e| e.0.cmp(&[b, a])) else {
-            return Err(DelaunayViolation::NotConvex { face: hull[h as usize], point: u32::MAX });
+            return Err(DelaunayViolation::HullOpen { face: hull[h as usize] });
         };
         let g = hull[edges[k].1 as usize];
         let v = g.iter().copied().find(|&x| x != a && x != b).unwrap_or(a);

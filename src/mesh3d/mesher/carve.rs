@@ -4,9 +4,10 @@
 //! depth a cavity; hole seeds empty their component; region seeds name theirs, the others are
 //! numbered by first appearance.
 
+use crate::core::ids::NONE;
 use crate::core::{RegionId, Sign};
 use crate::mesh3d::delaunay::kernel::Kernel;
-use crate::mesh3d::delaunay::store::GHOST;
+use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::Tetra;
 use crate::mesh3d::mesher::{MeshingError, Seeds};
@@ -54,13 +55,13 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
         tr.set_wall(t, f, true);
     }
     let n = tr.tets.len();
-    let dead = |t: usize| tr.tets[t].v[0] == crate::mesh3d::delaunay::store::DEAD;
+    let dead = |t: usize| tr.tets[t].v[0] == DEAD;
     // components through non-wall faces
-    let mut comp = vec![u32::MAX; n];
+    let mut comp = vec![NONE; n];
     let mut ncomp = 0u32;
     let mut queue = VecDeque::new();
     for s in 1..n {
-        if dead(s) || comp[s] != u32::MAX {
+        if dead(s) || comp[s] != NONE {
             continue;
         }
         comp[s] = ncomp;
@@ -71,7 +72,7 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
                     continue;
                 }
                 let nb = (tr.tets[t as usize].n[f] >> 2) as usize;
-                if comp[nb] == u32::MAX {
+                if comp[nb] == NONE {
                     comp[nb] = ncomp;
                     queue.push_back(nb as u32);
                 }
@@ -81,7 +82,7 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
     }
     // depth of every component from the exterior
     let ghost = (1..n).find(|&t| !dead(t) && tr.tets[t].v[3] == GHOST).ok_or_else(|| MeshingError::Internal("no ghost tet".into()))?;
-    let mut depth = vec![u32::MAX; ncomp as usize];
+    let mut depth = vec![NONE; ncomp as usize];
     depth[comp[ghost] as usize] = 0;
     // breadth-first over components: scan wall faces repeatedly (few components)
     let mut changed = true;
@@ -92,7 +93,7 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
                 continue;
             }
             let ct = comp[t] as usize;
-            if depth[ct] == u32::MAX {
+            if depth[ct] == NONE {
                 continue;
             }
             for f in 0..4 {
@@ -101,7 +102,7 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
                 }
                 let nb = (tr.tets[t].n[f] >> 2) as usize;
                 let cn = comp[nb] as usize;
-                if depth[cn] == u32::MAX {
+                if depth[cn] == NONE {
                     depth[cn] = depth[ct] + 1;
                     changed = true;
                 }
@@ -111,7 +112,7 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
     // material: odd depth, minus the components holding a hole seed
     let mut material = vec![false; ncomp as usize];
     for c in 0..ncomp as usize {
-        material[c] = depth[c] != u32::MAX && depth[c] % 2 == 1;
+        material[c] = depth[c] != NONE && depth[c] % 2 == 1;
     }
     for &h in &seeds.holes {
         if let Some(t) = containing_tet(tr, h) {

@@ -3,12 +3,13 @@
 //! the material (interfaces between two regions keep the input's orientation). The input
 //! vertices keep their indices; Steiner points follow.
 
+use crate::core::ids::NONE;
 use crate::mesh::TetMesh;
 use crate::mesh::TriSurface;
 use crate::mesh3d::mesher::MeshingError;
 use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
-use crate::mesh3d::mesher::tetra::{NONE, Tetra};
+use crate::mesh3d::mesher::tetra::Tetra;
 
 /// Builds the output mesh.
 ///

@@ -16,11 +16,12 @@
 //! Passes repeat while they merge something; what is left is reported.
 
 use crate::core::Sign;
+use crate::core::ids::NONE;
 use crate::mesh3d::delaunay::kernel::Kernel;
 use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::surface_model::{Location, SurfaceModel};
-use crate::mesh3d::mesher::tetra::{NONE, Tetra};
+use crate::mesh3d::mesher::tetra::Tetra;
 use glam::DVec3;
 
 /// Removes the tets outside the material (label 0) and the ghosts; faces that looked at them

@@ -14,7 +14,7 @@ use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::recover::circumcenter;
 use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
 use crate::mesh3d::mesher::{MeshOptions, MeshingError};
-use crate::mesh3d::delaunay::store::GHOST;
+use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use glam::DVec3;
 use std::collections::BinaryHeap;
 
@@ -61,7 +61,7 @@ fn inside_candidates(tr: &Tetra, t: u32, wall: Option<(u32, usize)>) -> Vec<DVec
     if let Some((wt, wk)) = wall {
         let w = tr.tets[wt as usize].v;
         let face = crate::mesh::tet_mesh::TET_FACES[wk].map(|i| w[i]);
-        if !face.contains(&GHOST) && !face.contains(&crate::mesh3d::delaunay::store::DEAD) {
+        if !face.contains(&GHOST) && !face.contains(&DEAD) {
             let [a, b, d] = face.map(|i| tr.point(i));
             let g = (a + b + d) / 3.0;
             let mut n = (b - a).cross(d - a).normalize_or_zero();

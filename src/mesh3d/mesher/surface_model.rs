@@ -9,10 +9,12 @@
 //! along the facet's sides are exactly the subsegments of its segments.
 
 use crate::core::FaceId;
+use crate::core::cdt;
+use crate::core::union_find::UnionFind;
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
-use spade::{AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation};
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 /// Where a vertex of the mesh lies.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -80,14 +82,6 @@ const COPLANAR_SINE: f64 = 1e-6;
 /// retriangulation of the whole facet).
 const MAX_MERGED: u32 = 64;
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        parent[x as usize] = parent[parent[x as usize] as usize];
-        x = parent[x as usize];
-    }
-    x
-}
-
 impl SurfaceModel {
     /// The model of `triangles` (vertex indices into `points`) with their tags; with `merge`,
     /// coplanar neighbours with one tag form one facet.
@@ -105,8 +99,7 @@ impl SurfaceModel {
                 on_edge.entry((a.min(b), a.max(b))).or_default().push(i as u32);
             }
         }
-        let mut parent: Vec<u32> = (0..triangles.len() as u32).collect();
-        let mut members: Vec<u32> = vec![1; triangles.len()];
+        let mut uf = UnionFind::new(triangles.len());
         if merge {
             let mut edges: Vec<(&(u32, u32), &Vec<u32>)> = on_edge.iter().collect();
             edges.sort_unstable_by_key(|e| *e.0);
@@ -118,11 +111,9 @@ impl SurfaceModel {
                 let (nx, ny) = (normal(&triangles[x as usize]), normal(&triangles[y as usize]));
                 let scale = nx.length() * ny.length();
                 if scale > 0.0 && nx.dot(ny) > 0.0 && nx.cross(ny).length() <= COPLANAR_SINE * scale {
-                    let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
                     // facets stay small enough to retriangulate at every split cheaply
-                    if rx != ry && members[rx as usize] + members[ry as usize] <= MAX_MERGED {
-                        parent[rx.max(ry) as usize] = rx.min(ry);
-                        members[rx.min(ry) as usize] += members[rx.max(ry) as usize];
+                    if uf.find(x) != uf.find(y) && uf.size(x) + uf.size(y) <= MAX_MERGED {
+                        uf.union(x, y);
                     }
                 }
             }
@@ -131,7 +122,7 @@ impl SurfaceModel {
         let mut facet_of_tri = vec![0u32; triangles.len()];
         let mut facets: Vec<Facet> = Vec::new();
         for i in 0..triangles.len() as u32 {
-            let r = find(&mut parent, i);
+            let r = uf.find(i);
             let f = *facet_of_root.entry(r).or_insert_with(|| {
                 facets.push(Facet {
                     triangles: Vec::new(),
@@ -281,12 +272,12 @@ impl SurfaceModel {
     /// plane mapping degenerates.
     pub fn retriangulate(&mut self, f: u32, points: &[DVec3]) {
         let pts = self.facet_points(f);
-        let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
+        let mut tri: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
         let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
         let mut ids: Vec<u32> = Vec::with_capacity(pts.len());
         for &v in &pts {
             let q = self.to_plane(f, points[v as usize]);
-            match cdt.insert(Point2::new(q.x, q.y)) {
+            match cdt::insert(&mut tri, q, |p| p) {
                 Ok(h) if h.index() == ids.len() => {
                     ids.push(v);
                     handle.insert(v, h);
@@ -301,10 +292,9 @@ impl SurfaceModel {
             for w in p.windows(2) {
                 let (a, b) = if forward { (w[0], w[1]) } else { (w[1], w[0]) };
                 let (ha, hb) = (handle[&a], handle[&b]);
-                if !cdt.can_add_constraint(ha, hb) {
+                if !cdt::constrain(&mut tri, ha, hb) {
                     return;
                 }
-                cdt.add_constraint(ha, hb);
                 seeds.push((ha, hb));
             }
         }
@@ -312,7 +302,7 @@ impl SurfaceModel {
         let mut inside: FxHashMap<FixedFaceHandle<InnerTag>, ()> = FxHashMap::default();
         let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
         for (a, b) in seeds {
-            if let Some(e) = cdt.get_edge_from_neighbors(a, b) {
+            if let Some(e) = tri.get_edge_from_neighbors(a, b) {
                 if let Some(face) = e.face().as_inner() {
                     if inside.insert(face.fix(), ()).is_none() {
                         stack.push(face.fix());
@@ -321,7 +311,7 @@ impl SurfaceModel {
             }
         }
         while let Some(fh) = stack.pop() {
-            for e in cdt.face(fh).adjacent_edges() {
+            for e in tri.face(fh).adjacent_edges() {
                 if e.is_constraint_edge() {
                     continue;
                 }
@@ -338,7 +328,7 @@ impl SurfaceModel {
         let mut faces: Vec<FixedFaceHandle<InnerTag>> = inside.into_keys().collect();
         faces.sort_unstable_by_key(|h| h.index());
         for fh in faces {
-            let t = cdt.face(fh).vertices().map(|h| ids[h.fix().index()]);
+            let t = tri.face(fh).vertices().map(|h| ids[h.fix().index()]);
             // a sliver along one side (points of one segment only) is no part of the facet
             if one_side(t) {
                 continue;
@@ -408,11 +398,11 @@ impl SurfaceModel {
     /// Spade's refinement of facet `f` in its plane (sides kept): the new points go inside it.
     fn refine_facet(&mut self, f: u32, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64) {
         let pts = self.facet_points(f);
-        let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
+        let mut tri: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
         let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
         for &v in &pts {
             let q = self.to_plane(f, points[v as usize]);
-            match cdt.insert(Point2::new(q.x, q.y)) {
+            match cdt::insert(&mut tri, q, |p| p) {
                 Ok(h) if h.index() == handle.len() => {
                     handle.insert(v, h);
                 }
@@ -422,26 +412,17 @@ impl SurfaceModel {
         for &(s, _) in &self.facets[f as usize].loops {
             for w in self.segments[s as usize].points.windows(2) {
                 let (ha, hb) = (handle[&w[0]], handle[&w[1]]);
-                if !cdt.can_add_constraint(ha, hb) {
+                if !cdt::constrain(&mut tri, ha, hb) {
                     return;
                 }
-                cdt.add_constraint(ha, hb);
             }
         }
         let centre = self.facets[f as usize].triangles.iter().flatten().map(|&i| points[i as usize]).sum::<DVec3>()
             / (3 * self.facets[f as usize].triangles.len()) as f64;
         let h = size(centre);
-        let mut params = RefinementParameters::<f64>::new()
-            .with_angle_limit(AngleLimit::from_deg(25.0))
-            .keep_constraint_edges()
-            .exclude_outer_faces(true)
-            .with_max_additional_vertices(2 * pts.len() + 50);
-        if h.is_finite() && h > 0.0 {
-            params = params.with_max_allowed_area(0.5 * h * h);
-        }
-        cdt.refine(params);
+        tri.refine(cdt::quality_refinement(h, 2 * pts.len() + 50));
         let [o, e1, e2] = self.facets[f as usize].frame;
-        for vh in cdt.vertices().skip(handle.len()) {
+        for vh in tri.vertices().skip(handle.len()) {
             let p = vh.position();
             points.push(o + e1 * p.x + e2 * p.y);
             let v = (points.len() - 1) as u32;

@@ -9,15 +9,13 @@
 //! tets closing the convex hull, as in the Delaunay module. Wall flags are one bit per tet face.
 
 use crate::core::Sign;
+use crate::core::ids::NONE;
 use crate::core::spatial_order::brio_order;
 use crate::mesh::tet_mesh::TET_FACES;
 use crate::mesh3d::delaunay::cavity::{Everything, IN, Located, Marks, OUT, Scratch, Walls, dig_walled, fill, link_star, locate, locate_walled};
 use crate::mesh3d::delaunay::kernel::{FloatKernel, Kernel};
-use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet};
+use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet, cavity_slots, free_slot};
 use glam::DVec3;
-
-/// No tet.
-pub(crate) const NONE: u32 = u32::MAX;
 
 /// Wall bits: bit `f` of `walls[t]` is set when face `f` of tet `t` is a subface.
 struct WallBits<'a>(&'a [u8]);
@@ -225,7 +223,6 @@ impl Tetra {
         if let Some((t, f)) = verdict {
             return Inserted::Rejected(t, f);
         }
-        // slots: the cavity's own, then free ones, then new ones
         let m = self.sc.boundary.len();
         let c = self.sc.cavity.len();
         // the walls of the boundary faces, read before the cavity slots are reused
@@ -233,20 +230,16 @@ impl Tetra {
         for &(_, r) in &self.sc.boundary {
             wall_of.push(self.walls[(r >> 2) as usize] >> (r & 3) & 1 != 0);
         }
-        self.sc.slots.clear();
-        self.sc.slots.extend_from_slice(&self.sc.cavity[..c.min(m)]);
-        while self.sc.slots.len() < m {
-            let s = match self.free.pop() {
-                Some(s) => s,
-                None => self.push([DEAD; 4]),
-            };
-            self.sc.slots.push(s);
-        }
-        for i in m..c {
-            let t = self.sc.cavity[i];
-            self.tets[t as usize].v = [DEAD; 4];
+        let (walls, mark) = (&mut self.walls, &mut self.mark);
+        let new_slot = |tets: &mut Vec<Tet>| {
+            tets.push(Tet { v: [DEAD; 4], n: [0; 4] });
+            walls.push(0);
+            mark.push(0);
+            Some(tets.len() as u32 - 1)
+        };
+        cavity_slots(&mut self.tets, &self.sc.cavity, m, &mut self.free, &mut self.sc.slots, new_slot);
+        for &t in &self.sc.cavity[m.min(c)..] {
             self.walls[t as usize] = 0;
-            self.free.push(t);
         }
         let sc = &mut self.sc;
         let last = fill(&mut self.tets, &mut sc.edges, &sc.boundary, &sc.slots, p);
@@ -417,9 +410,8 @@ impl Tetra {
 
     /// Frees slot `t` (its tet is gone; nothing may refer to it any more).
     pub fn free_slot(&mut self, t: u32) {
-        self.tets[t as usize].v = [DEAD; 4];
+        free_slot(&mut self.tets, &mut self.free, t);
         self.walls[t as usize] = 0;
-        self.free.push(t);
     }
 
     /// The live finite tets.

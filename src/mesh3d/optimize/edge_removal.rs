@@ -15,7 +15,8 @@
 //! clockwise seen from `a`; then both tets of a ring triangle with `i < j < k` are positively
 //! oriented when the triangle is a valid one.
 
-use crate::mesh3d::optimize::work::{NONE, Work, even_perm, local};
+use crate::core::ids::NONE;
+use crate::mesh3d::optimize::work::{Work, even_perm, local};
 use crate::quality::tetrahedron::tet_radius_edge;
 
 /// The most tets around an edge that edge removal considers.

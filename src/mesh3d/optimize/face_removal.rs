@@ -7,8 +7,9 @@
 //! `(b, c, d, e)` and `(c, a, d, e)`.
 
 use crate::core::Sign;
+use crate::core::ids::NONE;
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::mesh3d::optimize::work::{NONE, Work};
+use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::tet_radius_edge;
 
 /// Tries the 2-3 flip of face `k` of live tet `t`; true if done (the old tets' least score was

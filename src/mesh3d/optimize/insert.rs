@@ -12,10 +12,11 @@
 //! the radius-edge bound holds; otherwise the old tets are put back and `p` is dropped.
 
 use crate::core::Sign;
+use crate::core::ids::NONE;
 use crate::core::predicates::{insphere, orient3d};
 use crate::mesh::tet_mesh::TET_FACES;
 use crate::mesh3d::optimize::smooth::{MIN_GAIN, Smoother};
-use crate::mesh3d::optimize::work::{NONE, Work};
+use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::{tet_circumradius, tet_radius_edge};
 use glam::DVec3;
 

@@ -38,17 +38,18 @@
 //! smoothing of its vertices depend only on those tets), and a vertex is smoothed again only if
 //! a tet at it changed.
 //! Insertion is allowed once a pass changes nothing; then every bad tet is tried once more.
-//! Passes stop when one changes nothing, after
-//! [`OptimizeOptions::max_passes`], or when the time budget is spent.
+//! Passes stop when one changes nothing, after [`OptimizeOptions::max_passes`], or when
+//! [`OptimizeOptions::max_attempts`] bad tets have been worked on (a budget counted in
+//! operations, never in time).
 //!
 //! The defaults aim a little above the usual acceptance figures (smallest dihedral angle 16°,
 //! largest 158°, radius-edge 2), so that tets that cannot reach the targets usually still clear
 //! 12.9° and 160°.
 //!
-//! The result is deterministic for a given input and options (the work is serial; only the
-//! adjacency and the initial scores use threads, and they do not depend on the thread count),
-//! except that a [`OptimizeOptions::time_budget`] that runs out makes it depend on the
-//! machine's speed.
+//! The result is deterministic for a given input and options, bit for bit, whatever the thread
+//! count and the machine's load: the work is serial, only the adjacency and the initial scores
+//! use threads and they do not depend on the thread count, and every budget is a count. Clocks
+//! are read for [`OptimizeReport::seconds`] only.
 //!
 //! Adjacency (face neighbours, from face records bucketed by their smallest vertex) is built on
 //! entry and dropped on exit; scratch buffers are reused, so the hot loops do not allocate per
@@ -72,7 +73,7 @@ use insert::Inserter;
 use measure::{Targets, cosines, normals};
 use serde::Serialize;
 use smooth::Smoother;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 use work::Work;
 
 /// Options of [`optimize`].
@@ -88,9 +89,10 @@ pub struct OptimizeOptions {
     pub max_radius_edge: f64,
     /// The most passes over the bad tets.
     pub max_passes: usize,
-    /// Stop starting new work after this long (`None`: no limit). A budget that runs out makes
-    /// the result depend on the machine's speed.
-    pub time_budget: Option<Duration>,
+    /// The most attempts over all passes, an attempt being the work on one bad tet (its edge
+    /// removals, face flips, smoothing and insertion tried in turn); `None`: no limit. A count,
+    /// so a budget that runs out still gives the same result on any machine.
+    pub max_attempts: Option<usize>,
     /// Allow smoothing of free vertices.
     pub smooth: bool,
     /// Allow inserting vertices (appended to `vertices`, strictly inside a region).
@@ -104,7 +106,7 @@ impl Default for OptimizeOptions {
             max_dihedral_deg: 158.0,
             max_radius_edge: 2.0,
             max_passes: 8,
-            time_budget: None,
+            max_attempts: None,
             smooth: true,
             insert: true,
         }
@@ -136,9 +138,9 @@ impl OptimizeOptions {
         self
     }
 
-    /// Sets [`OptimizeOptions::time_budget`].
-    pub fn with_time_budget(mut self, budget: Option<Duration>) -> Self {
-        self.time_budget = budget;
+    /// Sets [`OptimizeOptions::max_attempts`].
+    pub fn with_max_attempts(mut self, attempts: Option<usize>) -> Self {
+        self.max_attempts = attempts;
         self
     }
 
@@ -192,6 +194,10 @@ pub struct OptimizeReport {
     pub insertions: usize,
     /// Passes made.
     pub passes: usize,
+    /// Attempts made (bad tets worked on, over all passes).
+    pub attempts: usize,
+    /// True if [`OptimizeOptions::max_attempts`] stopped the work.
+    pub out_of_attempts: bool,
     /// Wall-clock seconds, adjacency and summaries included.
     pub seconds: f64,
     /// Of which: checking the input, building the adjacency and scoring every tet.
@@ -292,15 +298,15 @@ impl Optimizer<'_> {
         bad
     }
 
-    fn run(&mut self, start: Instant) {
-        let out_of_time = |opts: &OptimizeOptions| opts.time_budget.is_some_and(|b| start.elapsed() >= b);
+    fn run(&mut self) {
+        let max_attempts = self.opts.max_attempts.unwrap_or(usize::MAX);
         let mut insert_now = false;
         // every bad tet is tried in the first pass and when insertion is first allowed; later,
         // only those that are new or had a tet at a vertex change since they last failed
         let mut try_all = true;
         for _ in 0..self.opts.max_passes {
             let bad = self.bad_tets();
-            if bad.is_empty() || out_of_time(self.opts) {
+            if bad.is_empty() || self.report.out_of_attempts {
                 break;
             }
             self.report.passes += 1;
@@ -315,9 +321,11 @@ impl Optimizer<'_> {
                 if !try_all && !self.w.touched_after(t, self.failed[t as usize]) {
                     continue;
                 }
-                if out_of_time(self.opts) {
+                if self.report.attempts >= max_attempts {
+                    self.report.out_of_attempts = true;
                     break;
                 }
+                self.report.attempts += 1;
                 if self.improve(t, insert_now) {
                     changed = true;
                 } else {
@@ -370,7 +378,7 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
         report,
         failed: Vec::new(),
     };
-    o.run(start);
+    o.run();
     let mut report = o.report;
     report.bad_after = o.w.live_slots().filter(|&t| o.w.q[t as usize] < 1.0).count();
     let after = o.w.worst();

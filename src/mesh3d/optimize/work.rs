@@ -7,6 +7,7 @@
 //! regions; constrained faces are never removed, and their vertices (*fixed* vertices) never
 //! move. Dead tet slots are kept on a free list and reused, so slot numbers are deterministic.
 
+use crate::core::ids::NONE;
 use crate::core::predicates::orient3d;
 use crate::core::{RegionId, Sign};
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
@@ -15,9 +16,6 @@ use crate::mesh::{Element, MeshError, TetMesh};
 use crate::mesh3d::optimize::measure::{Judged, Targets};
 use glam::DVec3;
 use rayon::prelude::*;
-
-/// No tet (a hull face's neighbour, a dead slot).
-pub(crate) const NONE: u32 = u32::MAX;
 
 /// The most tets the working mesh can hold (neighbour codes pack `tet << 2 | face`).
 pub(crate) const MAX_TETS: usize = (u32::MAX >> 2) as usize;
