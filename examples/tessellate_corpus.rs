@@ -44,7 +44,7 @@ fn main() {
     }
     println!("{:<28} {:>7} {:>8} {:>8} {:>6} {:>14} {:>9} {:>8} {:>7}", "file", "read s", "tess s", "tris", "closed", "volume", "err %", "area %", "failed");
     for &(name, occ, occ_area) in FILES {
-        let (model, c, seconds) = match tessellate_file(&dir.join(name), &opts, None, &CertifyOptions::default()) {
+        let (_model, c, seconds) = match tessellate_file(&dir.join(name), &opts, None, &CertifyOptions::default()) {
             Ok(x) => x,
             Err(e) => {
                 println!("{name}: {e}");

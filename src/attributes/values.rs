@@ -119,6 +119,16 @@ impl Direction {
     }
 }
 
+impl BoxSpec {
+    /// The box with these corners.
+    ///
+    /// # Errors
+    /// Corners not finite, or `min > max` on an axis.
+    pub fn try_from_corners(min: [f64; 3], max: [f64; 3]) -> Result<BoxSpec, String> {
+        BoxSpec::try_from(RawBox { min, max })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,15 +141,5 @@ mod tests {
         assert!(BoxSpec::try_from(RawBox { min: [0.0, 2.0, 0.0], max: [1.0, 1.0, 1.0] }).unwrap_err().contains("above max"));
         assert!(Direction::try_from([0.0; 3]).is_err());
         assert_eq!(Direction::try_from([0.0, 0.0, 2.0]).unwrap().0, [0.0, 0.0, 1.0]);
-    }
-}
-
-impl BoxSpec {
-    /// The box with these corners.
-    ///
-    /// # Errors
-    /// Corners not finite, or `min > max` on an axis.
-    pub fn try_from_corners(min: [f64; 3], max: [f64; 3]) -> Result<BoxSpec, String> {
-        BoxSpec::try_from(RawBox { min, max })
     }
 }

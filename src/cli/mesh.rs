@@ -110,9 +110,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let progress = Progress::start(&format!("reading {}", args.surface.display()));
     let mut part = Part::open(&args.surface)?;
-    let mut density = Density::default();
-    density.size = args.size.and_then(Positive::new);
-    density.deviation = args.deviation.map(Fraction);
+    let density = Density { size: args.size.and_then(Positive::new), deviation: args.deviation.map(Fraction), ..Density::default() };
     let plan = Plan {
         density,
         unit: 1.0,

@@ -317,7 +317,7 @@ fn key_at(text: &str, offset: usize) -> Option<String> {
     // the last `=` before the offset, or on the line when the offset is at the key itself
     let eq = upto.rfind('=').or_else(|| line.find('='))?;
     let head = &line[..eq];
-    let key = head.rsplit(|c: char| c == '{' || c == ',' || c == '[').next()?.trim();
+    let key = head.rsplit(['{', ',', '[']).next()?.trim();
     let key = key.trim_matches('"');
     (!key.is_empty() && key.chars().all(|c| c.is_alphanumeric() || "_-.\"".contains(c))).then(|| key.to_string())
 }

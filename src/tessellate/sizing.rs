@@ -74,7 +74,7 @@ pub(super) fn edge_params(point: &dyn Fn(f64) -> DVec3, ts: &[f64], size: &dyn S
 /// points. New points get their `(u, v)` and 3D point.
 pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surface, su: f64, sv: f64, size: &dyn SizeField) {
     let hmax = cdt.vertices().map(|v| size.size_at(v.data().p3)).filter(|h| h.is_finite()).fold(0.0, f64::max);
-    if !(hmax > 0.0) {
+    if hmax.is_nan() || hmax <= 0.0 {
         return;
     }
     // the coarsest size of the face first: spade's area bound (lengths in the scaled
@@ -94,7 +94,8 @@ pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &
             let p3 = vs.map(|v| v.data().p3);
             let longest = (0..3).map(|i| p3[i].distance(p3[(i + 1) % 3])).fold(0.0, f64::max);
             let h = size.size_at((p3[0] + p3[1] + p3[2]) / 3.0);
-            if !(longest > SPLIT_RATIO * h) {
+            // (a NaN size splits nothing)
+            if longest.is_nan() || h.is_nan() || longest <= SPLIT_RATIO * h {
                 continue;
             }
             let sp = vs.map(|v| v.data().p);
