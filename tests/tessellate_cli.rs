@@ -100,7 +100,7 @@ fn mesh_goes_from_step_to_valid_tets_with_opencascade_volume() {
         let v = m.volume();
         assert!(((v - occ_volume) / occ_volume).abs() < 0.005, "{name}: volume {v} vs OpenCASCADE {occ_volume}");
         // boundary tags are the CAD face ids
-        let tags: std::collections::BTreeSet<u32> = m.boundary_tags.iter().map(|t| t.0).collect();
+        let tags: std::collections::BTreeSet<u32> = m.face_tags.iter().map(|t| t.0).collect();
         assert!(!tags.is_empty() && tags.iter().all(|&t| t >= 1), "{name}: {tags:?}");
     }
 }
