@@ -87,6 +87,8 @@ struct Report {
     volume: f64,
     boundary_steiner_points: usize,
     regions: usize,
+    /// Per boundary face tag: unique name (and for STEP parts colour, STEP `#id`, solid).
+    face_table: Vec<crate::cad::brep::FaceEntry>,
     mesher: MeshReport,
 }
 
@@ -102,7 +104,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     let progress = Progress::start(&format!("reading {}", args.surface.display()));
     let t0 = Instant::now();
-    let (surface, seeds) = if is_step(&args.surface) {
+    let (surface, seeds, face_table) = if is_step(&args.surface) {
         // a CAD part: tessellated at the default deviation into well-shaped triangles of the
         // size (or, without one, a 25th of the part's diagonal), and certified first; its
         // faces' ids become the boundary tags
@@ -113,7 +115,8 @@ pub fn run(args: &Args) -> Result<()> {
         if !c.certificate.passed {
             anyhow::bail!("{}", crate::cli::tessellate::failure_message(&args.surface, &c.certificate, &c.model.dropped));
         }
-        (c.tessellation.surface, Seeds::default())
+        let table = c.model.face_table();
+        (c.tessellation.surface, Seeds::default(), table)
     } else {
         let loaded = io::read(&args.surface, &ReadOptions::default())?;
         let surface = match loaded.mesh {
@@ -124,7 +127,8 @@ pub fn run(args: &Args) -> Result<()> {
             holes: loaded.seeds.holes.clone(),
             regions: loaded.seeds.regions.iter().map(|&(point, tag, _)| RegionSeed { point, tag }).collect(),
         };
-        (surface, seeds)
+        let table = crate::cad::brep::face_table_of_names(&surface.face_names, surface.face_tags.iter().copied());
+        (surface, seeds, table)
     };
     let read_seconds = t0.elapsed().as_secs_f64();
     let options = MeshOptions::default()
@@ -152,6 +156,7 @@ pub fn run(args: &Args) -> Result<()> {
         volume: mesh.volume(),
         boundary_steiner_points: report.boundary_steiner_points,
         regions: report.regions,
+        face_table,
         mesher: report,
     };
     if args.json {
