@@ -23,7 +23,7 @@ fn random_box(n: usize) -> TetMesh {
     p.extend((0..n).map(|_| DVec3::new(0.05 + 0.9 * f(), 0.05 + 0.9 * f(), 0.05 + 0.9 * f())));
     let mut m = tetrahedralize(&p, &DelaunayOptions::default()).expect("points span a volume").to_tet_mesh(&p);
     m.boundary = m.hull_faces();
-    m.boundary_tags = vec![FaceId(1); m.boundary.len()];
+    m.face_tags = vec![FaceId(1); m.boundary.len()];
     m
 }
 

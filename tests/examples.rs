@@ -14,7 +14,7 @@ fn step_to_mesh_writes_a_tagged_msh_through_the_library() {
     let back = fepre::io::read(&out, &fepre::io::ReadOptions::default()).unwrap();
     let fepre::io::MeshData::Volume(v) = back.mesh else { panic!("not a tet mesh") };
     assert_eq!(v.tets.len(), m.tets.len());
-    let tags: std::collections::BTreeSet<u32> = v.boundary_tags.iter().map(|t| t.0).collect();
+    let tags: std::collections::BTreeSet<u32> = v.face_tags.iter().map(|t| t.0).collect();
     assert_eq!(tags.len(), 17, "a group per CAD face");
-    assert!(v.face_names.values().any(|n| n.starts_with("hole_")), "{:?}", v.face_names);
+    assert!(v.face_names.names().any(|n| n.starts_with("hole_")), "{:?}", v.face_names);
 }

@@ -42,11 +42,11 @@ fn cube() -> TetMesh {
             }
         };
         m.boundary.push(f.vertices);
-        m.boundary_tags.push(FaceId(tag));
+        m.face_tags.push(FaceId(tag));
     }
-    m.face_names.insert(FaceId(1), "xmin".into());
-    m.face_names.insert(FaceId(7), "interface".into());
-    m.region_names.insert(RegionId(2), "upper part".into());
+    m.face_names.insert(FaceId(1), "xmin");
+    m.face_names.insert(FaceId(7), "interface");
+    m.region_names.insert(RegionId(2), "upper part");
     m.validate().unwrap();
     assert_eq!((m.boundary.len(), m.tets.len()), (14, 6));
     m
@@ -55,14 +55,14 @@ fn cube() -> TetMesh {
 /// The cube's outer boundary as a surface, tagged by side.
 fn cube_surface() -> TriSurface {
     let m = cube();
-    let keep: Vec<usize> = (0..m.boundary.len()).filter(|&i| m.boundary_tags[i] != FaceId(7)).collect();
+    let keep: Vec<usize> = (0..m.boundary.len()).filter(|&i| m.face_tags[i] != FaceId(7)).collect();
     let mut s = TriSurface {
         vertices: m.vertices.clone(),
         triangles: keep.iter().map(|&i| m.boundary[i]).collect(),
-        face_tags: keep.iter().map(|&i| m.boundary_tags[i]).collect(),
+        face_tags: keep.iter().map(|&i| m.face_tags[i]).collect(),
         ..Default::default()
     };
-    s.tag_names.insert(FaceId(1), "xmin".into());
+    s.face_names.insert(FaceId(1), "xmin");
     s
 }
 
@@ -111,7 +111,7 @@ fn own_readers_give_back_what_every_writer_wrote() {
         let p = put(dir.path(), name, MeshData::Surface(s.clone()));
         let mut back = read_surface(&p);
         if !name.ends_with(".msh") {
-            back.tag_names = s.tag_names.clone();
+            back.face_names = s.face_names.clone();
         }
         assert_eq!(back, s, "{name}");
     }
@@ -144,7 +144,7 @@ fn gmsh_reads_and_resaves_our_msh() {
                     // Gmsh renumbers nodes in 2.2; compare counts, tags and names.
                     assert_eq!((back.vertices.len(), back.tets.len(), back.boundary.len()), (8, 6, 14), "{output}");
                     assert_eq!(sorted(&back.region_tags), sorted(&m.region_tags), "{output}");
-                    assert_eq!(sorted(&back.boundary_tags), sorted(&m.boundary_tags), "{output}");
+                    assert_eq!(sorted(&back.face_tags), sorted(&m.face_tags), "{output}");
                     assert_eq!((back.face_names.clone(), back.region_names.clone()), (m.face_names.clone(), m.region_names.clone()));
                     assert!((back.volume() - 1.0).abs() < 1e-12, "{output}");
                 } else {
@@ -153,7 +153,7 @@ fn gmsh_reads_and_resaves_our_msh() {
             } else {
                 let back = read_surface(&p);
                 assert_eq!(sorted(&back.face_tags), sorted(&s.face_tags), "{output}");
-                assert_eq!(back.tag_names, s.tag_names, "{output}");
+                assert_eq!(back.face_names, s.face_names, "{output}");
                 if suffix != "22" {
                     assert_eq!(back, s, "{output}");
                 }
@@ -174,8 +174,8 @@ fn tetgen_refines_our_mesh_and_meshes_our_plc() {
     let r = read_volume(&d.join("v.1.ele"));
     assert_eq!((r.vertices.len(), r.tets.len()), (8, 6));
     assert_eq!(sorted(&r.region_tags), sorted(&m.region_tags));
-    let tags: Vec<FaceId> = sorted(&r.boundary_tags);
-    assert_eq!(tags, sorted(&m.boundary_tags), "tetgen keeps our face markers, the interface included");
+    let tags: Vec<FaceId> = sorted(&r.face_tags);
+    assert_eq!(tags, sorted(&m.face_tags), "tetgen keeps our face markers, the interface included");
     assert!((r.volume() - 1.0).abs() < 1e-12);
     // Refine: the regions and the tagged faces survive.
     std::fs::remove_file(d.join("v.1.ele")).unwrap();
@@ -186,7 +186,7 @@ fn tetgen_refines_our_mesh_and_meshes_our_plc() {
     let mut regions = sorted(&r.region_tags);
     regions.dedup();
     assert_eq!(regions, vec![RegionId(1), RegionId(2)]);
-    let mut faces = sorted(&r.boundary_tags);
+    let mut faces = sorted(&r.face_tags);
     faces.dedup();
     assert!((1..=7).all(|t| faces.contains(&FaceId(t))), "{faces:?}");
     // The surface as a PLC, both syntaxes, each in its own directory (tetgen names the output x.1.*).
@@ -198,7 +198,7 @@ fn tetgen_refines_our_mesh_and_meshes_our_plc() {
         tools::run_ok(Command::new(&tetgen).args(["-pQ", name]), &sub);
         let r = read_volume(&sub.join("s.1.ele"));
         assert!((r.volume() - 1.0).abs() < 1e-12, "{name}: volume {}", r.volume());
-        assert_eq!(sorted(&r.boundary_tags), sorted(&s.face_tags), "{name}");
+        assert_eq!(sorted(&r.face_tags), sorted(&s.face_tags), "{name}");
     }
 }
 
@@ -250,7 +250,7 @@ fn meshio_reads_our_files_with_the_same_counts_and_tags() {
     let views: BTreeMap<String, MeshioView> = serde_json::from_str(last).unwrap_or_else(|e| panic!("{e}: {stdout}"));
 
     let tets = sorted(&m.region_tags.iter().map(|r| r.0).collect::<Vec<_>>());
-    let bnd = sorted(&m.boundary_tags.iter().map(|f| f.0).collect::<Vec<_>>());
+    let bnd = sorted(&m.face_tags.iter().map(|f| f.0).collect::<Vec<_>>());
     let srf = sorted(&s.face_tags.iter().map(|f| f.0).collect::<Vec<_>>());
     let view = |cells: &[(&str, usize)], tags: &[(&str, &Vec<u32>)], names: &[&str]| MeshioView {
         points: 8,
@@ -315,10 +315,10 @@ fn tetgen_reads_our_points_and_surface_faces() {
     assert_eq!(r.tets.len(), m.tets.len());
     // TetGen also outputs the two faces between the regions, which our surface does not list,
     // with marker 0; every face we wrote comes back with its marker
-    let mut got: Vec<FaceId> = r.boundary_tags.iter().copied().filter(|t| t.0 != 0).collect();
+    let mut got: Vec<FaceId> = r.face_tags.iter().copied().filter(|t| t.0 != 0).collect();
     got.sort();
     let mut want = s.face_tags.clone();
     want.sort();
     assert_eq!(got, want, "TetGen keeps the markers of our .face");
-    assert_eq!(r.boundary_tags.len(), s.face_tags.len() + 2, "plus the two interface faces");
+    assert_eq!(r.face_tags.len(), s.face_tags.len() + 2, "plus the two interface faces");
 }

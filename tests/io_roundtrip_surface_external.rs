@@ -27,7 +27,7 @@ fn meshio_and_trimesh_read_our_surface_files() {
     let s = fixture();
     let tags = s.tags();
     let per_tag: Vec<usize> = tags.iter().map(|t| s.face_tags.iter().filter(|x| *x == t).count()).collect();
-    let names: Vec<String> = tags.iter().map(|t| s.tag_names[t].clone()).collect();
+    let names: Vec<String> = tags.iter().map(|t| s.face_names.get(*t).expect("every tag is named").to_string()).collect();
     assert_eq!(per_tag.len(), 7);
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();

@@ -49,7 +49,7 @@ fn rabbit_obj_has_a_tag_per_group() {
     // 16-gons; 644 `v` lines (trimesh's 732 "file vertices" are split by normals)
     let Some(s) = check("rabbit.obj", 1252, 644, 644, 9, 6.6485060892422) else { return };
     assert_eq!(s.tags().len(), 9);
-    assert_eq!(s.tag_names.values().next().map(String::as_str), Some("sphere4_cut11_default"));
+    assert_eq!(s.face_names.names().next(), Some("sphere4_cut11_default"));
 }
 
 #[test]
@@ -67,5 +67,5 @@ fn pins_glb_repeats_instances() {
     let per_tag: Vec<usize> = s.tags().iter().map(|&t| s.face_tags.iter().filter(|&&f| f == t).count()).collect();
     assert_eq!(per_tag, [1524, 314, 314, 314, 314, 314, 314]);
     assert_eq!(per_tag[0] + per_tag[1], 1838);
-    assert!(s.tag_names.values().next().is_some_and(|n| n.starts_with("sides#1:5:2:4:3/sides/primitive 0")));
+    assert!(s.face_names.names().next().is_some_and(|n| n.starts_with("sides#1:5:2:4:3/sides/primitive 0")));
 }

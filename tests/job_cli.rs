@@ -43,7 +43,7 @@ fn the_bracket_job_meets_its_sizes() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
     let (global, hole) = (4.5, 2.25);
-    let holes: BTreeSet<u32> = report["faces"].as_array().unwrap().iter().filter(|f| f["name"].as_str().is_some_and(|n| n.starts_with("hole_"))).map(|f| f["id"].as_u64().unwrap() as u32).collect();
+    let holes: BTreeSet<u32> = report["face_table"].as_array().unwrap().iter().filter(|f| f["name"].as_str().is_some_and(|n| n.starts_with("hole_"))).map(|f| f["face"].as_u64().unwrap() as u32).collect();
     assert_eq!(holes.len(), 8, "four holes of two half cylinders");
     let sel: BTreeSet<u32> = report["selectors"]["holes"].as_array().unwrap().iter().map(|x| x.as_u64().unwrap() as u32).collect();
     assert_eq!(sel, holes);
@@ -52,13 +52,13 @@ fn the_bracket_job_meets_its_sizes() {
     let p = |v: u32| m.vertices[v as usize];
     let edges = |t: &[u32]| -> Vec<f64> { (0..t.len()).flat_map(|i| (i + 1..t.len()).map(move |j| (i, j))).map(|(i, j)| p(t[i]).distance(p(t[j]))).collect() };
     // boundary triangles: hole faces at the hole size, faces away from the holes at the global size
-    let hole_vertices: BTreeSet<u32> = m.boundary.iter().zip(&m.boundary_tags).filter(|(_, g)| holes.contains(&g.0)).flat_map(|(t, _)| *t).collect();
+    let hole_vertices: BTreeSet<u32> = m.boundary.iter().zip(&m.face_tags).filter(|(_, g)| holes.contains(&g.0)).flat_map(|(t, _)| *t).collect();
     let (mut on_holes, mut away) = (Vec::new(), Vec::new());
     let mut away_faces = BTreeSet::new();
-    for (t, g) in m.boundary.iter().zip(&m.boundary_tags) {
+    for (t, g) in m.boundary.iter().zip(&m.face_tags) {
         if holes.contains(&g.0) {
             on_holes.extend(edges(t));
-        } else if !m.boundary.iter().zip(&m.boundary_tags).any(|(u, h)| h == g && u.iter().any(|v| hole_vertices.contains(v))) {
+        } else if !m.boundary.iter().zip(&m.face_tags).any(|(u, h)| h == g && u.iter().any(|v| hole_vertices.contains(v))) {
             away.extend(edges(t));
             away_faces.insert(g.0);
         }
@@ -69,7 +69,7 @@ fn the_bracket_job_meets_its_sizes() {
     assert!((mh - hole).abs() <= 0.15 * hole, "hole faces: median edge {mh}");
     assert!((ma - global).abs() <= 0.15 * global, "faces away from the holes: median edge {ma}");
     // tets within 1 mm of a hole face
-    let hole_tris: Vec<[DVec3; 3]> = m.boundary.iter().zip(&m.boundary_tags).filter(|(_, g)| holes.contains(&g.0)).map(|(t, _)| t.map(p)).collect();
+    let hole_tris: Vec<[DVec3; 3]> = m.boundary.iter().zip(&m.face_tags).filter(|(_, g)| holes.contains(&g.0)).map(|(t, _)| t.map(p)).collect();
     let mut near = Vec::new();
     for t in &m.tets {
         let c = t.iter().map(|&v| p(v)).sum::<DVec3>() / 4.0;
@@ -131,7 +131,7 @@ fn check_lists_what_each_selector_selects_and_meshes_nothing() {
     assert_eq!(sel("holes").len(), 8);
     assert_eq!(sel("round"), sel("holes"), "the holes are the cylinders of radius 4.5");
     assert_eq!(sel("both"), sel("holes"));
-    let name = |id: u64| r["faces"].as_array().unwrap().iter().find(|f| f["id"].as_u64() == Some(id)).and_then(|f| f["name"].as_str()).unwrap().to_string();
+    let name = |id: u64| r["face_table"].as_array().unwrap().iter().find(|f| f["face"].as_u64() == Some(id)).and_then(|f| f["name"].as_str()).unwrap().to_string();
     assert_eq!(sel("end").iter().map(|&i| name(i)).collect::<Vec<_>>(), ["end_x"]);
     assert_eq!(sel("near"), sel("end"));
     assert_eq!(sel("big").len(), 1);

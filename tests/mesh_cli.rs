@@ -1,5 +1,10 @@
-//! `fepre mesh` from the command line: JSON report, exit codes, nothing left behind on errors.
+//! `fepre mesh` from the command line: JSON report, exit codes, nothing left behind on errors,
+//! and one uniquely named physical group per CAD face as gmsh and meshio read them.
 
+mod common;
+
+use common::tools;
+use std::collections::BTreeSet;
 use std::process::Command;
 
 fn fepre() -> Command {
@@ -63,7 +68,7 @@ fn meshes_the_bundled_step_bracket_the_readme_runs() {
     let analytic = fepre::cad::parts::bracket::Bracket::default().volume();
     assert!((m.volume() - analytic).abs() < 0.005 * analytic, "volume {} vs {analytic}", m.volume());
     let model = fepre::cad::step::read(std::path::Path::new("cad_fixtures/bracket.step")).unwrap();
-    let tags: std::collections::BTreeSet<u32> = m.boundary_tags.iter().map(|t| t.0).collect();
+    let tags: std::collections::BTreeSet<u32> = m.face_tags.iter().map(|t| t.0).collect();
     assert_eq!(tags.len(), model.faces.len(), "every CAD face tags some boundary triangles");
     // quality: a regression guard, measured 12.0 .. 153.5 degrees, radius-edge 2.2
     let (lo, hi, re) = (v["min_dihedral_deg"].as_f64().unwrap(), v["max_dihedral_deg"].as_f64().unwrap(), v["max_radius_edge"].as_f64().unwrap());
@@ -100,4 +105,69 @@ fn a_step_part_meshes_to_the_same_bytes_for_any_thread_count_and_load() {
     spinner.join().unwrap();
     assert!(!quiet.is_empty());
     assert!(quiet == busy, "the mesh depends on the thread count or the load ({} and {} bytes)", quiet.len(), busy.len());
+}
+
+/// The physical names of dimension 2 in an MSH file's `$PhysicalNames` section.
+fn surface_physical_names(msh: &str) -> Vec<String> {
+    let Some(start) = msh.find("$PhysicalNames") else { return Vec::new() };
+    let section = &msh[start..msh[start..].find("$EndPhysicalNames").map_or(msh.len(), |e| start + e)];
+    section
+        .lines()
+        .skip(2)
+        .filter_map(|l| l.strip_prefix("2 "))
+        .filter_map(|l| Some(l.split_once(' ')?.1.trim().trim_matches('"').to_string()))
+        .collect()
+}
+
+#[test]
+fn bracket_msh_has_one_uniquely_named_group_per_face() {
+    // the bracket names faces 9 and 10 both `hole_1`: the MSH file must still hold 17 groups
+    // with 17 distinct names, as fepre, gmsh and meshio read it, and the JSON face table must
+    // name them the same way
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b.msh");
+    let o = fepre().args(["mesh", "cad_fixtures/bracket.step", "--json", "-o"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let model = fepre::cad::step::read(std::path::Path::new("cad_fixtures/bracket.step")).unwrap();
+    assert_eq!(model.faces.len(), 17);
+    let raw: Vec<&str> = model.faces.iter().filter_map(|f| f.name.as_deref()).collect();
+    assert_eq!(raw.iter().filter(|n| **n == "hole_1").count(), 2, "the fixture repeats a name: {raw:?}");
+
+    let table = v["face_table"].as_array().expect("a face_table in the JSON report");
+    assert_eq!(table.len(), 17);
+    let json_names: Vec<String> = table.iter().map(|e| e["name"].as_str().expect("every bracket face is named").to_string()).collect();
+    assert_eq!(json_names.iter().collect::<BTreeSet<_>>().len(), 17, "{json_names:?}");
+    assert!(json_names.contains(&"hole_1".into()) && json_names.contains(&"hole_1.2".into()), "{json_names:?}");
+    for (k, e) in table.iter().enumerate() {
+        assert_eq!(e["face"], k + 1);
+        assert_eq!(e["step_id"], model.faces[k].source.0);
+        assert_eq!(e["solid"], 1, "solids are numbered from 1");
+    }
+
+    // fepre reads back 17 named face groups with the table's names
+    let fepre::io::MeshData::Volume(m) = fepre::io::read(&out, &fepre::io::ReadOptions::default()).unwrap().mesh else { panic!("not a tet mesh") };
+    let back: Vec<String> = m.face_names.names().map(str::to_string).collect();
+    assert_eq!(back, json_names);
+    assert_eq!(surface_physical_names(&std::fs::read_to_string(&out).unwrap()), json_names);
+
+    if let Some(gmsh) = tools::require(tools::gmsh(), "gmsh", "the gmsh check of the bracket's .msh") {
+        let check = tools::run_ok(Command::new(&gmsh).args(["-check", "b.msh"]), dir.path());
+        let log = String::from_utf8_lossy(&check.stdout).to_string() + &String::from_utf8_lossy(&check.stderr);
+        assert!(!log.contains("Error"), "gmsh -check b.msh:\n{log}");
+        // gmsh's own model, saved again: its physical names of dimension 2
+        tools::run_ok(Command::new(&gmsh).args(["b.msh", "-0", "-format", "msh41", "-o", "g.msh"]), dir.path());
+        let names = surface_physical_names(&std::fs::read_to_string(dir.path().join("g.msh")).unwrap());
+        assert_eq!(names.len(), 17, "gmsh's physical surface names: {names:?}");
+        assert_eq!(names.iter().collect::<BTreeSet<_>>(), json_names.iter().collect::<BTreeSet<_>>());
+    }
+    if let Some(python) = tools::require(tools::meshio_python(), "Python with meshio", "the meshio check of the bracket's .msh") {
+        let script = "import json, sys, meshio\nm = meshio.read(sys.argv[1])\nprint(json.dumps(sorted(n for n, (tag, dim) in m.field_data.items() if dim == 2)))";
+        let o = tools::run_ok(Command::new(&python).arg("-c").arg(script).arg("b.msh"), dir.path());
+        let names: Vec<String> = serde_json::from_slice(&o.stdout).expect("meshio's names as JSON");
+        assert_eq!(names.len(), 17, "meshio keeps every group: {names:?}");
+        let mut want = json_names.clone();
+        want.sort();
+        assert_eq!(names, want);
+    }
 }

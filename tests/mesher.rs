@@ -113,7 +113,7 @@ fn keep_surface(name: &str, size: f64, tetgen_switches: &str) {
     assert!((m.volume() - vol).abs() <= 1e-9 * vol, "{name}: volume {} vs {vol}", m.volume());
     assert_eq!(report.boundary_steiner_points, 0);
     // the boundary is the input, triangle for triangle, tag for tag
-    assert_eq!(tagged(&m.boundary, &m.boundary_tags), tagged(&s.triangles, &s.face_tags), "{name}: boundary or tags changed");
+    assert_eq!(tagged(&m.boundary, &m.face_tags), tagged(&s.triangles, &s.face_tags), "{name}: boundary or tags changed");
     // the spherical cavity (centre (3, 1, 1)) stays empty
     assert!(!in_some_tet(&m, DVec3::new(3.0, 1.0, 1.0)), "{name}: a tet fills the cavity");
     assert_eq!(report.regions, 1);
@@ -162,7 +162,7 @@ fn plc_boundary_split_keeps_tags() {
         }
         a
     };
-    let (before, after) = (area(&s.vertices, &s.triangles, &s.face_tags), area(&m.vertices, &m.boundary, &m.boundary_tags));
+    let (before, after) = (area(&s.vertices, &s.triangles, &s.face_tags), area(&m.vertices, &m.boundary, &m.face_tags));
     assert_eq!(before.keys().collect::<Vec<_>>(), after.keys().collect::<Vec<_>>());
     for (k, a) in &before {
         assert!((after[k] - a).abs() <= 1e-9 * a, "tag {k}: area {} vs {a}", after[k]);

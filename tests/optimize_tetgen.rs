@@ -85,7 +85,7 @@ fn optimise_and_check(name: &str, mut m: TetMesh, volume: f64) -> TetQualityRepo
     line("optimised", &after, Some(seconds));
     assert_eq!(m.validate(), Ok(()), "{name}: the optimised mesh is invalid");
     assert_eq!(m.boundary, original.boundary, "{name}: boundary triangles changed");
-    assert_eq!(m.boundary_tags, original.boundary_tags, "{name}: boundary tags changed");
+    assert_eq!(m.face_tags, original.face_tags, "{name}: boundary tags changed");
     assert_eq!(m.vertices.len(), original.vertices.len() + report.insertions);
     for tri in &original.boundary {
         for &v in tri {

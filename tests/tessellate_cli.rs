@@ -29,6 +29,16 @@ fn tessellates_a_cad_part_with_a_json_report() {
     }
     assert_eq!(v["solids"], 1);
     assert_eq!(v["faces"], 10);
+    // the face table: every face with its STEP #id and solid, names unique where given
+    let table = v["face_table"].as_array().expect("face_table");
+    assert_eq!(table.len(), 10);
+    for (k, e) in table.iter().enumerate() {
+        assert_eq!(e["face"], k + 1, "{e}");
+        assert!(e["step_id"].as_u64().is_some_and(|id| id > 0), "{e}");
+        assert_eq!(e["solid"], 1, "solids are numbered from 1: {e}");
+    }
+    let names: Vec<&str> = table.iter().filter_map(|e| e["name"].as_str()).collect();
+    assert_eq!(names.iter().collect::<std::collections::BTreeSet<_>>().len(), names.len(), "{names:?}");
     assert_eq!(v["watertight"], true);
     assert_eq!(v["certificate"]["passed"], true);
     assert_eq!(v["euler"][0]["mesh"], v["euler"][0]["brep"]);
@@ -100,7 +110,7 @@ fn mesh_goes_from_step_to_valid_tets_with_opencascade_volume() {
         let v = m.volume();
         assert!(((v - occ_volume) / occ_volume).abs() < 0.005, "{name}: volume {v} vs OpenCASCADE {occ_volume}");
         // boundary tags are the CAD face ids
-        let tags: std::collections::BTreeSet<u32> = m.boundary_tags.iter().map(|t| t.0).collect();
+        let tags: std::collections::BTreeSet<u32> = m.face_tags.iter().map(|t| t.0).collect();
         assert!(!tags.is_empty() && tags.iter().all(|&t| t >= 1), "{name}: {tags:?}");
     }
 }

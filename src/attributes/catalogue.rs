@@ -124,7 +124,7 @@ impl FaceCatalogue {
         let diag = surface.bbox().diagonal();
         cat.size = if diag > 0.0 { diag } else { 1.0 };
         for info in &mut cat.faces {
-            info.name = surface.tag_names.get(&info.id).cloned();
+            info.name = surface.face_names.get(info.id).map(str::to_string);
         }
         // planes: every triangle's normal along the area-weighted mean, every vertex on it
         let tol = 1e-9 * cat.size;

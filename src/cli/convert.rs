@@ -68,7 +68,9 @@ pub fn run(args: &Args) -> Result<()> {
     let surface_only = matches!(out_format, Format::Stl | Format::Obj | Format::Off);
     if let (MeshData::Volume(m), true) = (&loaded.mesh, surface_only) {
         loaded.notes.push(format!("wrote the boundary surface of the tetrahedral mesh ({} tets are not representable in {})", m.tets.len(), out_format.name()));
-        loaded.mesh = MeshData::Surface(m.boundary_surface());
+        let mut s = m.boundary_surface();
+        s.remove_unused_vertices();
+        loaded.mesh = MeshData::Surface(s);
     }
     progress.stage(&format!("writing {}", args.output.display()));
     io::write(&args.output, &loaded.mesh, &WriteOptions::default().with_ascii(args.ascii))?;

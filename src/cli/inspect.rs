@@ -5,12 +5,11 @@ use crate::cli::progress::Progress;
 use crate::core::{FaceId, Tolerance};
 use crate::io::{self, MeshData, ReadOptions};
 use crate::mesh::TriSurface;
-use crate::mesh::tet_mesh::TetMesh;
 use crate::mesh::topology::{IntersectingPair, ReportOptions, ShellReport, SurfaceReport, surface_report};
 use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality};
 use anyhow::Result;
 use serde::Serialize;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -102,27 +101,6 @@ struct Report {
     seconds: f64,
 }
 
-/// The boundary of a tet mesh as a surface over the mesh's own vertices: its hull faces
-/// (outward), each tagged as in `boundary` where listed there, else `FaceId(0)`.
-fn tet_boundary(m: &TetMesh) -> TriSurface {
-    let mut tag_of: HashMap<[u32; 3], FaceId> = HashMap::with_capacity(m.boundary.len());
-    for (t, tag) in m.boundary.iter().zip(&m.boundary_tags) {
-        let mut k = *t;
-        k.sort_unstable();
-        tag_of.insert(k, *tag);
-    }
-    let hull = m.hull_faces();
-    let face_tags = hull
-        .iter()
-        .map(|f| {
-            let mut k = *f;
-            k.sort_unstable();
-            tag_of.get(&k).copied().unwrap_or(FaceId(0))
-        })
-        .collect();
-    TriSurface { vertices: m.vertices.clone(), triangles: hull, face_tags, tag_names: m.face_names.clone() }
-}
-
 fn tag_infos(tags: impl Iterator<Item = u32>, names: impl Fn(u32) -> Option<String>) -> Vec<TagInfo> {
     let mut count: BTreeMap<u32, usize> = BTreeMap::new();
     for t in tags {
@@ -147,7 +125,7 @@ pub fn run(args: &Args) -> Result<()> {
         MeshData::Volume(m) => {
             progress.stage("measuring element quality");
             let q = tet_mesh_quality(m);
-            let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(&crate::core::RegionId(r)).cloned());
+            let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(crate::core::RegionId(r)).map(str::to_string));
             let keys = TetKeys {
                 min_dihedral_deg: q.min_dihedral_deg,
                 max_dihedral_deg: q.max_dihedral_deg,
@@ -157,14 +135,14 @@ pub fn run(args: &Args) -> Result<()> {
                 regions,
                 quality: q,
             };
-            (tet_boundary(m), Some(keys))
+            (m.boundary_surface(), Some(keys))
         }
         MeshData::Points(p) => (TriSurface { vertices: p.clone(), ..Default::default() }, None),
     };
     progress.stage("computing the topology report");
     let r: SurfaceReport = surface_report(&surface, &opts);
     progress.finish();
-    let tags = tag_infos(surface.face_tags.iter().map(|t| t.0), |t| surface.tag_names.get(&FaceId(t)).cloned());
+    let tags = tag_infos(surface.face_tags.iter().map(|t| t.0), |t| surface.face_names.get(FaceId(t)).map(str::to_string));
     let report = Report {
         file: args.file.display().to_string(),
         format: loaded.format.name(),

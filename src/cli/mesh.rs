@@ -94,7 +94,8 @@ struct Report<'a> {
     boundary_steiner_points: usize,
     regions: usize,
     global_size: f64,
-    faces: &'a [crate::attributes::FaceInfo],
+    /// Per boundary face tag: unique name (and for STEP parts colour, STEP `#id`, solid).
+    face_table: &'a [crate::cad::brep::FaceEntry],
     mesher: &'a crate::mesh3d::mesher::MeshReport,
 }
 
@@ -149,7 +150,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         boundary_steiner_points: mesher.boundary_steiner_points,
         regions: m.regions,
         global_size: report.global_size,
-        faces: &report.faces,
+        face_table: &report.face_table,
         mesher: &mesher,
     };
     if args.json {

@@ -62,11 +62,11 @@ pub fn run(args: &Args) -> Result<()> {
 
 fn print(r: &RunReport, check: bool) {
     println!("input            {}", r.input);
-    println!("faces            {}", r.faces.len());
+    println!("faces            {}", r.face_table.len());
     for (name, faces) in &r.selectors {
         let names: Vec<String> = faces
             .iter()
-            .map(|f| match r.faces.iter().find(|x| x.id == *f).and_then(|x| x.name.clone()) {
+            .map(|f| match r.face_table.iter().find(|x| x.face == *f).and_then(|x| x.name.clone()) {
                 Some(n) => format!("{} ({n})", f.0),
                 None => f.0.to_string(),
             })

@@ -7,7 +7,7 @@
 //! certificate failed (the message names the face and its STEP `#id`; no file is written),
 //! 2 bad usage.
 
-use crate::cad::brep::{Dropped, EntityRef, Model, Units};
+use crate::cad::brep::{Dropped, EntityRef, FaceEntry, Model, Units};
 use crate::cli::usage_error;
 use crate::core::size_field::UniformSize;
 use crate::core::{FaceId, SizeField};
@@ -91,6 +91,8 @@ struct Report {
     /// What sewing the open shells did.
     sewing: Option<crate::cad::brep::SewReport>,
     faces: usize,
+    /// Per face: unique name, colour, STEP `#id`, solid.
+    face_table: Vec<FaceEntry>,
     triangles: usize,
     vertices: usize,
     watertight: bool,
@@ -177,6 +179,7 @@ fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Re
         surface_model_shells: c.model.surface_model_shells(),
         sewing: c.model.sewing.clone(),
         faces: c.model.faces.len(),
+        face_table: c.model.face_table(),
         triangles: s.triangles.len(),
         vertices: s.vertices.len(),
         watertight: cert.closed && cert.manifold && cert.oriented && cert.shells.iter().all(|x| x.brep_closed),

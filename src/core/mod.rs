@@ -1,5 +1,5 @@
-//! Layer 0: identifiers, exact predicates, bounding boxes, tolerances relative to the model's
-//! size and the [`SizeField`] trait. Nothing here knows about meshes or files.
+//! Layer 0: identifiers and the names of tags, exact predicates, bounding boxes, tolerances
+//! relative to the model's size and the [`SizeField`] trait. Nothing here knows about meshes or files.
 
 pub mod aabb;
 pub mod bvh;
@@ -9,6 +9,7 @@ pub mod intersection;
 pub mod predicates;
 pub mod size_field;
 pub mod spatial_order;
+pub mod tag_names;
 pub mod tolerance;
 pub(crate) mod union_find;
 
@@ -16,4 +17,5 @@ pub use aabb::Aabb;
 pub use ids::{FaceId, RegionId};
 pub use predicates::Sign;
 pub use size_field::SizeField;
+pub use tag_names::{FaceNames, RegionNames, TagNames};
 pub use tolerance::Tolerance;

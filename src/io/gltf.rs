@@ -520,8 +520,8 @@ impl Walk<'_> {
                 }
                 self.s.vertices.push(w);
             }
-            let tag = FaceId(self.s.tag_names.len() as u32 + 1);
-            self.s.tag_names.insert(tag, format!("{node_label}/{mesh_label}/primitive {p}"));
+            let tag = FaceId::from_index(self.s.face_names.len());
+            self.s.face_names.insert(tag, format!("{node_label}/{mesh_label}/primitive {p}"));
             let b = base as u32;
             self.s.triangles.extend(tris.iter().map(|t| if mirror { [t[0] + b, t[2] + b, t[1] + b] } else { t.map(|i| i + b) }));
             self.s.face_tags.resize(self.s.triangles.len(), tag);
@@ -672,7 +672,7 @@ mod tests {
         // 2 instances × (2 indexed + 2 fan) + 2 strip triangles
         assert_eq!(s.triangles.len(), 10);
         assert_eq!(l.file_vertices, 4 * 4 + 4);
-        let names: Vec<&str> = s.tag_names.values().map(String::as_str).collect();
+        let names: Vec<&str> = s.face_names.names().collect();
         assert_eq!(names, ["a/sq/primitive 0", "a/sq/primitive 1", "node 2/sq/primitive 0", "node 2/sq/primitive 1", "node 3/mesh 1/primitive 0"]);
         assert_eq!(s.tags().len(), 5);
         assert!(l.notes.iter().any(|n| n == "skipped 1 point primitive of mesh 'sq'"), "{:?}", l.notes);

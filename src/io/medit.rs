@@ -192,7 +192,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
             vertices,
             region_tags: tets.refs.into_iter().map(RegionId).collect(),
             tets: tets.corners,
-            boundary_tags: tris.refs.into_iter().map(FaceId).collect(),
+            face_tags: tris.refs.into_iter().map(FaceId).collect(),
             boundary: tris.corners,
             ..Default::default()
         };
@@ -227,7 +227,7 @@ pub fn write_surface(path: &Path, s: &TriSurface) -> Result<(), IoError> {
 /// # Errors
 /// [`IoError::Write`].
 pub fn write_volume(path: &Path, m: &TetMesh) -> Result<(), IoError> {
-    write_mesh(path, &m.vertices, &m.boundary, &m.boundary_tags, &m.tets, &m.region_tags)
+    write_mesh(path, &m.vertices, &m.boundary, &m.face_tags, &m.tets, &m.region_tags)
 }
 
 fn write_mesh(
@@ -286,7 +286,7 @@ mod tests {
         let s = TriSurface {
             vertices: m.vertices.clone(),
             triangles: m.boundary.clone(),
-            face_tags: m.boundary_tags.clone(),
+            face_tags: m.face_tags.clone(),
             ..Default::default()
         };
         write_surface(&p, &s).unwrap();
@@ -302,7 +302,7 @@ mod tests {
         let MeshData::Volume(m) = &l.mesh else { panic!("{:?}", l.mesh) };
         assert_eq!(m.tets, vec![[0, 2, 3, 1]]);
         assert_eq!(m.region_tags, vec![RegionId(7)]);
-        assert_eq!(m.boundary_tags, vec![FaceId(5)]);
+        assert_eq!(m.face_tags, vec![FaceId(5)]);
         assert_eq!(m.boundary, vec![[0, 2, 1]], "oriented outward");
         assert!(m.validate().is_ok());
         assert_eq!(l.notes.len(), 3, "{:?}", l.notes);

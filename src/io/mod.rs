@@ -16,6 +16,10 @@
 //! | Gmsh MSH 4.1 (`.msh`) ASCII and binary | yes | ASCII | physical groups |
 //! | VTK XML unstructured grid (`.vtu`) | no | yes | cell data |
 //! | points (`.xyz`) | yes | no | none |
+//!
+//! Tags follow [`crate::core::ids`] (0 untagged, made-up tags from 1). Writers that write tag
+//! names (MSH physical names, OBJ groups, ASCII STL solids) make them unique first
+//! ([`crate::core::TagNames::unique`]): the first keeps its name, later ones get `.2`, `.3`.
 
 pub mod atomic;
 pub mod common;

@@ -28,7 +28,7 @@ use crate::io::{Format, IoError, Loaded, MeshData};
 use crate::mesh::TriSurface;
 use glam::DVec3;
 use std::borrow::Cow;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
@@ -247,7 +247,7 @@ impl Scan {
             Some(t) => t,
             None => {
                 let key = (self.object.clone(), self.group.clone());
-                let next = self.keys.len() as u32 + 1;
+                let next = FaceId::from_index(self.keys.len()).0;
                 let keys = &mut self.keys;
                 let t = *self.key_tags.entry(key.clone()).or_insert_with(|| {
                     keys.push(key);
@@ -321,7 +321,7 @@ impl Scan {
     }
 
     /// Tag names: the group, else the object; `object/group` where names would repeat.
-    fn tag_names(&self) -> Vec<Option<String>> {
+    fn face_names(&self) -> Vec<Option<String>> {
         let plain: Vec<Option<&String>> = self.keys.iter().map(|(o, g)| g.as_ref().or(o.as_ref())).collect();
         let mut uses: HashMap<Option<&String>, usize> = HashMap::new();
         for n in &plain {
@@ -368,9 +368,9 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
         }
         s.face_tags.resize(s.triangles.len(), FaceId(f.tag));
     }
-    for (k, n) in scan.tag_names().into_iter().enumerate() {
+    for (k, n) in scan.face_names().into_iter().enumerate() {
         if let Some(n) = n {
-            s.tag_names.insert(FaceId(k as u32 + 1), n);
+            s.face_names.insert(FaceId::from_index(k), n);
         }
     }
     let mut loaded = Loaded::new(MeshData::Surface(s), Format::Obj, file_vertices);
@@ -389,17 +389,20 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
     Ok(loaded)
 }
 
-/// A tag's name as an OBJ group name: whitespace and `#` become `_`; `tag_<n>` if unnamed.
-fn group_name(s: &TriSurface, tag: FaceId) -> String {
-    match s.tag_names.get(&tag).filter(|n| !n.trim().is_empty()) {
-        Some(n) => n.trim().chars().map(|c| if c.is_whitespace() || c == '#' { '_' } else { c }).collect(),
-        None => format!("tag_{}", tag.0),
-    }
+/// The OBJ group names of the tags of `s`: the tag's name with whitespace and `#` made `_`,
+/// `tag_<n>` if unnamed, then made unique ([`crate::core::TagNames::unique`]).
+fn group_names(s: &TriSurface) -> BTreeMap<FaceId, String> {
+    s.face_names.unique(s.face_tags.iter().copied(), |tag, name| {
+        Some(match name.map(str::trim).filter(|n| !n.is_empty()) {
+            Some(n) => n.chars().map(|c| if c.is_whitespace() || c == '#' { '_' } else { c }).collect(),
+            None => format!("tag_{}", tag.0),
+        })
+    })
 }
 
 /// Writes `s` as OBJ: `v` lines with coordinates that read back exactly, then one `g` block
-/// per tag (in increasing tag order, named from `tag_names`, else `tag_<n>`) of 1-based `f`
-/// lines.
+/// per tag (in increasing tag order, named from `face_names`, else `tag_<n>`, names made
+/// unique) of 1-based `f` lines.
 ///
 /// # Errors
 /// [`IoError::Invalid`] if `s` is not a valid surface, [`IoError::Write`] for file-system
@@ -408,6 +411,7 @@ pub fn write(path: &Path, s: &TriSurface) -> Result<(), IoError> {
     s.validate().map_err(|source| IoError::Invalid { path: path.to_path_buf(), source })?;
     let mut order: Vec<usize> = (0..s.triangles.len()).collect();
     order.sort_by_key(|&t| s.face_tags.get(t).copied().unwrap_or_default());
+    let names = group_names(s);
     write_atomic(path, |w| {
         let e = write_err(path);
         writeln!(w, "# written by fepre: {} vertices, {} triangles", s.vertices.len(), s.triangles.len()).map_err(&e)?;
@@ -419,7 +423,7 @@ pub fn write(path: &Path, s: &TriSurface) -> Result<(), IoError> {
             let (Some(tri), Some(&tag)) = (s.triangles.get(t), s.face_tags.get(t)) else { continue };
             if current != Some(tag) {
                 current = Some(tag);
-                writeln!(w, "g {}", group_name(s, tag)).map_err(&e)?;
+                writeln!(w, "g {}", names.get(&tag).map_or("", String::as_str)).map_err(&e)?;
             }
             writeln!(w, "f {} {} {}", u64::from(tri[0]) + 1, u64::from(tri[1]) + 1, u64::from(tri[2]) + 1).map_err(&e)?;
         }
@@ -472,9 +476,9 @@ f 5 6 7 8
         assert_eq!(s.triangles.len(), 12);
         assert_eq!(s.tags(), vec![FaceId(1), FaceId(2), FaceId(3)]);
         assert_eq!(s.face_tags.iter().filter(|&&t| t == FaceId(2)).count(), 8);
-        assert_eq!(s.tag_names.get(&FaceId(1)).map(String::as_str), Some("lower"));
-        assert_eq!(s.tag_names.get(&FaceId(2)).map(String::as_str), Some("sides"));
-        assert_eq!(s.tag_names.get(&FaceId(3)).map(String::as_str), Some("upper"));
+        assert_eq!(s.face_names.get(FaceId(1)), Some("lower"));
+        assert_eq!(s.face_names.get(FaceId(2)), Some("sides"));
+        assert_eq!(s.face_names.get(FaceId(3)), Some("upper"));
         // relative indices: -7 -6 -2 -3 are 2 3 7 6 with 8 vertices defined
         assert!(s.triangles[4..6].iter().all(|t| t.iter().all(|&i| [1, 2, 6, 5].contains(&i))));
         s.validate().unwrap();
@@ -499,7 +503,7 @@ f 5 6 7 8
         }).sum();
         assert_eq!(area, 3.0);
         assert_eq!(s.tags(), vec![FaceId(1)]);
-        assert!(s.tag_names.is_empty());
+        assert!(s.face_names.is_empty());
         let notes = l.notes.join("\n");
         assert!(notes.contains("ignored 3 point and line elements"), "{notes}");
         assert!(notes.contains("free-form"), "{notes}");
@@ -529,8 +533,8 @@ f 5 6 7 8
     fn writes_and_reads_back() {
         let dir = tempfile::tempdir().unwrap();
         let (mut s, _) = surface(CUBE);
-        s.tag_names.insert(FaceId(3), "top lid#1".into());
-        s.tag_names.remove(&FaceId(1));
+        s.face_names.insert(FaceId(3), "top lid#1");
+        s.face_names.remove(FaceId(1));
         s.vertices[6] = DVec3::new(1.0 + 1e-15, 0.1 + 0.2, 1e-300);
         let p = dir.path().join("cube.obj");
         crate::io::write(&p, &MeshData::Surface(s.clone()), &crate::io::WriteOptions::default()).unwrap();
@@ -542,11 +546,18 @@ f 5 6 7 8
         for tag in s.tags() {
             assert_eq!(r.face_tags.iter().filter(|&&t| t == tag).count(), s.face_tags.iter().filter(|&&t| t == tag).count());
         }
-        assert_eq!(r.tag_names.get(&FaceId(1)).map(String::as_str), Some("tag_1"));
-        assert_eq!(r.tag_names.get(&FaceId(3)).map(String::as_str), Some("top_lid_1"));
+        assert_eq!(r.face_names.get(FaceId(1)), Some("tag_1"));
+        assert_eq!(r.face_names.get(FaceId(3)), Some("top_lid_1"));
         let welded = crate::io::read(&p, &ReadOptions::default()).unwrap();
         let MeshData::Surface(w) = welded.mesh else { panic!() };
         assert_eq!((w.vertices.len(), w.triangles.len()), (8, 12));
+        // names that clean to the same group name, or to another tag's fallback, stay apart
+        s.face_names.insert(FaceId(1), "tag 2");
+        s.face_names.insert(FaceId(2), "tag#2");
+        crate::io::write(&p, &MeshData::Surface(s.clone()), &crate::io::WriteOptions::default()).unwrap();
+        let MeshData::Surface(u) = crate::io::read(&p, &ReadOptions::default()).unwrap().mesh else { panic!() };
+        let names: Vec<&str> = u.face_names.names().collect();
+        assert_eq!(names, ["tag_2", "tag_2.2", "top_lid_1"]);
         // an invalid surface is not written, and leaves no file
         s.face_tags.pop();
         let q = dir.path().join("bad.obj");

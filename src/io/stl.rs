@@ -94,7 +94,7 @@ fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
         solid += 1;
         let name = tok.rest_of_line().join(" ");
         if !name.is_empty() {
-            s.tag_names.insert(FaceId(solid), name);
+            s.face_names.insert(FaceId(solid), name);
         }
         loop {
             let t = tok.expect("'facet' or 'endsolid'")?;
@@ -135,7 +135,8 @@ fn unit_normal(p: [DVec3; 3]) -> DVec3 {
 }
 
 /// Writes `s` as binary STL (coordinates rounded to `f32`), or as ASCII STL with one `solid`
-/// block per tag when `options.ascii` is set.
+/// block per tag when `options.ascii` is set (named after the tag's name with whitespace made
+/// `_`, `tag_<n>` if unnamed, names made unique).
 ///
 /// # Errors
 /// [`IoError::Write`], or [`IoError::NotRepresentable`] for more than 2³² − 1 triangles in
@@ -178,9 +179,12 @@ fn write_ascii(path: &Path, s: &TriSurface) -> Result<(), IoError> {
         let e = write_err(path);
         let tags = s.tags();
         let tags = if tags.is_empty() { vec![FaceId(1)] } else { tags };
+        let names = s.face_names.unique(tags.iter().copied(), |tag, name| {
+            let name = name.filter(|n| !n.trim().is_empty()).map_or_else(|| format!("tag_{}", tag.0), str::to_string);
+            Some(name.chars().map(|c| if c.is_whitespace() { '_' } else { c }).collect())
+        });
         for tag in tags {
-            let name = s.tag_names.get(&tag).cloned().unwrap_or_else(|| format!("tag_{}", tag.0));
-            let name: String = name.chars().map(|c| if c.is_whitespace() { '_' } else { c }).collect();
+            let name = names.get(&tag).map_or("", String::as_str);
             writeln!(w, "solid {name}").map_err(&e)?;
             for t in (0..s.triangles.len()).filter(|&t| s.face_tags[t] == tag) {
                 let p = s.corners(t);
@@ -224,6 +228,19 @@ mod tests {
                 assert_eq!(s.tags(), vec![FaceId(1), FaceId(2)]);
             }
         }
+    }
+
+    #[test]
+    fn ascii_solid_names_are_unique() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("n.stl");
+        let mut s = tetra();
+        s.face_tags[2] = FaceId(3);
+        s.face_names = [(FaceId(1), "side wall"), (FaceId(2), "side_wall"), (FaceId(3), "tag_1")].into_iter().collect();
+        write(&p, &s, &WriteOptions::default().with_ascii(true)).unwrap();
+        let MeshData::Surface(r) = crate::io::read(&p, &ReadOptions::default()).unwrap().mesh else { panic!() };
+        let names: Vec<&str> = r.face_names.names().collect();
+        assert_eq!(names, ["side_wall", "side_wall.2", "tag_1"]);
     }
 
     #[test]

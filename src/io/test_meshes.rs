@@ -14,12 +14,12 @@ pub(crate) fn two_tets() -> TetMesh {
         ..Default::default()
     };
     m.boundary = m.hull_faces();
-    m.boundary_tags = (0..m.boundary.len() as u32).map(|i| FaceId(i % 3)).collect();
+    m.face_tags = (0..m.boundary.len() as u32).map(|i| FaceId(i % 3)).collect();
     m
 }
 
 /// The boundary of [`two_tets`] as a tagged surface over the same five vertices.
 pub(crate) fn two_tets_surface() -> TriSurface {
     let m = two_tets();
-    TriSurface { vertices: m.vertices, triangles: m.boundary, face_tags: m.boundary_tags, ..Default::default() }
+    TriSurface { vertices: m.vertices, triangles: m.boundary, face_tags: m.face_tags, ..Default::default() }
 }

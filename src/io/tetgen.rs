@@ -81,10 +81,10 @@ fn read_volume(path: &Path) -> Result<Loaded, IoError> {
     let face_path = path.with_extension("face");
     let nodes = read_node_file(&node_path)?;
     let (tets, region_tags, ele_notes) = read_ele(&ele_path, &read_bytes(&ele_path)?, &nodes)?;
-    let (boundary, boundary_tags) =
+    let (boundary, face_tags) =
         if face_path.exists() { read_faces(&face_path, &read_bytes(&face_path)?, &nodes)? } else { (Vec::new(), Vec::new()) };
     let n = nodes.points.len();
-    let mut m = TetMesh { vertices: nodes.points, tets, region_tags, boundary, boundary_tags, ..Default::default() };
+    let mut m = TetMesh { vertices: nodes.points, tets, region_tags, boundary, face_tags, ..Default::default() };
     let mut notes = ele_notes;
     notes.extend(orient_tets(&mut m));
     notes.extend(unused_vertices_note(&m));
@@ -385,7 +385,7 @@ pub fn write_volume(path: &Path, m: &TetMesh) -> Result<(), IoError> {
         for (i, (t, r)) in m.tets.iter().zip(&m.region_tags).enumerate() {
             writeln!(we, "{} {} {} {} {} {}", i + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1, r.0).map_err(&e)?;
         }
-        write_face_list(&paths[2], wf, &m.boundary, &m.boundary_tags)
+        write_face_list(&paths[2], wf, &m.boundary, &m.face_tags)
     })
 }
 

@@ -40,7 +40,7 @@ pub fn write_surface(path: &Path, s: &TriSurface, options: &WriteOptions) -> Res
 /// # Errors
 /// [`IoError::NotRepresentable`] for a tag above `i32::MAX`, [`IoError::Write`].
 pub fn write_volume(path: &Path, m: &TetMesh, options: &WriteOptions) -> Result<(), IoError> {
-    let cells = Cells { tets: &m.tets, tet_tags: &m.region_tags, tris: &m.boundary, tri_tags: &m.boundary_tags, kind: true };
+    let cells = Cells { tets: &m.tets, tet_tags: &m.region_tags, tris: &m.boundary, tri_tags: &m.face_tags, kind: true };
     write_grid(path, &m.vertices, &cells, options)
 }
 
@@ -216,7 +216,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("s.vtu");
         let m = two_tets();
-        let s = TriSurface { vertices: m.vertices, triangles: m.boundary, face_tags: m.boundary_tags, ..Default::default() };
+        let s = TriSurface { vertices: m.vertices, triangles: m.boundary, face_tags: m.face_tags, ..Default::default() };
         write_surface(&p, &s, &WriteOptions::default().with_ascii(true)).unwrap();
         let xml = std::fs::read_to_string(&p).unwrap();
         assert_eq!(array(&xml, "offsets").split_whitespace().last(), Some("18"));

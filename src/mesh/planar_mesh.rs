@@ -1,7 +1,7 @@
 //! `PlanarMesh`: a 2D mesh of triangles and quadrilaterals.
 
 use crate::core::predicates::orient2d;
-use crate::core::{RegionId, Sign};
+use crate::core::{RegionId, RegionNames, Sign};
 use crate::mesh::tri_surface::check_simplex;
 use crate::mesh::{Element, MeshError};
 use glam::DVec2;
@@ -11,6 +11,9 @@ use glam::DVec2;
 /// - `vertices`: #V positions in the plane.
 /// - `triangles`: #T × 3, counter-clockwise; `triangle_tags`: #T region tags.
 /// - `quads`: #Q × 4, strictly convex and counter-clockwise; `quad_tags`: #Q region tags.
+/// - `region_names`: names of region tags where known.
+///
+/// Tags follow [`crate::core::ids`]: 0 is untagged, made-up tags start at 1.
 ///
 /// A valid mesh is conforming: every edge is shared by at most two elements, which traverse it
 /// in opposite directions.
@@ -26,6 +29,8 @@ pub struct PlanarMesh {
     pub quads: Vec<[u32; 4]>,
     /// One tag per quadrilateral.
     pub quad_tags: Vec<RegionId>,
+    /// Names of region tags, where known.
+    pub region_names: RegionNames,
 }
 
 impl PlanarMesh {
@@ -117,6 +122,7 @@ mod tests {
             triangle_tags: vec![RegionId(1)],
             quads: vec![[0, 1, 2, 3]],
             quad_tags: vec![RegionId(1)],
+            region_names: [(RegionId(1), "plate")].into_iter().collect(),
         }
     }
 

@@ -151,7 +151,7 @@ pub fn plate_with_hole(n: usize, width: f64, thickness: f64, radius: f64) -> Tri
     }
     s.vertices = v;
     for (tag, name) in [(1, "top"), (2, "bottom"), (3, "side_xmin"), (4, "side_xmax"), (5, "side_ymin"), (6, "side_ymax"), (7, "hole")] {
-        s.tag_names.insert(FaceId(tag), name.to_string());
+        s.face_names.insert(FaceId(tag), name.to_string());
     }
     s
 }

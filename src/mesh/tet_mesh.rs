@@ -1,11 +1,11 @@
 //! `TetMesh`: positively oriented tetrahedra with region tags and tagged boundary triangles.
 
 use crate::core::predicates::orient3d;
-use crate::core::{Aabb, FaceId, RegionId, Sign};
+use crate::core::{Aabb, FaceId, FaceNames, RegionId, RegionNames, Sign};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TriSurface};
 use glam::DVec3;
-use std::collections::BTreeMap;
+use std::collections::HashMap;
 
 /// Local faces of a tetrahedron `(v0, v1, v2, v3)`: face `k` is opposite vertex `k` and, for a
 /// positively oriented tet, turns counter-clockwise seen from outside (its normal points out).
@@ -18,7 +18,11 @@ pub const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 
 ///   (`det[v1-v0, v2-v0, v3-v0] > 0`, decided exactly).
 /// - `region_tags`: #T region tags.
 /// - `boundary`: #B × 3 triangles, each a face of some tet, oriented outward where it bounds
-///   one tet only; `boundary_tags`: #B face tags (the CAD face each came from).
+///   one tet only; `face_tags`: #B face tags (the CAD face each came from).
+/// - `face_names`, `region_names`: names of tags where known (not necessarily unique: writers
+///   make them so).
+///
+/// Tag 0 is untagged; see [`crate::core::ids`] for the convention.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TetMesh {
     /// Vertex positions.
@@ -30,11 +34,11 @@ pub struct TetMesh {
     /// Tagged boundary (and interface) triangles.
     pub boundary: Vec<[u32; 3]>,
     /// One face tag per boundary triangle.
-    pub boundary_tags: Vec<FaceId>,
+    pub face_tags: Vec<FaceId>,
     /// Names of face tags, where known.
-    pub face_names: BTreeMap<FaceId, String>,
+    pub face_names: FaceNames,
     /// Names of region tags, where known.
-    pub region_names: BTreeMap<RegionId, String>,
+    pub region_names: RegionNames,
 }
 
 /// A face of a tet, as found by [`TetMesh::faces`].
@@ -59,10 +63,10 @@ impl TetMesh {
         if self.region_tags.len() != self.tets.len() {
             return Err(MeshError::LengthMismatch { what: "region_tags", found: self.region_tags.len(), expected: self.tets.len() });
         }
-        if self.boundary_tags.len() != self.boundary.len() {
+        if self.face_tags.len() != self.boundary.len() {
             return Err(MeshError::LengthMismatch {
-                what: "boundary_tags",
-                found: self.boundary_tags.len(),
+                what: "face_tags",
+                found: self.face_tags.len(),
                 expected: self.boundary.len(),
             });
         }
@@ -179,38 +183,34 @@ impl TetMesh {
         Aabb::from_points(&self.vertices)
     }
 
-    /// The tagged boundary as a surface with only the vertices it uses: the `boundary`
-    /// triangles if there are any, else the hull faces (faces of one tet) tagged `FaceId(1)`.
+    /// The boundary of the meshed volume as a surface over the mesh's own vertices (indices as
+    /// in `tets`): its hull faces (faces of one tet only), oriented outward, in the order of
+    /// [`TetMesh::faces`], each tagged as the `boundary` triangle on it where there is one,
+    /// else [`FaceId::UNTAGGED`]; interface triangles (between two tets) are not part of it.
+    /// Face names are kept. [`TriSurface::remove_unused_vertices`] makes it a surface of its
+    /// own.
+    ///
+    /// ```
+    /// use fepre::core::FaceId;
+    /// let mut m = fepre::mesh::shapes::kuhn_cube(1, 0.0, 0);
+    /// m.boundary.clear();
+    /// m.face_tags.clear();
+    /// let s = m.boundary_surface();
+    /// assert_eq!(s.triangles.len(), 12);
+    /// assert!(s.face_tags.iter().all(|t| *t == FaceId::UNTAGGED));
+    /// ```
     pub fn boundary_surface(&self) -> TriSurface {
-        let (tris, tags) = if self.boundary.is_empty() {
-            let h = self.hull_faces();
-            let n = h.len();
-            (h, vec![FaceId(1); n])
-        } else {
-            (self.boundary.clone(), self.boundary_tags.clone())
-        };
-        let mut index = vec![u32::MAX; self.vertices.len()];
-        let mut vertices = Vec::new();
-        let triangles = tris
-            .iter()
-            .map(|t| {
-                t.map(|v| {
-                    if index[v as usize] == u32::MAX {
-                        index[v as usize] = vertices.len() as u32;
-                        vertices.push(self.vertices[v as usize]);
-                    }
-                    index[v as usize]
-                })
-            })
-            .collect();
-        TriSurface { vertices, triangles, face_tags: tags, tag_names: self.face_names.clone() }
+        let tag_of: HashMap<[u32; 3], FaceId> = self.boundary.iter().zip(&self.face_tags).map(|(t, tag)| (sorted3(*t).0, *tag)).collect();
+        let triangles = self.hull_faces();
+        let face_tags = triangles.iter().map(|f| tag_of.get(&sorted3(*f).0).copied().unwrap_or(FaceId::UNTAGGED)).collect();
+        TriSurface { vertices: self.vertices.clone(), triangles, face_tags, face_names: self.face_names.clone() }
     }
 
     /// Reorders each boundary triangle that bounds a single tet so that it faces outward from
     /// that tet; interface triangles (two tets) and triangles that are no face are left as
     /// they are.
     pub fn orient_boundary_outward(&mut self) {
-        let mut outward: std::collections::HashMap<[u32; 3], [u32; 3]> = std::collections::HashMap::new();
+        let mut outward: HashMap<[u32; 3], [u32; 3]> = HashMap::new();
         for f in self.faces() {
             if f.neighbor.is_none() {
                 outward.insert(sorted3(f.vertices).0, f.vertices);
@@ -273,11 +273,28 @@ mod tests {
             assert_eq!(orient3d(a, b, d, c), Sign::Negative, "face {f:?} faces inward");
         }
         m.boundary = vec![[0, 1, 2]];
-        m.boundary_tags = vec![FaceId(7)];
+        m.face_tags = vec![FaceId(7)];
         m.orient_boundary_outward();
         assert_eq!(m.boundary[0], [0, 2, 1]);
         assert_eq!(m.validate(), Ok(()));
         assert!((m.volume() - 0.5).abs() < 1e-15, "1/6 + 2/6");
+    }
+
+    #[test]
+    fn boundary_surface_tags_listed_hull_faces_and_leaves_the_rest_untagged() {
+        let mut m = two_tets();
+        // one hull face listed (given inward: the tag follows the face, not its orientation),
+        // and the interface between the two tets, which is no part of the boundary
+        m.boundary = vec![[0, 1, 2], [1, 2, 3]];
+        m.face_tags = vec![FaceId(7), FaceId(8)];
+        m.face_names.insert(FaceId(7), "bottom");
+        let s = m.boundary_surface();
+        assert_eq!(s.triangles, m.hull_faces());
+        assert_eq!(s.vertices, m.vertices);
+        let tagged: Vec<([u32; 3], FaceId)> = s.triangles.iter().zip(&s.face_tags).filter(|(_, t)| !t.is_untagged()).map(|(f, t)| (*f, *t)).collect();
+        assert_eq!(tagged, vec![([0, 2, 1], FaceId(7))]);
+        assert_eq!(s.face_tags.iter().filter(|t| t.is_untagged()).count(), 5);
+        assert_eq!(s.face_names.get(FaceId(7)), Some("bottom"));
     }
 
     #[test]
@@ -292,7 +309,7 @@ mod tests {
         assert!(matches!(m.validate(), Err(MeshError::Overlap { .. })));
         let mut m = two_tets();
         m.boundary = vec![[0, 1, 4]];
-        m.boundary_tags = vec![FaceId(1)];
+        m.face_tags = vec![FaceId(1)];
         assert!(matches!(m.validate(), Err(MeshError::BoundaryNotAFace { triangle: 0, .. })));
         let mut m = two_tets();
         m.vertices[4] = DVec3::new(0.5, 0.5, 0.0);

@@ -1,17 +1,18 @@
 //! `TriSurface`: a triangulated surface with a face tag per triangle.
 
-use crate::core::{Aabb, FaceId};
+use crate::core::{Aabb, FaceId, FaceNames};
 use crate::mesh::{Element, MeshError};
 use glam::DVec3;
-use std::collections::BTreeMap;
 
 /// A triangle surface: the hand-off between readers or the tessellator and the volume mesher.
 ///
 /// - `vertices`: #V positions.
 /// - `triangles`: #T × 3 vertex indices; for a closed, outward-oriented surface the vertices
 ///   of every triangle turn counter-clockwise seen from outside.
-/// - `face_tags`: #T tags, the CAD face (or group, primitive, facet marker) of each triangle.
-/// - `tag_names`: optional names of tags (OBJ group names, glTF node/mesh names, …).
+/// - `face_tags`: #T tags, the CAD face (or group, primitive, facet marker) of each triangle;
+///   `FaceId(0)` is untagged, made-up tags start at 1 (see [`crate::core::ids`]).
+/// - `face_names`: names of tags where the source had them (OBJ group names, glTF node/mesh
+///   names, STEP face names); not necessarily unique, writers make them so.
 ///
 /// Topological properties (closed, manifold, genus, …) are not invariants of the type; the
 /// surface report (`mesh::topology`) derives them.
@@ -24,7 +25,7 @@ pub struct TriSurface {
     /// One tag per triangle.
     pub face_tags: Vec<FaceId>,
     /// Names of tags, where the source had them.
-    pub tag_names: BTreeMap<FaceId, String>,
+    pub face_names: FaceNames,
 }
 
 impl TriSurface {
@@ -33,7 +34,7 @@ impl TriSurface {
     /// # Errors
     /// Whatever [`TriSurface::validate`] reports.
     pub fn try_new(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>, face_tags: Vec<FaceId>) -> Result<Self, MeshError> {
-        let s = TriSurface { vertices, triangles, face_tags, tag_names: BTreeMap::new() };
+        let s = TriSurface { vertices, triangles, face_tags, face_names: FaceNames::new() };
         s.validate()?;
         Ok(s)
     }
@@ -41,7 +42,7 @@ impl TriSurface {
     /// A surface whose triangles all carry `tag`, not validated.
     pub fn with_single_tag(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>, tag: FaceId) -> Self {
         let n = triangles.len();
-        TriSurface { vertices, triangles, face_tags: vec![tag; n], tag_names: BTreeMap::new() }
+        TriSurface { vertices, triangles, face_tags: vec![tag; n], face_names: FaceNames::new() }
     }
 
     /// Checks the invariants: one tag per triangle, finite coordinates, indices in range, no
@@ -103,15 +104,49 @@ impl TriSurface {
         t
     }
 
+    /// Drops the vertices no triangle uses, renumbering the triangles (order kept); returns
+    /// how many were dropped.
+    ///
+    /// ```
+    /// use fepre::mesh::TriSurface;
+    /// use fepre::core::FaceId;
+    /// use glam::DVec3;
+    /// let mut s = TriSurface::with_single_tag(vec![DVec3::X, DVec3::ZERO, DVec3::Y, DVec3::Z], vec![[1, 0, 2]], FaceId(1));
+    /// assert_eq!(s.remove_unused_vertices(), 1);
+    /// assert_eq!(s.triangles, vec![[1, 0, 2]]);
+    /// assert_eq!(s.vertices.len(), 3);
+    /// ```
+    pub fn remove_unused_vertices(&mut self) -> usize {
+        let mut used = vec![false; self.vertices.len()];
+        for &v in self.triangles.iter().flatten() {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+        let mut index = vec![0u32; self.vertices.len()];
+        let mut next = 0u32;
+        for (i, &u) in used.iter().enumerate() {
+            index[i] = next;
+            if u {
+                self.vertices[next as usize] = self.vertices[i];
+                next += 1;
+            }
+        }
+        let dropped = self.vertices.len() - next as usize;
+        self.vertices.truncate(next as usize);
+        for t in &mut self.triangles {
+            *t = t.map(|v| index.get(v as usize).copied().unwrap_or(v));
+        }
+        dropped
+    }
+
     /// Appends `other`, renumbering its vertices; tags and names are kept as they are.
     pub fn append(&mut self, other: &TriSurface) {
         let off = self.vertices.len() as u32;
         self.vertices.extend_from_slice(&other.vertices);
         self.triangles.extend(other.triangles.iter().map(|t| [t[0] + off, t[1] + off, t[2] + off]));
         self.face_tags.extend_from_slice(&other.face_tags);
-        for (k, v) in &other.tag_names {
-            self.tag_names.entry(*k).or_insert_with(|| v.clone());
-        }
+        self.face_names.extend_missing(&other.face_names);
     }
 }
 

@@ -3,8 +3,8 @@
 
 use super::PipelineError;
 use crate::attributes::density::RegionSizes;
-use crate::attributes::{Density, DensityField, FaceCatalogue, FaceInfo, Selection, Selector};
-use crate::cad::brep::{Dropped, Model};
+use crate::attributes::{Density, DensityField, FaceCatalogue, Selection, Selector};
+use crate::cad::brep::{Dropped, FaceEntry, Model, face_table_of_names};
 use crate::cad::step;
 use crate::core::{RegionId, SizeField};
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
@@ -189,9 +189,14 @@ impl Part {
         })
     }
 
-    /// The faces: id, unique name, colour, STEP `#id`, solid, surface (for reports).
-    pub fn face_table(&self) -> Vec<FaceInfo> {
-        self.catalogue().faces.clone()
+    /// The faces for reports: id, unique name (as the writers name their groups), colour,
+    /// STEP `#id`, solid.
+    pub fn face_table(&self) -> Vec<FaceEntry> {
+        match (&self.model, &self.surface) {
+            (Some(m), _) => m.face_table(),
+            (None, Some(s)) => face_table_of_names(&s.face_names, s.face_tags.iter().copied()),
+            _ => Vec::new(),
+        }
     }
 
     /// The size field of `density` on this part, its lengths times `unit`.

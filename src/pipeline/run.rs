@@ -5,7 +5,8 @@
 use super::job::{JobFile, OutputKind};
 use super::part::{MESH_MAX_ANGLE_DEG, Part};
 use super::PipelineError;
-use crate::attributes::{Density, FaceInfo, SelectError, Selection, Selector};
+use crate::attributes::{Density, SelectError, Selection, Selector};
+use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
 use crate::mesh3d::mesher::{MeshOptions, MeshReport};
 use crate::quality::tet_mesh_quality;
@@ -70,8 +71,8 @@ pub struct MeshSummary {
 pub struct RunReport {
     /// The input file.
     pub input: String,
-    /// The faces: id, name, colour, STEP `#id`, solid, surface.
-    pub faces: Vec<FaceInfo>,
+    /// The faces: id, unique name, colour, STEP `#id`, solid.
+    pub face_table: Vec<FaceEntry>,
     /// What each selector selects.
     pub selectors: BTreeMap<String, Vec<FaceId>>,
     /// The global size, in part units.
@@ -111,7 +112,7 @@ pub fn evaluate_selectors(part: &Part, selectors: &BTreeMap<String, Selector>) -
 pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunReport, PipelineError> {
     let selected = evaluate_selectors(part, &plan.selectors).map_err(|source| PipelineError::Select { path: part.path.clone(), source })?;
     let field = part.density_field(&plan.density, &plan.selectors, plan.unit)?;
-    let mut report = RunReport { input: part.path.display().to_string(), faces: part.face_table(), selectors: selected, global_size: field.global(), ..RunReport::default() };
+    let mut report = RunReport { input: part.path.display().to_string(), face_table: part.face_table(), selectors: selected, global_size: field.global(), ..RunReport::default() };
     if check_only {
         return Ok(report);
     }

@@ -242,6 +242,7 @@ fn planar_report() {
         triangle_tags: vec![RegionId(1)],
         quads: vec![[0, 1, 2, 3]],
         quad_tags: vec![RegionId(1)],
+        ..Default::default()
     };
     let r = planar_mesh_quality(&m);
     assert!(rel(r.area, m.area()) < 1e-15);

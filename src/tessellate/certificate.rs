@@ -301,7 +301,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         failures.push(CheckFailure { check: "face_meshed", face: Some(ff.face), step_id: Some(ff.source), message: ff.why.clone() });
     }
     let (group, ngroups) = face_groups(model);
-    let group_of_face = |f: FaceId| model.try_face(f).map(|_| group[f.0 as usize - 1]);
+    let group_of_face = |f: FaceId| f.index().filter(|&k| k < model.faces.len()).map(|k| group[k]);
     let centre = model.bounds().map_or(DVec3::ZERO, |(lo, hi)| 0.5 * (lo + hi));
     let index = SegmentIndex::new(&t.edges);
 
@@ -313,7 +313,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
     let mut g_volume = vec![[0.0f64; 2]; ngroups];
     for (f, dom) in t.domains.iter().enumerate() {
         let Some(dom) = dom else { continue };
-        let fid = FaceId(f as u32 + 1);
+        let fid = FaceId::from_index(f);
         let g = group[f] as usize;
         let tris = s.triangles.get(dom.triangles.clone()).unwrap_or(&[]);
         let (mut a_mesh, mut v_mesh) = (0.0, 0.0);
@@ -545,7 +545,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         let face = model.try_face(f)?;
         match model.shells.get(face.shell as usize)?.solid {
             Some(k) => Some(i64::from(k)),
-            None => Some(-1 - i64::from(group[f.0 as usize - 1])),
+            None => Some(-1 - i64::from(group_of_face(f)?)),
         }
     };
     let (mut self_x, mut contacts) = (None, 0);

@@ -27,11 +27,10 @@ mod sizing;
 mod tests;
 
 use crate::cad::brep::{EntityRef, Model};
-use crate::core::{FaceId, SizeField};
+use crate::core::{FaceId, FaceNames, SizeField};
 use crate::mesh::TriSurface;
 use edge_points::EdgePoints;
 use glam::DVec3;
-use std::collections::BTreeMap;
 
 /// Tessellation criteria.
 #[derive(Clone, Debug, PartialEq)]
@@ -152,7 +151,7 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
     let mut triangles = Vec::new();
     let mut face_tags = Vec::new();
     let mut failed = Vec::new();
-    let mut tag_names = BTreeMap::new();
+    let mut face_names = FaceNames::new();
     let mut domains = Vec::with_capacity(model.faces.len());
     for fid in model.face_ids() {
         let face = model.face(fid);
@@ -162,7 +161,7 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
                 face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));
                 triangles.extend(fm.triangles);
                 if let Some(n) = &face.name {
-                    tag_names.insert(fid, n.clone());
+                    face_names.insert(fid, n.clone());
                 }
                 domains.push(Some(FaceDomain { triangles: start..triangles.len(), uv: fm.uv, boundary: fm.boundary }));
             }
@@ -172,5 +171,5 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
             }
         }
     }
-    Tessellation { surface: TriSurface { vertices, triangles, face_tags, tag_names }, failed, edges, domains, chord: tol }
+    Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol }
 }

@@ -42,7 +42,7 @@ fn tetrahedron() -> Model {
         let z = if flip { -n } else { n };
         let frame = Frame::from_axes(a, Some(z), Some(b - a)).unwrap();
         m.surfaces.push(Surface::Plane(Plane { frame }));
-        let fid = FaceId(k as u32 + 1);
+        let fid = FaceId::from_index(k);
         m.loops.push(Loop {
             face: fid,
             outer: true,

@@ -9,6 +9,7 @@
 //! [`Model::dropped`], never left out silently.
 
 mod edge_flags;
+mod face_table;
 mod model;
 mod sew;
 mod summary;
@@ -16,6 +17,7 @@ mod validate;
 
 pub use model::{Coedge, Dropped, Edge, EntityRef, Face, Loop, Model, Shell, Solid, Units, Vertex};
 pub use edge_flags::DEGENERATE_RELATIVE;
+pub use face_table::{FaceEntry, face_table_of_names};
 pub use sew::{SEW_RELATIVE, SewReport};
 pub use summary::Summary;
 pub use validate::VERTEX_ON_CURVE_RELATIVE;

@@ -161,7 +161,7 @@ pub struct Model {
     pub solids: Vec<Solid>,
     /// Shells.
     pub shells: Vec<Shell>,
-    /// Faces; [`FaceId`] `k` is `faces[k - 1]`.
+    /// Faces; [`FaceId`] `k` is `faces[k - 1]` ([`FaceId::index`]), `FaceId(0)` none.
     pub faces: Vec<Face>,
     /// Loops.
     pub loops: Vec<Loop>,
@@ -189,9 +189,10 @@ impl Model {
         self.shells.iter().filter(|s| s.solid.is_none()).count()
     }
 
-    /// The ids of all faces, `FaceId(1)` to `FaceId(n)`.
+    /// The ids of all faces, `FaceId(1)` to `FaceId(n)` ([`FaceId::from_index`] of each
+    /// index into [`Model::faces`]).
     pub fn face_ids(&self) -> impl Iterator<Item = FaceId> + '_ {
-        (1..=self.faces.len() as u32).map(FaceId)
+        (0..self.faces.len()).map(FaceId::from_index)
     }
 
     /// The face with this id.
@@ -199,12 +200,15 @@ impl Model {
     /// # Panics
     /// If `id` is not one of [`Model::face_ids`].
     pub fn face(&self, id: FaceId) -> &Face {
-        &self.faces[id.0 as usize - 1]
+        match self.try_face(id) {
+            Some(f) => f,
+            None => panic!("{id} is not a face of this model ({} faces)", self.faces.len()),
+        }
     }
 
     /// The face with this id, or `None`.
     pub fn try_face(&self, id: FaceId) -> Option<&Face> {
-        (id.0 as usize).checked_sub(1).and_then(|k| self.faces.get(k))
+        id.index().and_then(|k| self.faces.get(k))
     }
 
     /// A surface by index.

@@ -39,7 +39,7 @@ pub fn solid_to_model(solid: &truck_modeling::Solid, name: &str) -> Result<Model
         m.solids[0].shells.push(si);
         m.shells.push(Shell { faces: Vec::new(), closed: true, solid: Some(0), void: k > 0, source: EntityRef(0) });
         for face in shell.iter() {
-            let fid = FaceId(m.faces.len() as u32 + 1);
+            let fid = FaceId::from_index(m.faces.len());
             let ts = face.surface();
             let ours = truck_geometry::surface(&ts, tol).map_err(|why| PartError::Geometry { face: fid, why })?;
             let same_sense = agrees(&face.oriented_surface(), &ours).ok_or_else(|| PartError::Geometry { face: fid, why: "no normal at the sample point".into() })?;

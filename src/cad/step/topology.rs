@@ -99,7 +99,7 @@ impl Converter<'_> {
             }
             Err(f) => return Err(f),
         };
-        let fid = FaceId(self.model.faces.len() as u32 + 1);
+        let fid = FaceId::from_index(self.model.faces.len());
         let mut loops = Vec::with_capacity(bounds.len());
         for b in bounds {
             let be = self.entity(b)?;

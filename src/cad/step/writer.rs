@@ -186,23 +186,27 @@ impl Writer {
             let name = string(f.name.as_deref().unwrap_or(""));
             face_ids.push(self.add(format!("ADVANCED_FACE({name},({}),#{sid},{})", list.join(","), if f.same_sense { ".T." } else { ".F." })));
         }
-        let shell_text = |s: &crate::cad::brep::Shell| {
-            let list: Vec<String> = s.faces.iter().map(|f| format!("#{}", face_ids[f.0 as usize - 1])).collect();
-            format!("{}('',({}))", if s.closed { "CLOSED_SHELL" } else { "OPEN_SHELL" }, list.join(","))
+        let shell_text = |s: &crate::cad::brep::Shell| -> Result<String, StepWriteError> {
+            let list = s.faces.iter().map(|&f| match f.index().and_then(|k| face_ids.get(k)) {
+                Some(id) => Ok(format!("#{id}")),
+                None => Err(bad(format!("shell {}: {f} out of range", s.source))),
+            });
+            let list: Vec<String> = list.collect::<Result<_, _>>()?;
+            Ok(format!("{}('',({}))", if s.closed { "CLOSED_SHELL" } else { "OPEN_SHELL" }, list.join(",")))
         };
         let mut items = Vec::new();
         for (k, s) in m.solids.iter().enumerate() {
             let name = string(s.name.as_deref().unwrap_or(""));
             let mut shells = s.shells.iter().map(|&i| m.shells.get(i as usize).ok_or_else(|| bad(format!("solid {k}: shell out of range"))));
             let outer = shells.next().ok_or_else(|| bad(format!("solid {k} has no shell")))??;
-            let outer_id = self.add(shell_text(outer));
+            let outer_id = self.add(shell_text(outer)?);
             let voids: Vec<_> = shells.collect::<Result<_, _>>()?;
             if voids.is_empty() {
                 items.push(self.add(format!("MANIFOLD_SOLID_BREP({name},#{outer_id})")));
             } else {
                 let mut ids = Vec::new();
                 for v in voids {
-                    let inner = self.add(shell_text(v));
+                    let inner = self.add(shell_text(v)?);
                     ids.push(format!("#{}", self.add(format!("ORIENTED_CLOSED_SHELL('',*,#{inner},.T.)"))));
                 }
                 items.push(self.add(format!("BREP_WITH_VOIDS({name},#{outer_id},({}))", ids.join(","))));
@@ -211,7 +215,10 @@ impl Writer {
         let loose: Vec<_> = m.shells.iter().filter(|s| s.solid.is_none()).collect();
         let surface_model = !loose.is_empty();
         if surface_model {
-            let ids: Vec<String> = loose.iter().map(|s| format!("#{}", self.add(shell_text(s)))).collect();
+            let mut ids = Vec::with_capacity(loose.len());
+            for s in loose {
+                ids.push(format!("#{}", self.add(shell_text(s)?)));
+            }
             items.push(self.add(format!("SHELL_BASED_SURFACE_MODEL('',({}))", ids.join(","))));
         }
         Ok((items, surface_model))

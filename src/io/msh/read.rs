@@ -653,7 +653,7 @@ impl<'a> Reader<'a> {
                 tets,
                 region_tags: self.tet_tags.iter().map(|&t| RegionId(t)).collect(),
                 boundary: tris,
-                boundary_tags: self.tri_tags.iter().map(|&t| FaceId(t)).collect(),
+                face_tags: self.tri_tags.iter().map(|&t| FaceId(t)).collect(),
                 face_names: names(2, &self.tri_tags).into_iter().map(|(t, n)| (FaceId(t), n)).collect(),
                 region_names: names(3, &self.tet_tags).into_iter().map(|(t, n)| (RegionId(t), n)).collect(),
             };
@@ -666,7 +666,7 @@ impl<'a> Reader<'a> {
                 vertices,
                 triangles: tris,
                 face_tags: self.tri_tags.iter().map(|&t| FaceId(t)).collect(),
-                tag_names: names(2, &self.tri_tags).into_iter().map(|(t, n)| (FaceId(t), n)).collect(),
+                face_names: names(2, &self.tri_tags).into_iter().map(|(t, n)| (FaceId(t), n)).collect(),
             })
         } else if !vertices.is_empty() {
             MeshData::Points(vertices)

@@ -6,9 +6,9 @@ use glam::DVec3;
 /// The shared two-tet mesh with tags 1..=3 (no tag 0) and names.
 fn two_tets() -> TetMesh {
     let mut m = crate::io::test_meshes::two_tets();
-    m.boundary_tags.iter_mut().for_each(|t| t.0 += 1);
-    m.face_names.insert(FaceId(2), "inlet \"main\"".into());
-    m.region_names.insert(RegionId(2), "steel".into());
+    m.face_tags.iter_mut().for_each(|t| t.0 += 1);
+    m.face_names.insert(FaceId(2), "inlet \"main\"");
+    m.region_names.insert(RegionId(2), "steel");
     m
 }
 
@@ -20,7 +20,7 @@ fn volume_round_trip_keeps_order_tags_and_names() {
     write_volume(&p, &m).unwrap();
     let l = crate::io::read(&p, &ReadOptions::default()).unwrap();
     let mut want = m.clone();
-    want.face_names.insert(FaceId(2), "inlet 'main'".into());
+    want.face_names.insert(FaceId(2), "inlet 'main'");
     assert_eq!(l.mesh, MeshData::Volume(want));
     assert!(l.notes.is_empty(), "{:?}", l.notes);
 }
@@ -30,14 +30,14 @@ fn tag_zero_becomes_the_next_free_group() {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("z.msh");
     let mut m = two_tets();
-    m.boundary_tags[0] = FaceId(0);
+    m.face_tags[0] = FaceId(0);
     m.region_tags[0] = RegionId(0);
     write_volume(&p, &m).unwrap();
     let MeshData::Volume(r) = crate::io::read(&p, &ReadOptions::default()).unwrap().mesh else { panic!() };
-    assert_eq!(r.boundary_tags[0], FaceId(4));
-    assert_eq!(r.face_names.get(&FaceId(4)).map(String::as_str), Some("tag_0"));
+    assert_eq!(r.face_tags[0], FaceId(4));
+    assert_eq!(r.face_names.get(FaceId(4)), Some("tag_0"));
     assert_eq!(r.region_tags, vec![RegionId(3), RegionId(2)]);
-    assert_eq!(r.region_names.get(&RegionId(3)).map(String::as_str), Some("tag_0"));
+    assert_eq!(r.region_names.get(RegionId(3)), Some("tag_0"));
     m.region_tags[0] = RegionId(u32::MAX);
     let e = write_volume(&p, &m).unwrap_err();
     assert!(e.to_string().contains("cannot write tag 4294967295 (Gmsh tags are at most 2147483647) as MSH 4.1"), "{e}");
@@ -52,11 +52,26 @@ fn surface_round_trip() {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("s.msh");
     let m = two_tets();
-    let mut s = TriSurface { vertices: m.vertices, triangles: m.boundary, face_tags: m.boundary_tags, ..Default::default() };
-    s.tag_names.insert(FaceId(3), "wall".into());
+    let mut s = TriSurface { vertices: m.vertices, triangles: m.boundary, face_tags: m.face_tags, ..Default::default() };
+    s.face_names.insert(FaceId(3), "wall");
     write_surface(&p, &s).unwrap();
     let l = crate::io::read(&p, &ReadOptions::default().with_weld(None)).unwrap();
     assert_eq!(l.mesh, MeshData::Surface(s));
+}
+
+#[test]
+fn repeated_names_are_written_unique_per_dimension() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("u.msh");
+    let mut m = two_tets();
+    m.face_names = [(FaceId(1), "hole"), (FaceId(2), "hole"), (FaceId(3), "hole.2")].into_iter().collect();
+    m.region_names = [(RegionId(1), "hole"), (RegionId(2), "hole")].into_iter().collect();
+    write_volume(&p, &m).unwrap();
+    let MeshData::Volume(r) = crate::io::read(&p, &ReadOptions::default()).unwrap().mesh else { panic!() };
+    let faces: Vec<(u32, &str)> = r.face_names.iter().map(|(t, n)| (t.0, n)).collect();
+    assert_eq!(faces, [(1, "hole"), (2, "hole.3"), (3, "hole.2")]);
+    let regions: Vec<(u32, &str)> = r.region_names.iter().map(|(t, n)| (t.0, n)).collect();
+    assert_eq!(regions, [(1, "hole"), (2, "hole.2")]);
 }
 
 /// A binary 4.1 file: one tet of volume entity 7 (physical 3, named) and a triangle of surface
@@ -119,8 +134,8 @@ fn reads_binary_in_both_byte_orders() {
         assert_eq!(m.vertices, vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z]);
         assert_eq!(m.tets, vec![[0, 1, 2, 3]]);
         assert_eq!(m.region_tags, vec![RegionId(3)]);
-        assert_eq!(m.region_names.get(&RegionId(3)).map(String::as_str), Some("the body"));
-        assert_eq!(m.boundary_tags, vec![FaceId(5)]);
+        assert_eq!(m.region_names.get(RegionId(3)), Some("the body"));
+        assert_eq!(m.face_tags, vec![FaceId(5)]);
         assert_eq!(m.boundary, vec![[0, 2, 1]]);
         assert!(m.validate().is_ok());
     }
@@ -149,9 +164,9 @@ fn reads_ascii_with_quadratic_elements_and_skipped_parts() {
     assert_eq!(m.vertices[1], DVec3::X);
     assert_eq!(m.tets, vec![[10, 1, 2, 3]]);
     assert_eq!(m.region_tags, vec![RegionId(2)]);
-    assert_eq!(m.boundary_tags, vec![FaceId(1)]);
-    assert_eq!(m.face_names.get(&FaceId(1)).map(String::as_str), Some("outer wall"));
-    assert_eq!(m.region_names.get(&RegionId(2)).map(String::as_str), Some("core"));
+    assert_eq!(m.face_tags, vec![FaceId(1)]);
+    assert_eq!(m.face_names.get(FaceId(1)), Some("outer wall"));
+    assert_eq!(m.region_names.get(RegionId(2)), Some("core"));
     assert!(m.validate().is_ok());
     let notes = l.notes.join("; ");
     assert!(notes.contains("skipped section $Comments"), "{notes}");
@@ -165,7 +180,7 @@ fn reads_msh22() {
                 $Elements\n3\n1 15 2 0 1 1\n2 2 2 0 6 1 3 2\n3 4 2 8 1 1 2 3 4\n$EndElements\n";
     let l = read(Path::new("o.msh"), text.as_bytes()).unwrap();
     let MeshData::Volume(m) = &l.mesh else { panic!() };
-    assert_eq!(m.boundary_tags, vec![FaceId(6)], "elementary tag when the physical is 0");
+    assert_eq!(m.face_tags, vec![FaceId(6)], "elementary tag when the physical is 0");
     assert_eq!(m.region_tags, vec![RegionId(8)]);
     assert_eq!(l.notes.len(), 1, "{:?}", l.notes);
 }

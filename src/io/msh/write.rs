@@ -1,6 +1,7 @@
-//! The MSH writer: ASCII 4.1, one entity and physical group per tag.
+//! The MSH writer: ASCII 4.1, one entity and physical group per tag, physical names unique per dimension.
 
-use crate::core::Aabb;
+use crate::core::tag_names::make_unique;
+use crate::core::{Aabb, TagNames};
 use crate::io::IoError;
 use crate::io::atomic::{write_atomic, write_err};
 use crate::io::common::Num;
@@ -32,18 +33,19 @@ pub(super) struct Parts<'a> {
 }
 
 /// Groups element indices by tag and gives each group a positive tag: 0 becomes one more than
-/// the largest tag (Gmsh has no physical group 0), named after its name or `tag_0`.
-fn group(dim: u8, tags: impl Iterator<Item = u32>, name: impl Fn(u32) -> Option<String>) -> Vec<Entity> {
-    let mut by_tag: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
-    for (i, t) in tags.enumerate() {
-        by_tag.entry(t).or_default().push(i);
+/// the largest tag (Gmsh has no physical group 0), named after its name or `tag_0`. Names are
+/// cleaned for the file (`"` becomes `'`, control characters spaces) but not yet unique.
+fn group<T: Copy + Ord>(dim: u8, tags: &[T], number: impl Fn(T) -> u32, names: &TagNames<T>) -> Vec<Entity> {
+    let mut by_tag: BTreeMap<T, Vec<usize>> = BTreeMap::new();
+    for (i, t) in tags.iter().enumerate() {
+        by_tag.entry(*t).or_default().push(i);
     }
-    let max = by_tag.keys().next_back().copied().unwrap_or(0);
+    let max = by_tag.keys().next_back().map_or(0, |t| number(*t));
     let mut out: Vec<Entity> = by_tag
         .into_iter()
         .map(|(t, elements)| {
-            let (tag, name) =
-                if t == 0 { (max.saturating_add(1).max(1), Some(name(0).unwrap_or_else(|| "tag_0".into()))) } else { (t, name(t)) };
+            let (n, name) = (number(t), names.get(t).map(quoted));
+            let (tag, name) = if n == 0 { (max.saturating_add(1).max(1), Some(name.unwrap_or_else(|| "tag_0".into()))) } else { (n, name) };
             Entity { dim, tag, physical: true, name, elements }
         })
         .collect();
@@ -51,15 +53,25 @@ fn group(dim: u8, tags: impl Iterator<Item = u32>, name: impl Fn(u32) -> Option<
     out
 }
 
+/// Makes the physical names of one dimension unique, in tag order (Gmsh keys physical names
+/// by dimension and name; a surface and a volume group may share a name).
+fn unique_names(entities: &mut [Entity]) {
+    make_unique(entities.iter_mut().filter_map(|e| e.name.as_mut()));
+}
+
 impl<'a> Parts<'a> {
     pub(super) fn surface(s: &'a TriSurface) -> Self {
-        let entities = group(2, s.face_tags.iter().map(|t| t.0), |t| s.tag_names.get(&crate::core::FaceId(t)).cloned());
+        let mut entities = group(2, &s.face_tags, |t| t.0, &s.face_names);
+        unique_names(&mut entities);
         Parts { vertices: &s.vertices, tris: &s.triangles, tets: &[], entities }
     }
 
     pub(super) fn volume(m: &'a TetMesh) -> Self {
-        let mut entities = group(2, m.boundary_tags.iter().map(|t| t.0), |t| m.face_names.get(&crate::core::FaceId(t)).cloned());
-        entities.extend(group(3, m.region_tags.iter().map(|t| t.0), |t| m.region_names.get(&crate::core::RegionId(t)).cloned()));
+        let mut entities = group(2, &m.face_tags, |t| t.0, &m.face_names);
+        unique_names(&mut entities);
+        let mut regions = group(3, &m.region_tags, |t| t.0, &m.region_names);
+        unique_names(&mut regions);
+        entities.extend(regions);
         Parts { vertices: &m.vertices, tris: &m.boundary, tets: &m.tets, entities }
     }
 
@@ -138,7 +150,7 @@ pub(super) fn write(path: &Path, parts: &Parts) -> Result<(), IoError> {
         if !named.is_empty() {
             writeln!(w, "$PhysicalNames\n{}", named.len()).map_err(&e)?;
             for x in named {
-                writeln!(w, "{} {} \"{}\"", x.dim, x.tag, quoted(x.name.as_deref().unwrap_or_default())).map_err(&e)?;
+                writeln!(w, "{} {} \"{}\"", x.dim, x.tag, x.name.as_deref().unwrap_or_default()).map_err(&e)?;
             }
             writeln!(w, "$EndPhysicalNames").map_err(&e)?;
         }

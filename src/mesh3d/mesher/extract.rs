@@ -41,7 +41,7 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
         region_tags.push(labels.tags[(l - 1) as usize]);
     }
     let mut boundary = Vec::new();
-    let mut boundary_tags = Vec::new();
+    let mut face_tags = Vec::new();
     let mut buf = Vec::new();
     for (f, s) in sm.subfaces() {
         let (t, k) = tr
@@ -69,15 +69,15 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
             return Err(MeshingError::Internal(format!("subface {s:?} uses a vertex of no tet")));
         }
         boundary.push(mapped);
-        boundary_tags.push(sm.facets[f as usize].tag);
+        face_tags.push(sm.facets[f as usize].tag);
     }
     let mesh = TetMesh {
         vertices,
         tets,
         region_tags,
         boundary,
-        boundary_tags,
-        face_names: input.tag_names.clone(),
+        face_tags,
+        face_names: input.face_names.clone(),
         region_names: Default::default(),
     };
     mesh.validate().map_err(|e| MeshingError::Internal(format!("the mesh does not validate: {e}")))?;

@@ -53,7 +53,7 @@ fn cube_keeps_volume_and_tags() {
     let (m, r) = mesh_surface(&s, &Seeds::default(), &UniformSize(f64::INFINITY), &MeshOptions::default()).unwrap();
     check(&m, 1.0);
     assert_eq!(r.regions, 1);
-    let mut tags = m.boundary_tags.clone();
+    let mut tags = m.face_tags.clone();
     tags.sort();
     tags.dedup();
     assert_eq!(tags, (1..=6).map(FaceId).collect::<Vec<_>>());

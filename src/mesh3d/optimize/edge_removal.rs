@@ -205,7 +205,7 @@ mod tests {
             if let Some(k) = removed {
                 assert_eq!(k, n);
                 assert_eq!(w.live(), before - n + 2 * (n - 2));
-                let mut out = TetMesh { boundary: m.boundary.clone(), boundary_tags: m.boundary_tags.clone(), ..m.clone() };
+                let mut out = TetMesh { boundary: m.boundary.clone(), face_tags: m.face_tags.clone(), ..m.clone() };
                 w.write_back(&mut out);
                 assert_eq!(out.validate(), Ok(()));
                 assert!((out.volume() - v0).abs() < 1e-12 * v0);

@@ -9,7 +9,7 @@
 //!   [`orient3d`](crate::core::predicates::orient3d) before it is made.
 //! - The boundary: *constrained* faces (hull faces, the mesh's `boundary` triangles and every
 //!   face between tets of different regions) are never removed, and their vertices never move.
-//!   `boundary` and `boundary_tags` are left untouched and stay faces of the mesh.
+//!   `boundary` and `face_tags` are left untouched and stay faces of the mesh.
 //! - Region tags: changes only replace tets of one region by tets of the same region.
 //! - The vertices: existing vertices keep their indices; vertices on no constrained face may
 //!   move. Vertex insertion (optional, [`OptimizeOptions::insert`]) appends new vertices at the

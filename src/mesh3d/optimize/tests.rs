@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 /// `mesh` with its hull faces as boundary triangles, tagged 1, 2, 3, 1, ...
 fn with_hull_boundary(mut mesh: TetMesh) -> TetMesh {
     mesh.boundary = mesh.hull_faces();
-    mesh.boundary_tags = (0..mesh.boundary.len()).map(|i| FaceId(1 + (i % 3) as u32)).collect();
+    mesh.face_tags = (0..mesh.boundary.len()).map(|i| FaceId(1 + (i % 3) as u32)).collect();
     mesh
 }
 
@@ -77,7 +77,7 @@ fn min_max_dihedral(m: &TetMesh) -> (f64, f64) {
 fn check_kept(before: &TetMesh, after: &TetMesh, report: &OptimizeReport) {
     assert_eq!(after.validate(), Ok(()));
     assert_eq!(after.boundary, before.boundary);
-    assert_eq!(after.boundary_tags, before.boundary_tags);
+    assert_eq!(after.face_tags, before.face_tags);
     assert_eq!(after.vertices.len(), before.vertices.len() + report.insertions);
     let mut fixed = vec![false; before.vertices.len()];
     for f in before.hull_faces().iter().chain(&before.boundary).chain(&interfaces(before)) {
@@ -184,7 +184,7 @@ fn listed_interior_triangles_are_kept() {
         faces.values().filter(|v| v.len() == 2 && side[v[0].0] != side[v[1].0]).map(|v| v[0].1).collect();
     assert!(internal.len() > 20);
     m.boundary.extend(&internal);
-    m.boundary_tags.extend(std::iter::repeat_n(FaceId(9), internal.len()));
+    m.face_tags.extend(std::iter::repeat_n(FaceId(9), internal.len()));
     assert_eq!(m.validate(), Ok(()));
     let mut out = m.clone();
     let r = optimize(&mut out, &OptimizeOptions::default()).unwrap();

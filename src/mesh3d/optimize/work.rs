@@ -201,10 +201,10 @@ impl Work {
         if mesh.region_tags.len() != nt {
             return Err(MeshError::LengthMismatch { what: "region_tags", found: mesh.region_tags.len(), expected: nt });
         }
-        if mesh.boundary_tags.len() != mesh.boundary.len() {
+        if mesh.face_tags.len() != mesh.boundary.len() {
             return Err(MeshError::LengthMismatch {
-                what: "boundary_tags",
-                found: mesh.boundary_tags.len(),
+                what: "face_tags",
+                found: mesh.face_tags.len(),
                 expected: mesh.boundary.len(),
             });
         }
@@ -604,7 +604,7 @@ mod tests {
     fn adjacency_and_constraints() {
         let mut m = two_tets();
         m.boundary = vec![[0, 2, 1]];
-        m.boundary_tags = vec![FaceId(1)];
+        m.face_tags = vec![FaceId(1)];
         let w = Work::build(&m, Targets::new(15.0, 160.0)).unwrap();
         // shared face (1, 2, 3) is face 0 of tet 0 and face 1 of tet 1 (opposite vertex 4)
         assert_eq!(w.nbr[0][0], 1 << 2 | 1);
@@ -627,7 +627,7 @@ mod tests {
         ));
         let mut m = two_tets();
         m.boundary = vec![[0, 1, 4]];
-        m.boundary_tags = vec![FaceId(1)];
+        m.face_tags = vec![FaceId(1)];
         assert!(matches!(Work::build(&m, Targets::new(15.0, 160.0)), Err(MeshError::BoundaryNotAFace { .. })));
         let mut m = two_tets();
         m.region_tags.pop();
