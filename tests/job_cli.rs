@@ -103,7 +103,7 @@ fn job_errors_name_the_key_and_its_line_and_write_nothing() {
         ("[density]\nsize = 0", 4, &["size", "> 0"]),
         ("[density]\nbox = [{ min = [0, 0, 9], max = [10, 10, 1], size = 1 }]", 4, &["above max"]),
         ("[selectors]\nnone = { name = \"no_such_face*\" }\n[density]\nface = [{ faces = \"none\", size = 1 }]", 4, &["none", "selects no face"]),
-        ("[density]\nface = [{ faces = \"undefined\", size = 1 }]", 4, &["undefined", "not defined"]),
+        ("[density]\nface = [{ faces = \"undefined\", size = 1 }]", 4, &["undefined", "is defined"]),
         ("[selectors]\nx = { faces = [99] }", 4, &["no face 99"]),
     ];
     for (body, line, words) in cases {

@@ -145,9 +145,9 @@ pub enum SelectError {
     #[error("selector '{0}' selects no face")]
     Empty(String),
     /// It refers to a selector that is not defined.
-    #[error("selector '{name}' refers to '{missing}', which is not defined")]
+    #[error("no selector '{missing}' is defined{}", if name.is_empty() { String::new() } else { format!(" (selector '{name}' uses it)") })]
     Unknown {
-        /// The selector.
+        /// The selector that uses the name (empty when an attribute uses it).
         name: String,
         /// The name it uses.
         missing: String,
