@@ -16,13 +16,14 @@ pub const MAX_EDGE_POINTS: usize = 100_000;
 const MAX_FACE_POINTS: usize = 500_000;
 /// Rounds of size refinement at most (each inserts the centroid of every triangle too big).
 const SIZE_ROUNDS: usize = 40;
-/// A triangle whose longest edge exceeds this many times the size at its centroid gets its
-/// centroid inserted.
-const SPLIT_RATIO: f64 = 1.6;
-/// Spade's area bound for a face whose largest size is `h`: this times `h²`. With
-/// [`SPLIT_RATIO`], calibrated on planar and cylindrical faces so that the median edge of a
-/// face meshed to a uniform size is that size (1.00 measured on the bracket at size 2.25).
+/// The largest area of a triangle of size `h`: this times `h²`, in spade's first pass (at the
+/// face's largest size) and in the graded rounds (at the size at the triangle's centroid).
+/// Calibrated on planar and cylindrical faces so that the median edge of a face meshed to a
+/// uniform size is that size (1.00 measured on the bracket at size 2.25).
 const AREA_FACTOR: f64 = 0.8;
+/// A triangle is split in the graded rounds only if its longest edge is also more than this
+/// many times the local size.
+const SPLIT_RATIO: f64 = 1.6;
 
 /// The parameters of the points along a curve: `ts` (increasing or decreasing, the pieces the
 /// chord and angle criteria cut) re-spaced so that each segment is about the local size, and
@@ -92,10 +93,14 @@ pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &
             }
             let vs = f.vertices();
             let p3 = vs.map(|v| v.data().p3);
+            let area = 0.5 * (p3[1] - p3[0]).cross(p3[2] - p3[0]).length();
             let longest = (0..3).map(|i| p3[i].distance(p3[(i + 1) % 3])).fold(0.0, f64::max);
             let h = size.size_at((p3[0] + p3[1] + p3[2]) / 3.0);
-            // (a NaN size splits nothing)
-            if longest.is_nan() || h.is_nan() || longest <= SPLIT_RATIO * h {
+            // too big both by area (as the first pass) and by its longest edge: a thin
+            // triangle at a small input angle has a small area and stays (splitting it would
+            // only make thinner ones); a NaN splits nothing
+            let big = area > AREA_FACTOR * h * h && longest > SPLIT_RATIO * h;
+            if !big {
                 continue;
             }
             let sp = vs.map(|v| v.data().p);
