@@ -21,8 +21,9 @@ pub struct EdgePoints {
 /// curved face, such as a cone's generator, would otherwise make long thin triangles there:
 /// near an apex they fold over the small ones).
 ///
-/// With a size field, the points are then spaced by it (see [`super::sizing`]), never
-/// farther apart than the chord and angle criteria allow.
+/// With a size field, the points are then spaced by it (the integral of `1 / h` along the
+/// edge; see [`super::tessellate_sized`]), never farther apart than the chord and angle
+/// criteria allow.
 pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> EdgePoints {
     let (a, b) = (edge.range.min, edge.range.max);
     let Some(ci) = edge.curve.filter(|_| !edge.degenerate && a.is_finite() && b.is_finite()) else {
