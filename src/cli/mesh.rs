@@ -157,18 +157,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
-    println!("nodes            {}", r.nodes);
-    println!("tets             {}", r.tets);
-    println!("regions          {}", r.regions);
-    println!("volume           {:.9}", r.volume);
-    println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)", r.min_dihedral_deg, r.max_dihedral_deg, r.tets_under_5_deg, r.tets_under_1_deg);
-    println!("max radius-edge  {:.3}", r.max_radius_edge);
-    if r.refinement_stopped {
-        println!("warning          refinement stopped at its point budget before every tet met radius-edge {} (small input angles)", args.max_radius_edge);
-    }
-    if r.tets_under_1_deg > 0 {
-        println!("warning          {} tets have a dihedral angle under 1°; --require-min-dihedral D makes this an error", r.tets_under_1_deg);
-    }
+    crate::cli::print_mesh_summary(&m, Some(args.max_radius_edge), "--require-min-dihedral D");
     println!("boundary Steiner {}", r.boundary_steiner_points);
     println!("size             {:.4} (global)", r.global_size);
     println!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);

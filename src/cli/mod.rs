@@ -127,6 +127,25 @@ pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
     anyhow::Error::new(UsageError(message.into()))
 }
 
+/// Prints a tet mesh's size and quality, with a warning where refinement stopped early
+/// (`max_radius_edge`: the bound it aimed at) or a tet is under 1° (`require`: the option that
+/// makes that an error). Shared by `fepre mesh` and `fepre run`.
+pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, max_radius_edge: Option<f64>, require: &str) {
+    println!("nodes            {}", m.nodes);
+    println!("tets             {}", m.tets);
+    println!("regions          {}", m.regions);
+    println!("volume           {:.9}", m.volume);
+    println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg);
+    println!("max radius-edge  {:.3}", m.max_radius_edge);
+    if m.refinement_stopped {
+        let bound = max_radius_edge.map(|r| format!(" before every tet met radius-edge {r}")).unwrap_or_default();
+        println!("warning          refinement stopped at its point budget{bound} (small input angles)");
+    }
+    if m.tets_under_1_deg > 0 {
+        println!("warning          {} tets have a dihedral angle under 1°; {require} makes this an error", m.tets_under_1_deg);
+    }
+}
+
 /// Parses a finite number `> 0`.
 pub fn positive(s: &str) -> Result<f64, String> {
     let x: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;

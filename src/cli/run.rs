@@ -80,17 +80,7 @@ fn print(r: &RunReport, check: bool) {
     }
     if let Some(m) = &r.mesh {
         println!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
-        println!("nodes            {}", m.nodes);
-        println!("tets             {}", m.tets);
-        println!("volume           {:.9}", m.volume);
-        println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg);
-        println!("max radius-edge  {:.3}", m.max_radius_edge);
-        if m.refinement_stopped {
-            println!("warning          refinement stopped at its point budget (small input angles)");
-        }
-        if m.tets_under_1_deg > 0 {
-            println!("warning          {} tets have a dihedral angle under 1°; [require] min_dihedral makes this an error", m.tets_under_1_deg);
-        }
+        crate::cli::print_mesh_summary(m, None, "[require] min_dihedral");
     }
     for o in &r.outputs {
         println!("wrote            {o}");

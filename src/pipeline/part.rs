@@ -219,21 +219,17 @@ impl Part {
         let Some(model) = &self.model else {
             return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
         };
-        let t0 = Instant::now();
-        let tessellation = tessellate_sized(model, opts, size);
-        let t1 = Instant::now();
-        let certificate = certify(model, &tessellation, &CertifyOptions::default());
-        self.seconds.tessellate = (t1 - t0).as_secs_f64();
-        self.seconds.certify = t1.elapsed().as_secs_f64();
-        let passed = certificate.passed;
-        if passed {
-            self.surface = Some(tessellation.surface.clone());
+        let (c, [tessellate_s, certify_s]) = certified_tessellation(model, opts, Some(size), &CertifyOptions::default());
+        self.seconds.tessellate = tessellate_s;
+        self.seconds.certify = certify_s;
+        let message = (!c.certificate.passed).then(|| failure_message(&self.path, &c.certificate, &model.dropped));
+        if message.is_none() {
+            self.surface = Some(c.tessellation.surface.clone());
         }
-        let message = (!passed).then(|| failure_message(&self.path, &certificate, &model.dropped));
-        self.certified = Some(Certified { tessellation, certificate });
+        let c = self.certified.insert(c);
         match message {
             Some(message) => Err(PipelineError::Certificate { path: self.path.clone(), message }),
-            None => Ok(&self.certified.as_ref().expect("just set").certificate),
+            None => Ok(&c.certificate),
         }
     }
 
@@ -272,12 +268,12 @@ impl Part {
     /// Nothing to write, or a format that cannot hold it ([`PipelineError::Usage`]); the
     /// writer's errors. A failed write leaves no file.
     pub fn write(&self, out: &Path) -> Result<(), PipelineError> {
-        match Format::from_path(out) {
-            Some(Format::Medit | Format::TetGen | Format::Vtu | Format::Msh) if self.mesh.is_some() => {
-                io::write(out, &MeshData::Volume(self.mesh.clone().expect("checked")), &WriteOptions::default())?;
+        match (Format::from_path(out), &self.mesh, &self.surface) {
+            (Some(Format::Medit | Format::TetGen | Format::Vtu | Format::Msh), Some(mesh), _) => {
+                io::write(out, &MeshData::Volume(mesh.clone()), &WriteOptions::default())?;
             }
-            Some(Format::Stl | Format::Obj | Format::Off | Format::Vtu | Format::Msh) if self.surface.is_some() => {
-                io::write(out, &MeshData::Surface(self.surface.clone().expect("checked")), &WriteOptions::default())?;
+            (Some(Format::Stl | Format::Obj | Format::Off | Format::Vtu | Format::Msh), _, Some(surface)) => {
+                io::write(out, &MeshData::Surface(surface.clone()), &WriteOptions::default())?;
             }
             _ => return Err(PipelineError::Usage { path: out.to_path_buf(), message: "tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh".into() }),
         }
@@ -293,15 +289,22 @@ impl Part {
 pub fn tessellate_file(path: &Path, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> Result<(Model, Certified, StageSeconds), PipelineError> {
     let t0 = Instant::now();
     let model = step::read(path)?;
-    let t1 = Instant::now();
+    let read = t0.elapsed().as_secs_f64();
+    let (c, [tessellate, certify]) = certified_tessellation(&model, opts, size, checks);
+    Ok((model, c, StageSeconds { read, tessellate, certify, mesh: 0.0 }))
+}
+
+/// Tessellates `model` (to `size` where given) and certifies the result; with the seconds of
+/// each.
+fn certified_tessellation(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Certified, [f64; 2]) {
+    let t0 = Instant::now();
     let tessellation = match size {
-        Some(s) => tessellate_sized(&model, opts, s),
-        None => tessellate(&model, opts),
+        Some(s) => tessellate_sized(model, opts, s),
+        None => tessellate(model, opts),
     };
-    let t2 = Instant::now();
-    let certificate = certify(&model, &tessellation, checks);
-    let seconds = StageSeconds { read: (t1 - t0).as_secs_f64(), tessellate: (t2 - t1).as_secs_f64(), certify: t2.elapsed().as_secs_f64(), mesh: 0.0 };
-    Ok((model, Certified { tessellation, certificate }, seconds))
+    let t1 = Instant::now();
+    let certificate = certify(model, &tessellation, checks);
+    (Certified { tessellation, certificate }, [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()])
 }
 
 /// The certificate's failures as one message, naming faces and STEP ids.

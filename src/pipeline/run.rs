@@ -121,7 +121,9 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
     report.certificate_passed = part.certified.as_ref().map(|c| c.certificate.passed);
     result?;
     report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());
-    let mesh = part.mesh.as_ref().expect("meshed");
+    let Some(mesh) = part.mesh.as_ref() else {
+        return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh was made".into() });
+    };
     let q = tet_mesh_quality(mesh);
     let r = part.mesh_report.clone().unwrap_or_default();
     let under5 = q.tets_min_dihedral_below_5;
