@@ -89,6 +89,8 @@ pub struct RunReport {
     pub outputs: Vec<String>,
     /// Seconds per stage.
     pub seconds: super::part::StageSeconds,
+    /// Faces of different solids that touch (a part of several solids).
+    pub contacts: Vec<super::assembly::ContactReport>,
 }
 
 /// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
@@ -141,6 +143,7 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
         refinement_stopped: r.refinement_stopped,
     });
     report.mesher = Some(r);
+    report.contacts = part.contacts.clone();
     report.seconds = part.seconds.clone();
     if let Some(d) = plan.require_min_dihedral {
         if q.min_dihedral_deg < d {
