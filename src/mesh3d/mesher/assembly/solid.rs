@@ -235,7 +235,8 @@ mod tests {
     #[test]
     fn closest_points_of_every_region() {
         let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
-        assert_eq!(closest_on_triangle(DVec3::new(0.2, 0.2, 3.0), t), DVec3::new(0.2, 0.2, 0.0));
+        // inside the triangle the point comes from barycentric weights: equal up to rounding
+        assert!(closest_on_triangle(DVec3::new(0.2, 0.2, 3.0), t).distance(DVec3::new(0.2, 0.2, 0.0)) < 1e-15);
         assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 0.0), t), DVec3::ZERO);
         assert_eq!(closest_on_triangle(DVec3::new(2.0, -0.5, 0.0), t), DVec3::X);
         assert_eq!(closest_on_triangle(DVec3::new(0.5, -2.0, 1.0), t), DVec3::new(0.5, 0.0, 0.0));
