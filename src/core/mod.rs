@@ -3,6 +3,7 @@
 
 pub mod aabb;
 pub mod bvh;
+pub mod closest;
 pub(crate) mod cdt;
 pub mod ids;
 pub mod intersection;

@@ -11,12 +11,15 @@ impl Model {
     /// model's units and sewing report stay).
     ///
     /// ```
-    /// let mut m = fepre::cad::parts::Bracket::default().build().unwrap();
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let mut m = fepre::cad::parts::Bracket::default().build()?;
     /// let (solids, faces) = (m.solids.len(), m.faces.len());
-    /// m.append(&fepre::cad::parts::Flange::default().build().unwrap());
+    /// m.append(&fepre::cad::parts::Flange::default().build()?);
     /// assert_eq!(m.solids.len(), solids + 1);
     /// let last = m.shells[m.solids[solids].shells[0] as usize].faces[0];
     /// assert_eq!(last, fepre::core::FaceId::from_index(faces));
+    /// # Ok(())
+    /// # }
     /// ```
     pub fn append(&mut self, other: &Model) {
         let (solids, shells, faces, loops) = (self.solids.len() as u32, self.shells.len() as u32, self.faces.len(), self.loops.len() as u32);

@@ -60,7 +60,7 @@ fn ccw(t: [DVec2; 3]) -> [DVec2; 3] {
 
 /// The part of the convex polygon `poly` where `f ≥ 0` (`f` affine): Sutherland–Hodgman
 /// against one half-plane.
-fn clip(poly: &[DVec2], f: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
+pub(super) fn clip(poly: &[DVec2], f: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
     let mut out = Vec::with_capacity(poly.len() + 1);
     for k in 0..poly.len() {
         let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);

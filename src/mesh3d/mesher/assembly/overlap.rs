@@ -269,20 +269,9 @@ fn orient(t: [DVec2; 3]) -> f64 {
     (t[1] - t[0]).perp_dot(t[2] - t[0])
 }
 
+/// The part of `poly` on the left of the line from `p` to `q`.
 fn clip_left(poly: &[DVec2], p: DVec2, q: DVec2) -> Vec<DVec2> {
-    let f = |x: DVec2| (q - p).perp_dot(x - p);
-    let mut out = Vec::with_capacity(poly.len() + 1);
-    for k in 0..poly.len() {
-        let (x, y) = (poly[k], poly[(k + 1) % poly.len()]);
-        let (fx, fy) = (f(x), f(y));
-        if fx >= 0.0 {
-            out.push(x);
-        }
-        if (fx >= 0.0) != (fy >= 0.0) {
-            out.push(x + (y - x) * (fx / (fx - fy)));
-        }
-    }
-    out
+    super::contact::clip(poly, |x: DVec2| (q - p).perp_dot(x - p))
 }
 
 /// The points of triangle `t` on a plane, given the signed distances `d` of its corners.

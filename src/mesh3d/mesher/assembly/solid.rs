@@ -9,6 +9,7 @@
 //! the surface is not strictly inside.
 
 use crate::core::bvh::Bvh;
+use crate::core::closest::point_triangle_distance;
 use crate::core::intersection::{SegmentCrossing, point_on_triangle, segment_crosses_triangle};
 use crate::core::{Aabb, FaceId};
 use crate::mesh::TriSurface;
@@ -184,62 +185,4 @@ fn direction(k: usize) -> DVec3 {
     let phi = 2.399_963_229_728_653 * k as f64 + 0.693_147_18;
     let r = (1.0 - z * z).max(0.0).sqrt();
     DVec3::new(r * phi.cos(), r * phi.sin(), z)
-}
-
-/// The distance from `p` to the closed triangle `t` (Ericson, "Real-Time Collision
-/// Detection", 5.1.5: the Voronoi region of the closest feature).
-pub(crate) fn point_triangle_distance(p: DVec3, t: [DVec3; 3]) -> f64 {
-    p.distance(closest_on_triangle(p, t))
-}
-
-/// The point of the closed triangle `t` closest to `p`.
-pub(crate) fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> DVec3 {
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = va + vb + vc;
-    if denom.abs() < f64::MIN_POSITIVE {
-        return a;
-    }
-    a + ab * (vb / denom) + ac * (vc / denom)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn closest_points_of_every_region() {
-        let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
-        // inside the triangle the point comes from barycentric weights: equal up to rounding
-        assert!(closest_on_triangle(DVec3::new(0.2, 0.2, 3.0), t).distance(DVec3::new(0.2, 0.2, 0.0)) < 1e-15);
-        assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 0.0), t), DVec3::ZERO);
-        assert_eq!(closest_on_triangle(DVec3::new(2.0, -0.5, 0.0), t), DVec3::X);
-        assert_eq!(closest_on_triangle(DVec3::new(0.5, -2.0, 1.0), t), DVec3::new(0.5, 0.0, 0.0));
-        assert!((point_triangle_distance(DVec3::new(1.0, 1.0, 0.0), t) - 0.5f64.sqrt()).abs() < 1e-15);
-    }
 }
