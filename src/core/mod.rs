@@ -4,6 +4,7 @@
 pub mod aabb;
 pub mod bvh;
 pub(crate) mod cdt;
+pub mod closest;
 pub mod ids;
 pub mod intersection;
 pub mod predicates;
