@@ -100,6 +100,8 @@ struct Report<'a> {
     /// Per boundary face tag: unique name (and for STEP parts colour, STEP `#id`, solid).
     face_table: &'a [crate::cad::brep::FaceEntry],
     mesher: &'a crate::mesh3d::mesher::MeshReport,
+    /// Faces of different solids that touch (several solids).
+    contacts: &'a [crate::pipeline::assembly::ContactReport],
 }
 
 /// Runs `fepre mesh`.
@@ -147,6 +149,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         global_size: report.global_size,
         face_table: &report.face_table,
         mesher: &mesher,
+        contacts: &report.contacts,
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -160,6 +163,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     for (stage, s) in &mesher.stage_seconds {
         println!("  {stage:<10} {s:.3}");
     }
+    crate::cli::contacts::print(&report.contacts);
     println!("wrote            {}", r.output);
     crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
     Ok(())

@@ -3,6 +3,7 @@
 //! 2 bad usage.
 
 pub mod cad_info;
+mod contacts;
 pub mod convert;
 pub mod delaunay;
 pub mod inspect;

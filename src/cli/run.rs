@@ -85,6 +85,7 @@ fn print(r: &RunReport, check: bool) {
         println!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
         crate::cli::print_mesh_summary(m);
     }
+    crate::cli::contacts::print(&r.contacts);
     for o in &r.outputs {
         println!("wrote            {o}");
     }

@@ -85,4 +85,15 @@ pub enum PipelineError {
         /// What falls short.
         message: String,
     },
+    /// Two solids of an assembly overlap; the message names both solids, their faces (and
+    /// those faces' STEP `#id`s), a point and the depth.
+    #[error("{}: {source} (STEP faces {step_faces})", path.display())]
+    Overlap {
+        /// The file.
+        path: PathBuf,
+        /// The mesher's [`MeshingError::Overlap`].
+        source: MeshingError,
+        /// The STEP `#id`s of the two faces.
+        step_faces: String,
+    },
 }

@@ -15,6 +15,7 @@
 //! # Ok::<(), fepre::pipeline::PipelineError>(())
 //! ```
 
+pub mod assembly;
 mod error;
 pub mod job;
 pub mod part;

@@ -9,7 +9,8 @@ use crate::cad::step;
 use crate::core::{RegionId, SizeField};
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{MeshOptions, MeshReport, RegionSeed, Seeds, mesh_surface};
+use crate::mesh3d::mesher::{MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, mesh_solids, mesh_surface};
+use super::assembly::{ContactReport, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
 use serde::Serialize;
@@ -82,6 +83,9 @@ pub struct Part {
     pub mesh: Option<TetMesh>,
     /// What the mesher did.
     pub mesh_report: Option<MeshReport>,
+    /// Faces of different solids that touch (a part of several solids), with the area over
+    /// which they touch and how much of it the mesh shares.
+    pub contacts: Vec<ContactReport>,
     /// Seconds per stage.
     pub seconds: StageSeconds,
     catalogue: OnceLock<FaceCatalogue>,
@@ -141,6 +145,7 @@ impl Part {
             certified: None,
             mesh: None,
             mesh_report: None,
+            contacts: Vec::new(),
             seconds: StageSeconds::default(),
             catalogue: OnceLock::new(),
         }
@@ -234,10 +239,14 @@ impl Part {
     }
 
     /// Meshes the part's surface into tets of `size` (a CAD part is tessellated to the same
-    /// size first, at the deviation `opts` gives).
+    /// size first, at the deviation `opts` gives). A part of several solids (an assembly)
+    /// gets one region per solid, named after it, each solid meshed on its own and the
+    /// meshes merged (see [`crate::mesh3d::mesher::mesh_solids`]); the faces where solids
+    /// touch are listed in [`Part::contacts`].
     ///
     /// # Errors
-    /// A failed certificate, or a surface the mesher refuses (open, self-intersecting, ...).
+    /// A failed certificate, or a surface the mesher refuses (open, self-intersecting, solids
+    /// that overlap, ...).
     pub fn mesh(&mut self, size: &dyn SizeField, tess: &TessellateOptions, opts: &MeshOptions) -> Result<&TetMesh, PipelineError> {
         if self.is_cad() && self.certified.is_none() {
             self.tessellate(size, tess)?;
@@ -255,10 +264,38 @@ impl Part {
             sized = RegionSizes::new(size, self.region_sizes.clone());
             &sized
         };
-        let (mesh, report) = mesh_surface(surface, &self.seeds, field, &opts).map_err(|source| PipelineError::Meshing { path: self.path.clone(), source })?;
+        let solids = solids_of(self, surface);
+        let (mut mesh, report) = if solids.solids.len() > 1 {
+            let (mesh, report, contacts) = mesh_solids(surface, &solids, gap_of(self), field, &opts).map_err(|source| self.meshing_error(source))?;
+            self.contacts = contact_reports(&contacts, &self.face_table(), &solids);
+            (mesh, report)
+        } else {
+            mesh_surface(surface, &self.seeds, field, &opts).map_err(|source| self.meshing_error(source))?
+        };
+        if let [solid] = &solids.solids[..] {
+            // one solid: its name names the region it is
+            if let Some(name) = &solid.name {
+                if mesh.region_tags.iter().all(|&r| r == solid.tag) {
+                    mesh.region_names.insert(solid.tag, name.clone());
+                }
+            }
+        }
         self.seconds.mesh = t0.elapsed().as_secs_f64();
         self.mesh_report = Some(report);
         Ok(self.mesh.insert(mesh))
+    }
+
+    /// The mesher's error for this part; an overlap of solids also names the STEP faces.
+    fn meshing_error(&self, source: MeshingError) -> PipelineError {
+        match &source {
+            MeshingError::Overlap { a, b, .. } if self.is_cad() => {
+                let faces = self.face_table();
+                let id = |f| step_id(&faces, f).map_or_else(|| "?".to_string(), |e| e.to_string());
+                let (ia, ib) = (id(a.face), id(b.face));
+                PipelineError::Overlap { path: self.path.clone(), source, step_faces: format!("{ia} and {ib}") }
+            }
+            _ => PipelineError::Meshing { path: self.path.clone(), source },
+        }
     }
 
     /// Writes the tet mesh (its format from the extension: `.mesh`, `.ele`/`.node`, `.vtu`,

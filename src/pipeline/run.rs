@@ -66,6 +66,8 @@ pub struct RunReport {
     pub outputs: Vec<String>,
     /// Seconds per stage.
     pub seconds: super::part::StageSeconds,
+    /// Faces of different solids that touch (a part of several solids).
+    pub contacts: Vec<super::assembly::ContactReport>,
 }
 
 /// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
@@ -105,6 +107,7 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
     let summarised = summarise(mesh, part.surface.as_ref(), &r, plan, &report.face_table);
     report.mesh = Some(summarised.summary.clone());
     report.mesher = Some(r);
+    report.contacts = part.contacts.clone();
     report.seconds = part.seconds.clone();
     summarised.check(&part.path, mesh, plan, &report.face_table)?;
     Ok(report)

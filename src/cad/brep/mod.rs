@@ -8,6 +8,7 @@
 //! vertices, in world coordinates). Items the reader could not convert are listed in
 //! [`Model::dropped`], never left out silently.
 
+mod append;
 mod edge_flags;
 mod face_table;
 mod model;

@@ -20,6 +20,7 @@
 //! 7. the optimisation of [`crate::mesh3d::optimize`] when it exists, then `extract.rs`: the
 //!    result as a [`TetMesh`].
 
+mod assembly;
 mod carve;
 mod extract;
 mod input;
@@ -29,6 +30,8 @@ mod refine;
 mod surface_model;
 mod tetra;
 mod ties;
+
+pub use assembly::{Contact, SolidFace, SolidInfo, Solids, assembly_contacts, mesh_solids};
 
 use crate::core::{FaceId, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
@@ -220,6 +223,32 @@ pub enum MeshingError {
     /// A bug of fepre (an invariant broke); please report it with the input.
     #[error("internal error: {0}")]
     Internal(String),
+    /// Two solids of an assembly overlap: a point of one lies deeper than the gap inside the
+    /// other (on its surface or inside both).
+    #[error("{a} and {b} overlap: the point ({}, {}, {}) lies {depth:.4} deep inside both (touching within {gap:.3e} is contact, deeper is overlap); move the solids apart or cut one out of the other", point[0], point[1], point[2])]
+    Overlap {
+        /// The first solid and its face at the point.
+        a: SolidFace,
+        /// The second solid and its face nearest the point.
+        b: SolidFace,
+        /// A point inside both.
+        point: [f64; 3],
+        /// How deep it lies inside the solids (at least the gap).
+        depth: f64,
+        /// The gap within which touching surfaces are contact.
+        gap: f64,
+    },
+    /// One solid of an assembly cannot be meshed; triangle and vertex numbers are the whole
+    /// surface's.
+    #[error("solid {}{}: {source}", solid.0, name.as_ref().map(|n| format!(" ({n:?})")).unwrap_or_default())]
+    InSolid {
+        /// The solid's region tag.
+        solid: RegionId,
+        /// Its name.
+        name: Option<String>,
+        /// What is wrong with it.
+        source: Box<MeshingError>,
+    },
 }
 
 fn edges_text(e: &[[u32; 2]]) -> String {

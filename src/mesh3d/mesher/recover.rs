@@ -11,7 +11,9 @@
 use crate::mesh3d::mesher::MeshingError;
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
-use glam::DVec3;
+use crate::core::Sign;
+use crate::core::predicates::orient2d;
+use glam::{DVec2, DVec3};
 
 /// What recovery did.
 #[derive(Clone, Debug, Default)]
@@ -92,8 +94,50 @@ pub(crate) fn encroached_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, p: DV
     best.map(|b| (b.1, b.2))
 }
 
+/// The side subsegment of facet `f` that separates a point `g` inside it from `p` outside it:
+/// of the subsegments that the segment from `g` to `p` meets (exact orientation tests in the
+/// facet's plane), the one met first; where rounding leaves none, the one nearest `p`.
+pub(crate) fn separating_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, g: DVec3, p: DVec3) -> Option<(u32, [u32; 2])> {
+    let (g2, p2) = (sm.to_plane(f, g), sm.to_plane(f, p));
+    let mut first: Option<(f64, u32, [u32; 2])> = None;
+    let mut nearest: Option<(f64, u32, [u32; 2])> = None;
+    for &s in &sm.facets[f as usize].sides {
+        for [u, v] in sm.subsegments(s) {
+            let (u2, v2) = (sm.to_plane(f, tr.point(u)), sm.to_plane(f, tr.point(v)));
+            let d = distance_to_segment(p2, u2, v2);
+            if nearest.is_none_or(|b| d < b.0) {
+                nearest = Some((d, s, [u, v]));
+            }
+            let (sg, sp) = (orient2d(u2, v2, g2), orient2d(u2, v2, p2));
+            if sg == Sign::Zero || sg.times(sp) == Sign::Positive {
+                continue;
+            }
+            if orient2d(g2, p2, u2).times(orient2d(g2, p2, v2)) == Sign::Positive {
+                continue;
+            }
+            // where along g → p it meets the line of (u, v): only for ordering
+            let (e, w) = (v2 - u2, p2 - g2);
+            let den = w.perp_dot(e);
+            let t = if den != 0.0 { (u2 - g2).perp_dot(e) / den } else { 0.0 };
+            if first.is_none_or(|b| t < b.0) {
+                first = Some((t, s, [u, v]));
+            }
+        }
+    }
+    first.or(nearest).map(|b| (b.1, b.2))
+}
+
+/// Distance from `p` to the segment `(a, b)` in a plane.
+fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let e = b - a;
+    let l = e.length_squared();
+    let t = if l > 0.0 { ((p - a).dot(e) / l).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + e * t)
+}
+
 /// Splits subface `[a, b, c]` of facet `f`: at its circumcentre if that lies in the facet and
-/// encroaches no subsegment, else the encroached (or nearest) subsegment.
+/// encroaches no subsegment, else the encroached subsegment, or where the centre lies outside
+/// the facet, the side subsegment between the subface and the centre.
 pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u32; 3], stats: &mut Recovery) -> Result<bool, String> {
     let [pa, pb, pc] = t.map(|v| tr.point(v));
     let cc = circumcenter(pa, pb, pc);
@@ -102,19 +146,15 @@ pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u
         return split_subsegment(tr, sm, s, u, v);
     }
     if !sm.inside(f, cc, &tr.k.points) {
-        // outside the facet without encroaching its sides' subsegments: cannot happen in exact
-        // arithmetic; split the longest edge of the subface instead
-        let e = [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]]
-            .into_iter()
-            .max_by(|x, y| tr.point(x[0]).distance(tr.point(x[1])).total_cmp(&tr.point(y[0]).distance(tr.point(y[1]))))
-            .unwrap_or([t[0], t[1]]);
-        for &s in &sm.facets[f as usize].sides {
-            if sm.subsegments(s).any(|q| q == e || q == [e[1], e[0]]) {
-                stats.segment_points += 1;
-                return split_subsegment(tr, sm, s, e[0], e[1]);
-            }
+        // a side subsegment lies between the subface and its centre; one that the centre does
+        // not encroach is encroached by a vertex of the facet (Ruppert's lemma), so
+        // splitting it is the rule for encroached subsegments
+        let g = (pa + pb + pc) / 3.0;
+        if let Some((s, [u, v])) = separating_subsegment(tr, sm, f, g, cc) {
+            stats.segment_points += 1;
+            return split_subsegment(tr, sm, s, u, v);
         }
-        return Err(format!("facet {f}: a subface's circumcentre falls outside it"));
+        return Err(format!("facet {f} has no sides"));
     }
     // where rounding puts the centre on a vertex, the subface's centroid serves
     let centroid = (pa + pb + pc) / 3.0;
@@ -176,4 +216,52 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
 fn fail(sm: &SurfaceModel, f: u32, why: &str) -> MeshingError {
     let fc = &sm.facets[f as usize];
     MeshingError::Recovery { triangle: f as usize, tag: fc.tag, message: why.to_string() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::FaceId;
+
+    /// A thin planar strip (a chamfer between a long side and a finely split one), as one
+    /// merged facet, with an apex above it so that the points span a tetrahedron.
+    fn strip() -> (Tetra, SurfaceModel) {
+        let xy = [(0.0, 0.0), (2.06, 0.0), (0.549, 0.246), (1.129, 0.246), (1.709, 0.246), (2.289, 0.246), (2.609, 0.246)];
+        let mut points: Vec<DVec3> = xy.iter().map(|&(x, y)| DVec3::new(x, y, 0.0)).collect();
+        points.push(DVec3::new(1.0, 0.1, 1.0));
+        // A = 0, B = 1, E = 2, T1 = 3, T2 = 4, T3 = 5, F = 6: counter-clockwise about +z
+        let triangles = [[0, 1, 4], [0, 4, 3], [0, 3, 2], [1, 5, 4], [1, 6, 5]];
+        let sm = SurfaceModel::new(&points, &triangles, &[FaceId(1); 5], true);
+        let ranks = (0..points.len() as u32).collect();
+        let tr = Tetra::new(points, ranks, 1).unwrap();
+        (tr, sm)
+    }
+
+    #[test]
+    fn a_centre_outside_the_facet_splits_the_side_between() {
+        let (mut tr, mut sm) = strip();
+        assert_eq!(sm.facets.len(), 1);
+        let seg = |sm: &SurfaceModel, a: u32, b: u32| sm.segments.iter().position(|s| s.points.first() == Some(&a) && s.points.last() == Some(&b)).unwrap() as u32;
+        // a Steiner point on the short end side (A, E) makes the subface (A, m, T1), obtuse at
+        // m (164°): its circumcentre lies beyond the diagonal (A, T1) and beyond the long side
+        // (A, B), outside the facet, and inside no side's diametral circle; (A, B) is
+        // encroached by T1 and E instead
+        let ae = seg(&sm, 0, 2);
+        assert!(split_subsegment(&mut tr, &mut sm, ae, 0, 2).unwrap());
+        let m = sm.segments[ae as usize].points[1];
+        let t = *sm.facets[0].subfaces.iter().find(|t| t.contains(&0) && t.contains(&m) && t.contains(&3)).unwrap();
+        let [pa, pb, pc] = t.map(|v| tr.point(v));
+        let cc = circumcenter(pa, pb, pc);
+        assert!(!sm.inside(0, cc, &tr.k.points));
+        assert!(encroached_subsegment(&tr, &sm, 0, cc).is_none());
+        assert_eq!(separating_subsegment(&tr, &sm, 0, (pa + pb + pc) / 3.0, cc), Some((seg(&sm, 0, 1), [0, 1])));
+        let mut stats = Recovery::default();
+        // before the rule: "a subface's circumcentre falls outside it"
+        assert_eq!(split_subface(&mut tr, &mut sm, 0, t, &mut stats), Ok(true));
+        assert_eq!(stats.segment_points, 1);
+        assert_eq!(stats.facet_points, 0);
+        let ab = &sm.segments[seg(&sm, 0, 1) as usize].points;
+        assert_eq!(ab.len(), 3);
+        assert!(tr.point(ab[1]).distance(DVec3::new(1.03, 0.0, 0.0)) < 1e-12);
+    }
 }

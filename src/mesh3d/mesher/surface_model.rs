@@ -199,7 +199,7 @@ impl SurfaceModel {
     }
 
     /// Point `p` in facet `f`'s plane coordinates.
-    fn to_plane(&self, f: u32, p: DVec3) -> DVec2 {
+    pub(crate) fn to_plane(&self, f: u32, p: DVec3) -> DVec2 {
         let [o, e1, e2] = self.facets[f as usize].frame;
         let d = p - o;
         DVec2::new(d.dot(e1), d.dot(e2))

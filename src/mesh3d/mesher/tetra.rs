@@ -266,14 +266,17 @@ impl Tetra {
             // every cavity tet behind a boundary face that p does not see strictly, and every
             // cavity tet with a wall to another cavity tet, goes (all at once)
             let mut bad: Vec<u32> = Vec::new();
-            for &(f, _) in &self.sc.boundary {
+            for &(f, r) in &self.sc.boundary {
                 if f.contains(&GHOST) {
                     continue;
                 }
                 if self.k.orient(f[0], f[1], f[2], p) != Sign::Positive {
-                    // the cavity tet on the inner side of this face (found by its vertices: the
-                    // outside may be slot 0, which many faces share once the exterior is gone)
-                    let inner = self.sc.cavity.iter().copied().find(|&c| f.iter().all(|x| self.tets[c as usize].v.contains(x)));
+                    // the cavity tet on the inner side of this face: the outside tet's
+                    // neighbour across it, or (the outside may be slot 0, which many faces
+                    // share once the exterior is gone) found by its vertices
+                    let (out, g) = ((r >> 2) as usize, (r & 3) as usize);
+                    let across = if out != 0 { Some(self.tets[out].n[g] >> 2).filter(|&c| self.mark[c as usize] == IN) } else { None };
+                    let inner = across.or_else(|| self.sc.cavity.iter().copied().find(|&c| f.iter().all(|x| self.tets[c as usize].v.contains(x))));
                     bad.push(inner.unwrap_or(t0));
                 }
             }
