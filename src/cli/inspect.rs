@@ -6,7 +6,8 @@ use crate::core::{FaceId, Tolerance};
 use crate::io::{self, MeshData, ReadOptions};
 use crate::mesh::TriSurface;
 use crate::mesh::topology::{IntersectingPair, ReportOptions, ShellReport, SurfaceReport, surface_report};
-use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality};
+use crate::quality::mesh_quality::{NEAR_DEGENERATE_VOLUME_LENGTH, TetQualityReport, tet_mesh_quality};
+use crate::quality::worst_tet::{BoundaryIndex, TetPlace};
 use anyhow::Result;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -58,6 +59,12 @@ struct TetKeys {
     min_dihedral_deg: f64,
     max_dihedral_deg: f64,
     max_radius_edge: f64,
+    tets_under_5_deg: usize,
+    tets_under_1_deg: usize,
+    /// Volume-length ratio under `NEAR_DEGENERATE_VOLUME_LENGTH` (exactly flat ones included).
+    near_degenerate: usize,
+    /// The tet with the smallest dihedral angle: its centroid, nearest face and feature edge.
+    worst_tet: Option<TetPlace>,
     inverted: usize,
     boundary_triangles: usize,
     regions: Vec<TagInfo>,
@@ -126,10 +133,18 @@ pub fn run(args: &Args) -> Result<()> {
             progress.stage("measuring element quality");
             let q = tet_mesh_quality(m);
             let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(crate::core::RegionId(r)).map(str::to_string));
+            // io::read validates what it returns: every index is in range
+            let worst_tet = q.min_dihedral.argmin.map(|t| {
+                BoundaryIndex::new(m).locate(m, t, &[], &|f| m.face_names.get(f).map(str::to_string))
+            });
             let keys = TetKeys {
                 min_dihedral_deg: q.min_dihedral_deg,
                 max_dihedral_deg: q.max_dihedral_deg,
                 max_radius_edge: q.max_radius_edge,
+                tets_under_5_deg: q.tets_min_dihedral_below_5,
+                tets_under_1_deg: q.tets_min_dihedral_below_1,
+                near_degenerate: q.near_degenerate,
+                worst_tet,
                 inverted: q.inverted,
                 boundary_triangles: m.boundary.len(),
                 regions,
@@ -278,6 +293,20 @@ fn render(r: &Report) -> String {
         let _ = writeln!(s, "  regions:");
         for g in &t.regions {
             let _ = writeln!(s, "    {:>6}  {:>9} tets  {}", g.tag, g.triangles, g.name.as_deref().unwrap_or(""));
+        }
+        let _ = writeln!(
+            s,
+            "  dihedral            {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)",
+            t.min_dihedral_deg, t.max_dihedral_deg, t.tets_under_5_deg, t.tets_under_1_deg
+        );
+        let _ = writeln!(s, "  max radius-edge     {:.3}", t.max_radius_edge);
+        let _ = writeln!(
+            s,
+            "  near-degenerate     {} tets (volume-length under {NEAR_DEGENERATE_VOLUME_LENGTH}; exactly flat {}), inverted {}",
+            t.near_degenerate, t.quality.degenerate, t.inverted
+        );
+        for (label, text) in t.worst_tet.as_ref().map(TetPlace::lines).unwrap_or_default() {
+            let _ = writeln!(s, "  {label:<19} {text}");
         }
         let _ = writeln!(s, "  quality:");
         for line in t.quality.render().lines() {

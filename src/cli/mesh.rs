@@ -17,6 +17,8 @@ use std::path::PathBuf;
 pub const EXAMPLES: &str = "\
 Examples:
   fepre mesh part.stl -o part.mesh                      quality tets (radius-edge 1.5, dihedral 18° aimed at)
+  fepre mesh part.stl -o part.mesh --max-radius-edge 1.3 --min-dihedral 20   TetGen's -q1.3/20
+  fepre mesh part.stl -o part.mesh --require-min-dihedral 10   exit 1, nothing written, if a tet is under 10°
   fepre mesh plc.poly -o plc.vtu --size 0.16            edge length about 0.16 everywhere; holes and regions from the .poly
   fepre mesh part.obj -o part.msh --keep-surface        the boundary triangles exactly as given (no Steiner points on them)
   fepre mesh part.stl -o part.1.ele --json              TetGen files; one JSON report on standard output
@@ -25,7 +27,10 @@ Examples:
   fepre run job.toml                                    sizes per CAD face, by distance, curvature: see `fepre run --help`
 
 Every boundary triangle of the result carries the tag of the input triangle it lies in (STL
-solid, OBJ group, glTF primitive, .poly facet marker, CAD face); each tet carries its region.";
+solid, OBJ group, glTF primitive, .poly facet marker, CAD face); each tet carries its region.
+The summary gives the tets under 5° and 1°, where the worst tet sits (nearest CAD face and
+feature edge, the small input angle it touches) and whether refinement stopped at its budget;
+a tet under 1° that no --require option asked about is a WARNING on standard error.";
 
 /// Arguments of `fepre mesh`.
 #[derive(Debug, clap::Args)]
@@ -50,9 +55,14 @@ pub struct Args {
     /// Smallest dihedral angle (degrees) the optimisation works towards (0 to 35).
     #[arg(long, value_name = "D", default_value_t = 18.0, value_parser = dihedral)]
     pub min_dihedral: f64,
-    /// Fail (exit 1, nothing written) when a tet's smallest dihedral angle is below D degrees.
+    /// Fail (exit 1, nothing written) when a tet's smallest dihedral angle is below D degrees;
+    /// the error names the worst tet's place, its CAD face and edge, and the small input angle
+    /// it touches.
     #[arg(long, value_name = "D", value_parser = dihedral)]
     pub require_min_dihedral: Option<f64>,
+    /// Fail (exit 1, nothing written) when a tet's radius-edge ratio is above R.
+    #[arg(long, value_name = "R", value_parser = positive)]
+    pub require_max_radius_edge: Option<f64>,
     /// Keep the input surface exactly: no Steiner point on the boundary.
     #[arg(long)]
     pub keep_surface: bool,
@@ -80,19 +90,12 @@ fn dihedral(s: &str) -> Result<f64, String> {
 struct Report<'a> {
     input: String,
     output: String,
-    nodes: usize,
-    tets: usize,
     seconds: f64,
     read_seconds: f64,
-    min_dihedral_deg: f64,
-    max_dihedral_deg: f64,
-    max_radius_edge: f64,
-    tets_under_5_deg: usize,
-    tets_under_1_deg: usize,
-    refinement_stopped: bool,
-    volume: f64,
+    /// Counts, quality, the worst tet's place, refinement and optimisation budgets.
+    #[serde(flatten)]
+    summary: &'a crate::pipeline::run::MeshSummary,
     boundary_steiner_points: usize,
-    regions: usize,
     global_size: f64,
     /// Per boundary face tag: unique name (and for STEP parts colour, STEP `#id`, solid).
     face_table: &'a [crate::cad::brep::FaceEntry],
@@ -119,6 +122,7 @@ pub fn run(args: &Args) -> Result<()> {
         unit: 1.0,
         mesh: crate::mesh3d::mesher::MeshOptions::default().with_max_radius_edge(args.max_radius_edge).with_min_dihedral(args.min_dihedral).with_keep_surface(args.keep_surface),
         require_min_dihedral: args.require_min_dihedral,
+        require_max_radius_edge: args.require_max_radius_edge,
         ..Plan::default()
     };
     progress.stage("meshing");
@@ -138,19 +142,10 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     let r = Report {
         input: args.surface.display().to_string(),
         output: args.output.display().to_string(),
-        nodes: m.nodes,
-        tets: m.tets,
         seconds: part.seconds.read + part.seconds.tessellate + part.seconds.certify + part.seconds.mesh,
         read_seconds: part.seconds.read,
-        min_dihedral_deg: m.min_dihedral_deg,
-        max_dihedral_deg: m.max_dihedral_deg,
-        max_radius_edge: m.max_radius_edge,
-        tets_under_5_deg: m.tets_under_5_deg,
-        tets_under_1_deg: m.tets_under_1_deg,
-        refinement_stopped: m.refinement_stopped,
-        volume: m.volume,
+        summary: &m,
         boundary_steiner_points: mesher.boundary_steiner_points,
-        regions: m.regions,
         global_size: report.global_size,
         face_table: &report.face_table,
         mesher: &mesher,
@@ -158,9 +153,10 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
+        crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
         return Ok(());
     }
-    crate::cli::print_mesh_summary(&m, Some(args.max_radius_edge), "--require-min-dihedral D");
+    crate::cli::print_mesh_summary(&m);
     println!("boundary Steiner {}", r.boundary_steiner_points);
     println!("size             {:.4} (global)", r.global_size);
     println!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
@@ -169,5 +165,6 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     }
     crate::cli::contacts::print(&report.contacts);
     println!("wrote            {}", r.output);
+    crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
     Ok(())
 }

@@ -128,23 +128,59 @@ pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
     anyhow::Error::new(UsageError(message.into()))
 }
 
-/// Prints a tet mesh's size and quality, with a warning where refinement stopped early
-/// (`max_radius_edge`: the bound it aimed at) or a tet is under 1° (`require`: the option that
-/// makes that an error). Shared by `fepre mesh` and `fepre run`.
-pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, max_radius_edge: Option<f64>, require: &str) {
+/// Prints a tet mesh's size and quality: counts, dihedral angles, radius-edge, where the
+/// worst tet sits, the small input angles, and whether refinement and the optimisation ended
+/// or stopped at a budget (and which). Shared by `fepre mesh` and `fepre run`.
+pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
+    use crate::quality::worst_tet::{fmt_num, fmt_point};
     println!("nodes            {}", m.nodes);
     println!("tets             {}", m.tets);
     println!("regions          {}", m.regions);
     println!("volume           {:.9}", m.volume);
-    println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg);
-    println!("max radius-edge  {:.3}", m.max_radius_edge);
-    if m.refinement_stopped {
-        let bound = max_radius_edge.map(|r| format!(" before every tet met radius-edge {r}")).unwrap_or_default();
-        println!("warning          refinement stopped at its point budget{bound} (small input angles)");
+    println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°, {} near-degenerate)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg, m.near_degenerate);
+    println!("max radius-edge  {:.3} ({} tets above the {} aimed at)", m.max_radius_edge, m.tets_above_radius_edge_bound, m.radius_edge_bound);
+    for (label, text) in m.worst_tet.as_ref().map(|w| w.lines()).unwrap_or_default() {
+        println!("{label:<16} {text}");
     }
-    if m.tets_under_1_deg > 0 {
-        println!("warning          {} tets have a dihedral angle under 1°; {require} makes this an error", m.tets_under_1_deg);
+    match &m.smallest_input_angle {
+        Some(a) => println!("input angles     {} under {}°, the smallest {}° at {}", m.small_input_angles, m.input_angle_bound_deg, fmt_num(a.angle_deg), fmt_point(a.at[0])),
+        None => println!("input angles     none under {}°", m.input_angle_bound_deg),
     }
+    println!("refinement       {}", refinement_text(m));
+    if m.optimize_out_of_attempts {
+        println!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);
+    } else {
+        println!("optimisation     ended after {} attempts, within its budget", m.optimize_attempts);
+    }
+}
+
+/// Whether refinement ended, or which budget stopped it, and what is left above its bound.
+fn refinement_text(m: &crate::pipeline::run::MeshSummary) -> String {
+    let (r, above) = (m.radius_edge_bound, m.tets_above_radius_edge_bound);
+    match &m.refinement_stop {
+        Some(s) if s.budget == "points" => format!("stopped early: its point budget ({} points) ran out before every tet met radius-edge {r} (input angles too small for it to end); {above} tets are above it", s.max_points),
+        Some(s) => format!("stopped early: its bound on the bad tets worked on ran out at {} points, before every tet met radius-edge {r}; {above} tets are above it", s.points),
+        None if m.refinement_stopped => format!("stopped early at its budget before every tet met radius-edge {r}; {above} tets are above it"),
+        None if above > 0 => format!("ended; {above} tets are above radius-edge {r} (refinement leaves tets under a tenth of the shortest boundary edge and points that would crowd the boundary; the optimisation allows up to {})", fmt_radius_edge_allowed(r)),
+        None => format!("ended: every tet meets radius-edge {r}"),
+    }
+}
+
+fn fmt_radius_edge_allowed(r: f64) -> String {
+    crate::quality::worst_tet::fmt_num(r.max(2.0))
+}
+
+/// Warns on standard error about a tet under 1° (`require`: the option that makes it an
+/// error), with where the worst one sits.
+pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: &str) {
+    if m.tets_under_1_deg == 0 {
+        return;
+    }
+    let at = m.worst_tet.as_ref().map(|w| {
+        let face = w.nearest_face.as_ref().map(|f| format!(", near face {}{}", f.face.0, f.name.as_ref().map(|n| format!(" \"{n}\"")).unwrap_or_default())).unwrap_or_default();
+        format!(" (the smallest {}° at {}{face})", crate::quality::worst_tet::fmt_num(w.min_dihedral_deg), crate::quality::worst_tet::fmt_point(w.point))
+    });
+    eprintln!("WARNING: {} tets have a dihedral angle under 1°{}; {require} makes this an error", m.tets_under_1_deg, at.unwrap_or_default());
 }
 
 /// Parses a finite number `> 0`.

@@ -57,6 +57,9 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         print(&report, args.check);
     }
+    if let Some(m) = &report.mesh {
+        crate::cli::warn_mesh_summary(m, "[require] min_dihedral");
+    }
     Ok(())
 }
 
@@ -80,7 +83,7 @@ fn print(r: &RunReport, check: bool) {
     }
     if let Some(m) = &r.mesh {
         println!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
-        crate::cli::print_mesh_summary(m, None, "[require] min_dihedral");
+        crate::cli::print_mesh_summary(m);
     }
     crate::cli::contacts::print(&r.contacts);
     for o in &r.outputs {

@@ -57,6 +57,13 @@ pub fn closest_point_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> DVec3 {
     a + ab * v + ac * w
 }
 
+/// The point of the segment `[a, b]` closest to `p` (`a` when the segment has zero length).
+pub fn closest_point_on_segment(p: DVec3, a: DVec3, b: DVec3) -> DVec3 {
+    let d = b - a;
+    let l2 = d.length_squared();
+    if l2 > 0.0 && l2.is_finite() { a + ((p - a).dot(d) / l2).clamp(0.0, 1.0) * d } else { a }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -70,5 +77,14 @@ mod tests {
         assert_eq!(closest_point_on_triangle(DVec3::new(2.0, -0.5, 0.0), t), DVec3::X);
         assert_eq!(closest_point_on_triangle(DVec3::new(0.5, -2.0, 1.0), t), DVec3::new(0.5, 0.0, 0.0));
         assert!((point_triangle_distance(DVec3::new(1.0, 1.0, 0.0), t) - 0.5f64.sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn segment_ends_and_middle() {
+        let (a, b) = (DVec3::ZERO, DVec3::X);
+        assert_eq!(closest_point_on_segment(DVec3::new(-1.0, 1.0, 0.0), a, b), a);
+        assert_eq!(closest_point_on_segment(DVec3::new(2.0, 1.0, 0.0), a, b), b);
+        assert_eq!(closest_point_on_segment(DVec3::new(0.25, 1.0, 3.0), a, b), DVec3::new(0.25, 0.0, 0.0));
+        assert_eq!(closest_point_on_segment(DVec3::Y, a, a), a);
     }
 }

@@ -125,8 +125,8 @@ pub struct MeshSection {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Require {
-    /// Smallest dihedral angle of every tet, degrees.
-    pub min_dihedral: Option<f64>,
+    /// Smallest dihedral angle of every tet, degrees (0 to 35).
+    pub min_dihedral: Option<Spanned<f64>>,
     /// Largest radius-edge ratio of every tet.
     pub max_radius_edge: Option<Positive>,
 }
@@ -225,6 +225,11 @@ impl JobFile {
         if let Some(d) = &m.min_dihedral {
             if !(d.get_ref().is_finite() && (0.0..=35.0).contains(d.get_ref())) {
                 return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35]", d.get_ref())));
+            }
+        }
+        if let Some(d) = &self.job.require.min_dihedral {
+            if !(d.get_ref().is_finite() && (0.0..=35.0).contains(d.get_ref())) {
+                return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35] (no mesher can promise more)", d.get_ref())));
             }
         }
         for o in &self.job.output {
@@ -403,6 +408,12 @@ file = "part.json"
         assert_eq!(line, 4, "{m}");
         assert!(m.contains("nam"), "{m}");
         let (line, m) = err("[input]\nfile = \"a.step\"\n[mesh]\nmax_radius_edge = 0.5\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("max_radius_edge"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[require]\nmin_dihedral = 50\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("min_dihedral") && m.contains("[0, 35]"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[require]\nmax_radius_edge = 0\n");
         assert_eq!(line, 4, "{m}");
         assert!(m.contains("max_radius_edge"), "{m}");
         let (line, m) = err("[input]\nfile = \"a.step\"\n[[output]]\nfile = \"a.stl\"\nkind = \"mesh\"\n");

@@ -20,6 +20,7 @@ mod error;
 pub mod job;
 pub mod part;
 pub mod run;
+mod summary;
 
 pub use error::PipelineError;
 pub use part::{Certified, Part, failure_message, tessellate_file};

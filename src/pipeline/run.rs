@@ -5,11 +5,11 @@
 use super::job::{JobFile, OutputKind};
 use super::part::{MESH_MAX_ANGLE_DEG, Part};
 use super::PipelineError;
+use super::summary::summarise;
 use crate::attributes::{Density, SelectError, Selection, Selector};
 use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
 use crate::mesh3d::mesher::{MeshOptions, MeshReport};
-use crate::quality::tet_mesh_quality;
 use crate::tessellate::TessellateOptions;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -41,30 +41,7 @@ impl Plan {
     }
 }
 
-/// The quality of a tet mesh, as reports give it.
-#[derive(Clone, Debug, Default, Serialize)]
-pub struct MeshSummary {
-    /// Nodes.
-    pub nodes: usize,
-    /// Tets.
-    pub tets: usize,
-    /// Regions.
-    pub regions: usize,
-    /// Volume.
-    pub volume: f64,
-    /// Smallest dihedral angle, degrees.
-    pub min_dihedral_deg: f64,
-    /// Largest dihedral angle, degrees.
-    pub max_dihedral_deg: f64,
-    /// Largest radius-edge ratio.
-    pub max_radius_edge: f64,
-    /// Tets with a dihedral angle under 5°.
-    pub tets_under_5_deg: usize,
-    /// Tets with a dihedral angle under 1°.
-    pub tets_under_1_deg: usize,
-    /// Refinement stopped at its budget before every tet met the radius-edge bound.
-    pub refinement_stopped: bool,
-}
+pub use super::summary::MeshSummary;
 
 /// What a run did.
 #[derive(Clone, Debug, Default, Serialize)]
@@ -126,35 +103,13 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
     let Some(mesh) = part.mesh.as_ref() else {
         return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh was made".into() });
     };
-    let q = tet_mesh_quality(mesh);
     let r = part.mesh_report.clone().unwrap_or_default();
-    let under5 = q.tets_min_dihedral_below_5;
-    let under1 = under_one_degree(mesh);
-    report.mesh = Some(MeshSummary {
-        nodes: mesh.vertices.len(),
-        tets: mesh.tets.len(),
-        regions: r.regions,
-        volume: mesh.volume(),
-        min_dihedral_deg: q.min_dihedral_deg,
-        max_dihedral_deg: q.max_dihedral_deg,
-        max_radius_edge: q.max_radius_edge,
-        tets_under_5_deg: under5,
-        tets_under_1_deg: under1,
-        refinement_stopped: r.refinement_stopped,
-    });
+    let summarised = summarise(mesh, part.surface.as_ref(), &r, plan, &report.face_table);
+    report.mesh = Some(summarised.summary.clone());
     report.mesher = Some(r);
     report.contacts = part.contacts.clone();
     report.seconds = part.seconds.clone();
-    if let Some(d) = plan.require_min_dihedral {
-        if q.min_dihedral_deg < d {
-            return Err(PipelineError::Requirement { path: part.path.clone(), message: format!("the smallest dihedral angle is {:.3}°, below the {d}° required ({under5} tets under 5°, {under1} under 1°)", q.min_dihedral_deg) });
-        }
-    }
-    if let Some(r) = plan.require_max_radius_edge {
-        if q.max_radius_edge > r {
-            return Err(PipelineError::Requirement { path: part.path.clone(), message: format!("the largest radius-edge ratio is {:.3}, above the {r} required", q.max_radius_edge) });
-        }
-    }
+    summarised.check(&part.path, mesh, plan, &report.face_table)?;
     Ok(report)
 }
 
@@ -173,7 +128,7 @@ pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineErro
         density: job.density.clone(),
         unit,
         mesh: jf.mesh_options(),
-        require_min_dihedral: job.require.min_dihedral,
+        require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
     };
     let mut report = match run_plan(&mut part, &plan, check_only) {
@@ -205,9 +160,4 @@ pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineErro
         })?;
     }
     Ok(report)
-}
-
-/// Tets with a dihedral angle under 1°.
-fn under_one_degree(mesh: &crate::mesh::TetMesh) -> usize {
-    mesh.tets.iter().filter(|t| crate::quality::tetrahedron::tet_min_max_dihedral(&t.map(|v| mesh.vertices[v as usize])).0 < 1.0).count()
 }

@@ -29,6 +29,12 @@ pub const DIHEDRAL_EDGES: [f64; 21] =
 /// judge use it.
 pub const RADIUS_EDGE_SQRT2: f64 = 1.414;
 
+/// A tet is near-degenerate when its volume-length ratio `6√2 |V| / l_rms³` is below this:
+/// its volume is under 0.1 % of a regular tet's with the same root-mean-square edge, flat to
+/// the eye (a sliver of four nearly coplanar points has a smallest dihedral angle of about
+/// 0.06°; the ratio is about 0.016 per degree for slivers and caps).
+pub const NEAR_DEGENERATE_VOLUME_LENGTH: f64 = 1e-3;
+
 /// Quality report of a tetrahedral mesh (see [`tet_mesh_quality`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TetQualityReport {
@@ -40,9 +46,13 @@ pub struct TetQualityReport {
     pub volume: f64,
     /// Tets whose orientation is not `Positive`, decided exactly.
     pub inverted: usize,
-    /// Degenerate tets (zero computed determinant, zero edge or zero face): they have no
-    /// dihedral angles in the histogram and count with min 0° / max 180°.
+    /// Exactly degenerate tets (zero computed determinant, zero edge or zero face): they have
+    /// no dihedral angles in the histogram and count with min 0° / max 180°. Flat slivers of
+    /// nearly coplanar points are not counted here: see [`TetQualityReport::near_degenerate`].
     pub degenerate: usize,
+    /// Near-degenerate tets: volume-length ratio below [`NEAR_DEGENERATE_VOLUME_LENGTH`]
+    /// (the exactly degenerate ones included).
+    pub near_degenerate: usize,
     /// Smallest dihedral angle of the mesh (degrees).
     pub min_dihedral_deg: f64,
     /// Largest dihedral angle of the mesh (degrees).
@@ -53,6 +63,8 @@ pub struct TetQualityReport {
     pub mean_radius_edge: f64,
     /// Smallest volume-length ratio.
     pub min_volume_length: f64,
+    /// Tets with a dihedral angle below 1°.
+    pub tets_min_dihedral_below_1: usize,
     /// Tets with a dihedral angle below 5°.
     pub tets_min_dihedral_below_5: usize,
     /// Tets with a dihedral angle below 10°.
@@ -151,7 +163,8 @@ struct TetAcc {
     radius_edge_sum: f64,
     inverted: usize,
     degenerate: usize,
-    below: [usize; 3],
+    near_degenerate: usize,
+    below: [usize; 4],
     over: [usize; 2],
     stats: [StatsAccumulator; 9],
     hist: Histogram,
@@ -164,7 +177,8 @@ impl TetAcc {
             radius_edge_sum: 0.0,
             inverted: 0,
             degenerate: 0,
-            below: [0; 3],
+            near_degenerate: 0,
+            below: [0; 4],
             over: [0; 2],
             stats: std::array::from_fn(|_| StatsAccumulator::new()),
             hist: Histogram::with_edges(DIHEDRAL_EDGES.to_vec()),
@@ -182,9 +196,10 @@ impl TetAcc {
         }
         self.volume.add(m.volume);
         self.radius_edge_sum += m.radius_edge;
-        for (k, lim) in [5.0, 10.0, 20.0].into_iter().enumerate() {
+        for (k, lim) in [1.0, 5.0, 10.0, 20.0].into_iter().enumerate() {
             self.below[k] += usize::from(m.min_dihedral < lim);
         }
+        self.near_degenerate += usize::from(!(m.volume_length >= NEAR_DEGENERATE_VOLUME_LENGTH));
         self.over[0] += usize::from(m.radius_edge > RADIUS_EDGE_SQRT2);
         self.over[1] += usize::from(m.radius_edge > 2.0);
         let v = [
@@ -208,7 +223,8 @@ impl TetAcc {
         self.radius_edge_sum += o.radius_edge_sum;
         self.inverted += o.inverted;
         self.degenerate += o.degenerate;
-        for k in 0..3 {
+        self.near_degenerate += o.near_degenerate;
+        for k in 0..4 {
             self.below[k] += o.below[k];
         }
         for k in 0..2 {
@@ -258,14 +274,16 @@ pub fn tet_mesh_quality(m: &TetMesh) -> TetQualityReport {
         volume: acc.volume.value(),
         inverted: acc.inverted,
         degenerate: acc.degenerate,
+        near_degenerate: acc.near_degenerate,
         min_dihedral_deg: s[0].min,
         max_dihedral_deg: s[1].max,
         max_radius_edge: s[2].max,
         mean_radius_edge: if n == 0 { 0.0 } else { acc.radius_edge_sum / n as f64 },
         min_volume_length: s[5].min,
-        tets_min_dihedral_below_5: acc.below[0],
-        tets_min_dihedral_below_10: acc.below[1],
-        tets_min_dihedral_below_20: acc.below[2],
+        tets_min_dihedral_below_1: acc.below[0],
+        tets_min_dihedral_below_5: acc.below[1],
+        tets_min_dihedral_below_10: acc.below[2],
+        tets_min_dihedral_below_20: acc.below[3],
         tets_radius_edge_over_sqrt2: acc.over[0],
         tets_radius_edge_over_2: acc.over[1],
         min_dihedral: s[0].clone(),
@@ -290,7 +308,8 @@ impl TetQualityReport {
         let _ = writeln!(s, "tets {}", self.tets);
         let _ = writeln!(s, "volume {:.9}", self.volume);
         let _ = writeln!(s, "inverted {}", self.inverted);
-        let _ = writeln!(s, "degenerate {}", self.degenerate);
+        let _ = writeln!(s, "degenerate_exact {}", self.degenerate);
+        let _ = writeln!(s, "near_degenerate {} (volume-length under {NEAR_DEGENERATE_VOLUME_LENGTH})", self.near_degenerate);
         let _ = writeln!(s, "min_dihedral_deg {:.4}", self.min_dihedral_deg);
         let _ = writeln!(s, "max_dihedral_deg {:.4}", self.max_dihedral_deg);
         let _ = writeln!(s, "max_radius_edge_ratio {:.4}", self.max_radius_edge);
@@ -298,6 +317,7 @@ impl TetQualityReport {
         let _ = writeln!(s, "tets_radius_edge_over_1.414 {}", self.tets_radius_edge_over_sqrt2);
         let _ = writeln!(s, "tets_radius_edge_over_2 {}", self.tets_radius_edge_over_2);
         let _ = writeln!(s, "min_vol_length_quality {:.5}", self.min_volume_length);
+        let _ = writeln!(s, "tets_min_dihedral_below_1 {}", self.tets_min_dihedral_below_1);
         let _ = writeln!(s, "tets_min_dihedral_below_5 {}", self.tets_min_dihedral_below_5);
         let _ = writeln!(s, "tets_min_dihedral_below_10 {}", self.tets_min_dihedral_below_10);
         let _ = writeln!(s, "tets_min_dihedral_below_20 {}", self.tets_min_dihedral_below_20);

@@ -60,3 +60,19 @@ pub fn corpus_file(name: &str) -> Option<PathBuf> {
 
 /// Discovery of the external tools (gmsh, tetgen, Python with meshio) some tests check files with.
 pub mod tools;
+
+/// The STEP sweep (real STEP exports, `occ.jsonl` beside them): `$FEPRE_SWEEP`, else
+/// `../shared/step_sweep` beside the checkout. `None` after a skip message when it is missing,
+/// except under CI, where that fails the test.
+pub fn sweep_dir() -> Option<PathBuf> {
+    let dir = match std::env::var_os("FEPRE_SWEEP") {
+        Some(d) => PathBuf::from(d),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/step_sweep"),
+    };
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    assert!(!in_ci(), "the STEP sweep {} is missing (CI=true: set FEPRE_SWEEP or put ../shared beside the checkout)", dir.display());
+    eprintln!("skipping: the STEP sweep {} is missing (set FEPRE_SWEEP to run this test)", dir.display());
+    None
+}

@@ -144,6 +144,24 @@ pub struct MeshReport {
     pub optimize: Option<crate::mesh3d::optimize::OptimizeReport>,
     /// Total wall seconds.
     pub seconds: f64,
+    /// Which budget stopped refinement early, when one did.
+    pub refinement_stop: Option<RefinementStop>,
+}
+
+/// Which budget stopped refinement early: `"points"` (the mesh reached `max_points`) or
+/// `"steps"` (the bound on the bad tets worked on), and the points then.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RefinementStop {
+    /// `"points"` or `"steps"`.
+    pub budget: &'static str,
+    /// Points of the tetrahedralization when it stopped.
+    pub points: usize,
+    /// The point budget.
+    pub max_points: usize,
+}
+
+fn refinement_stop(stopped: bool, points: usize, max_points: usize) -> Option<RefinementStop> {
+    stopped.then_some(RefinementStop { budget: if points >= max_points { "points" } else { "steps" }, points, max_points })
 }
 
 /// Why a surface could not be meshed.
@@ -297,6 +315,7 @@ pub fn mesh_surface(
         4 * tr.num_points() + 10_000 + by_size.min(5e7) as usize
     };
     let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points)?;
+    let mut stop = refinement_stop(refined.stopped, tr.num_points(), max_points);
     stage("refine", &mut clock);
     keep::drop_exterior(&mut tr, &labels);
     if options.keep_surface {
@@ -315,6 +334,7 @@ pub fn mesh_surface(
         let again = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points)?;
         refined.volume_points += again.volume_points;
         refined.stopped |= again.stopped;
+        stop = stop.or(refinement_stop(again.stopped, tr.num_points(), max_points));
     }
     stage("refine", &mut clock);
     let mut mesh = extract::extract(&tr, &sm, &labels, surface)?;
@@ -337,6 +357,7 @@ pub fn mesh_surface(
     report.boundary_steiner_points = sm.boundary_steiner_points();
     report.volume_steiner_points = refined.volume_points;
     report.refinement_stopped = refined.stopped;
+    report.refinement_stop = stop;
     report.regions = labels.regions;
     report.seconds = start.elapsed().as_secs_f64();
     Ok((mesh, report))

@@ -127,6 +127,7 @@ pub(crate) fn merge_reports(reports: &[MeshReport]) -> MeshReport {
         out.boundary_steiner_points += r.boundary_steiner_points;
         out.volume_steiner_points += r.volume_steiner_points;
         out.refinement_stopped |= r.refinement_stopped;
+        out.refinement_stop = out.refinement_stop.take().or_else(|| r.refinement_stop.clone());
         for (stage, s) in &r.stage_seconds {
             match out.stage_seconds.iter_mut().find(|(n, _)| n == stage) {
                 Some((_, t)) => *t += s,

@@ -1,0 +1,162 @@
+//! The quality of a meshed part as reports give it, and the requirements checked on it.
+//!
+//! Every run gives the summary: counts, dihedral angles, radius-edge ratios, the tets under 5°
+//! and 1°, near-degenerate tets, where the worst tet sits (its centroid, the nearest CAD face
+//! or input tag, the nearest feature edge, the small input angle in its reach) and whether
+//! refinement or the optimisation stopped at a budget. A requirement that fails is an error
+//! naming the same place.
+
+use super::PipelineError;
+use super::run::Plan;
+use crate::cad::brep::FaceEntry;
+use crate::core::FaceId;
+use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh3d::mesher::{MeshReport, RefinementStop};
+use crate::quality::input_angles::{InputAngle, small_input_angles};
+use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality};
+use crate::quality::tetrahedron::tet_radius_edge;
+use crate::quality::worst_tet::{BoundaryIndex, TetPlace, fmt_num};
+use serde::Serialize;
+use std::path::Path;
+
+/// The quality of a tet mesh, as reports give it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct MeshSummary {
+    /// Nodes.
+    pub nodes: usize,
+    /// Tets.
+    pub tets: usize,
+    /// Regions.
+    pub regions: usize,
+    /// Volume.
+    pub volume: f64,
+    /// Smallest dihedral angle, degrees.
+    pub min_dihedral_deg: f64,
+    /// Largest dihedral angle, degrees.
+    pub max_dihedral_deg: f64,
+    /// Largest radius-edge ratio.
+    pub max_radius_edge: f64,
+    /// Tets with a dihedral angle under 5°.
+    pub tets_under_5_deg: usize,
+    /// Tets with a dihedral angle under 1°.
+    pub tets_under_1_deg: usize,
+    /// Near-degenerate tets (volume-length ratio under
+    /// [`crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH`]).
+    pub near_degenerate: usize,
+    /// Refinement stopped at its budget before every tet met the radius-edge bound.
+    pub refinement_stopped: bool,
+    /// Which budget stopped it, when one did.
+    pub refinement_stop: Option<RefinementStop>,
+    /// The radius-edge bound refinement aimed at.
+    pub radius_edge_bound: f64,
+    /// Tets above it in the result.
+    pub tets_above_radius_edge_bound: usize,
+    /// The optimisation stopped at its budget of attempts.
+    pub optimize_out_of_attempts: bool,
+    /// Attempts the optimisation made.
+    pub optimize_attempts: usize,
+    /// Input angles are listed below this (degrees): the required smallest dihedral angle,
+    /// else the one the optimisation aimed at.
+    pub input_angle_bound_deg: f64,
+    /// Input angles (dihedral and corner) below that bound.
+    pub small_input_angles: usize,
+    /// The smallest of them.
+    pub smallest_input_angle: Option<InputAngle>,
+    /// The tet with the smallest dihedral angle, and where it sits.
+    pub worst_tet: Option<TetPlace>,
+}
+
+/// The summary of `mesh` (made from `surface` with `plan`, `report` the mesher's), and the
+/// indexes a requirement error needs again.
+pub(crate) struct Summarised {
+    /// The summary.
+    pub summary: MeshSummary,
+    quality: TetQualityReport,
+    boundary: BoundaryIndex,
+    angles: Vec<InputAngle>,
+}
+
+/// Summarises a meshed part. `face_table` names the faces (unique names, as the writers give
+/// them); a tag not in it keeps the mesh's own name.
+pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry]) -> Summarised {
+    let q = tet_mesh_quality(mesh);
+    let bound = plan.require_min_dihedral.unwrap_or(plan.mesh.min_dihedral);
+    let angles = surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default();
+    let boundary = BoundaryIndex::new(mesh);
+    let name = namer(mesh, face_table);
+    let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
+    let r_bound = plan.mesh.max_radius_edge;
+    let above = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
+    let opt = report.optimize.as_ref();
+    let summary = MeshSummary {
+        nodes: mesh.vertices.len(),
+        tets: mesh.tets.len(),
+        regions: report.regions,
+        volume: mesh.volume(),
+        min_dihedral_deg: q.min_dihedral_deg,
+        max_dihedral_deg: q.max_dihedral_deg,
+        max_radius_edge: q.max_radius_edge,
+        tets_under_5_deg: q.tets_min_dihedral_below_5,
+        tets_under_1_deg: q.tets_min_dihedral_below_1,
+        near_degenerate: q.near_degenerate,
+        refinement_stopped: report.refinement_stopped,
+        refinement_stop: report.refinement_stop.clone(),
+        radius_edge_bound: r_bound,
+        tets_above_radius_edge_bound: above,
+        optimize_out_of_attempts: opt.is_some_and(|o| o.out_of_attempts),
+        optimize_attempts: opt.map_or(0, |o| o.attempts),
+        input_angle_bound_deg: bound,
+        small_input_angles: angles.len(),
+        smallest_input_angle: angles.first().cloned(),
+        worst_tet,
+    };
+    Summarised { summary, quality: q, boundary, angles }
+}
+
+/// Names a face tag: the face table's unique name, else the mesh's.
+fn namer<'a>(mesh: &'a TetMesh, face_table: &'a [FaceEntry]) -> impl Fn(FaceId) -> Option<String> + 'a {
+    move |f: FaceId| match face_table.iter().find(|e| e.face == f) {
+        Some(e) => e.name.clone(),
+        None => mesh.face_names.get(f).map(str::to_string),
+    }
+}
+
+impl Summarised {
+    /// Checks the requirements of `plan`; the error names the worst tet's place.
+    ///
+    /// # Errors
+    /// [`PipelineError::Requirement`] for the first requirement not met.
+    pub(crate) fn check(&self, path: &Path, mesh: &TetMesh, plan: &Plan, face_table: &[FaceEntry]) -> Result<(), PipelineError> {
+        let s = &self.summary;
+        if let Some(d) = plan.require_min_dihedral {
+            if !(s.min_dihedral_deg >= d) {
+                let head = format!(
+                    "the smallest dihedral angle is {}°, below the {d}° required ({} tets under 5°, {} under 1°); nothing written",
+                    fmt_num(s.min_dihedral_deg),
+                    s.tets_under_5_deg,
+                    s.tets_under_1_deg
+                );
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, s.worst_tet.as_ref()) });
+            }
+        }
+        if let Some(r) = plan.require_max_radius_edge {
+            if !(self.quality.max_radius_edge <= r) {
+                let name = namer(mesh, face_table);
+                let place = self.quality.radius_edge.argmax.map(|t| self.boundary.locate(mesh, t, &self.angles, &name));
+                let over = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r)).count();
+                let head = format!("the largest radius-edge ratio is {}, above the {r} required ({over} tets above it); nothing written", fmt_num(self.quality.max_radius_edge));
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, place.as_ref()) });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `head`, then the place's lines, indented.
+fn with_place(head: String, place: Option<&TetPlace>) -> String {
+    let mut m = head;
+    for (label, text) in place.map(TetPlace::lines).unwrap_or_default() {
+        m.push_str(&format!("\n  {label:<14} {text}"));
+    }
+    m
+}

@@ -1,0 +1,191 @@
+//! Quality requirements and the always-on quality summary of `fepre mesh` and `fepre run`: a
+//! requirement the input cannot reach fails (exit 1, nothing written) naming the worst tet's
+//! place, its CAD face and edge and the input angle it touches; without one the summary says
+//! the same, warns on standard error about tets under 1°, and says when refinement stopped.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn fepre(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fepre")).args(args).output().unwrap()
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+/// A prism of height 4 over the triangle (0,0,0) (10,0,0) (10 cos a, 10 sin a, 0): a knife
+/// edge of `angle_deg` degrees from (0,0,0) to (0,0,4) between the groups `side_a` (y = 0,
+/// tag 3) and `side_c` (tag 5). No tet with a face on each side of it can have a larger
+/// dihedral angle.
+fn wedge(dir: &Path, angle_deg: f64) -> PathBuf {
+    let a = angle_deg.to_radians();
+    let base = [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0 * a.cos(), 10.0 * a.sin(), 0.0]];
+    let mut obj = String::new();
+    for z in [0.0, 4.0] {
+        for p in base {
+            obj.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2] + z));
+        }
+    }
+    for (group, tris) in [
+        ("bottom", vec![[1, 3, 2]]),
+        ("top", vec![[4, 5, 6]]),
+        ("side_a", vec![[1, 2, 5], [1, 5, 4]]),
+        ("side_b", vec![[2, 3, 6], [2, 6, 5]]),
+        ("side_c", vec![[3, 1, 4], [3, 4, 6]]),
+    ] {
+        obj.push_str(&format!("g {group}\n"));
+        for t in tris {
+            obj.push_str(&format!("f {} {} {}\n", t[0], t[1], t[2]));
+        }
+    }
+    let path = dir.join("wedge.obj");
+    std::fs::write(&path, obj).unwrap();
+    path
+}
+
+/// The three numbers of the first `(x, y, z)` after `label` in `s`.
+fn point_after(s: &str, label: &str) -> [f64; 3] {
+    let at = s.find(label).unwrap_or_else(|| panic!("no {label:?} in {s}"));
+    let rest = &s[at..];
+    let open = rest.find('(').unwrap();
+    let close = rest[open..].find(')').unwrap() + open;
+    let v: Vec<f64> = rest[open + 1..close].split(',').map(|x| x.trim().parse().unwrap()).collect();
+    [v[0], v[1], v[2]]
+}
+
+/// The number right after `label` (up to a `°` or a space).
+fn number_after(s: &str, label: &str) -> f64 {
+    let at = s.find(label).unwrap_or_else(|| panic!("no {label:?} in {s}")) + label.len();
+    let num: String = s[at..].trim_start().chars().take_while(|c| c.is_ascii_digit() || *c == '.' || *c == '-' || *c == 'e').collect();
+    num.parse().unwrap_or_else(|_| panic!("no number after {label:?} in {s}"))
+}
+
+/// The knife edge's place: `p` inside the prism, within `d` of the edge.
+fn near_the_knife_edge(p: [f64; 3], d: f64) -> bool {
+    (0.0..=4.0).contains(&p[2]) && p[0] >= 0.0 && p[0] <= 10.0 && p[1] >= 0.0 && p[1] <= 0.6 && p[0].hypot(p[1]) <= d
+}
+
+fn only(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn a_required_dihedral_the_input_cannot_reach_fails_naming_the_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = wedge(dir.path(), 3.0);
+    let out = dir.path().join("wedge.mesh");
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-min-dihedral", "10"]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(only(dir.path()), ["wedge.obj"], "nothing may be written");
+    assert!(err.contains("wedge.obj") && err.contains("below the 10° required") && err.contains("nothing written"), "{err}");
+    // the worst tet: its smallest angle (what the head says), at the knife edge
+    let worst = number_after(&err, "the smallest dihedral angle is");
+    assert!(worst < 3.0 + 1e-6, "{err}");
+    assert_eq!(number_after(&err, "min dihedral"), worst, "{err}");
+    let at = point_after(&err, "worst tet");
+    assert!(near_the_knife_edge(at, 5.0), "the worst tet at {at:?}: {err}");
+    // its CAD face (a side at the knife edge, by tag and group name) and feature edge
+    let face = &err[err.find("nearest face").unwrap()..];
+    assert!(face.starts_with("nearest face   3 \"side_a\"") || face.starts_with("nearest face   5 \"side_c\""), "{err}");
+    assert!(err.contains("nearest edge   between faces"), "{err}");
+    // the input angle it touches: the 3° dihedral angle between the two sides, at its edge
+    assert!(
+        err.contains("input angle    3° is the input dihedral angle between faces 3 \"side_a\" and 5 \"side_c\" at the edge (0, 0, 0) to (0, 0, 4); the tet touches it"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_required_radius_edge_names_the_worst_tet_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = wedge(dir.path(), 3.0);
+    let out = dir.path().join("wedge.vtu");
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-max-radius-edge", "2"]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(only(dir.path()), ["wedge.obj"]);
+    assert!(err.contains("the largest radius-edge ratio is") && err.contains("above the 2 required"), "{err}");
+    let r = number_after(&err, "the largest radius-edge ratio is");
+    assert!(r > 2.0 && number_after(&err, "°, radius-edge") == r, "{err}");
+    assert!(near_the_knife_edge(point_after(&err, "worst tet"), 10.0), "{err}");
+    assert!(err.contains("nearest face") && err.contains("input angle"), "{err}");
+}
+
+#[test]
+fn a_job_requirement_fails_the_same_way_and_writes_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    wedge(dir.path(), 3.0);
+    let job = dir.path().join("job.toml");
+    std::fs::write(&job, "[input]\nfile = \"wedge.obj\"\n[require]\nmin_dihedral = 10\n[[output]]\nfile = \"out.msh\"\n[[output]]\nfile = \"out.json\"\n").unwrap();
+    let o = fepre(&["run", job.to_str().unwrap()]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(only(dir.path()), ["job.toml", "wedge.obj"]);
+    assert!(err.contains("below the 10° required") && err.contains("worst tet") && err.contains("3° is the input dihedral angle between faces 3 \"side_a\" and 5 \"side_c\""), "{err}");
+}
+
+#[test]
+fn the_summary_locates_the_worst_tet_and_warns_under_one_degree() {
+    let dir = tempfile::tempdir().unwrap();
+    // 3°: the worst tet is over 1°: no warning, exit 0, the place is in the summary
+    let input = wedge(dir.path(), 3.0);
+    let out = dir.path().join("w.mesh");
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let (stdout, stderr) = (text(&o.stdout), text(&o.stderr));
+    assert!(o.status.success(), "{stderr}");
+    let min = number_after(&stdout, "dihedral        ");
+    assert!(min >= 1.0 && min < 3.0 + 1e-6, "{stdout}");
+    assert!(!stderr.contains("WARNING"), "{stderr}");
+    assert!(near_the_knife_edge(point_after(&stdout, "worst tet"), 5.0), "{stdout}");
+    assert!(stdout.contains("input angle      3° is the input dihedral angle between faces 3 \"side_a\" and 5 \"side_c\""), "{stdout}");
+    assert!(stdout.contains("input angles     ") && stdout.contains("refinement       ") && stdout.contains("optimisation     "), "{stdout}");
+    // the same in the JSON report
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let w = &v["worst_tet"];
+    assert_eq!(w["min_dihedral_deg"], v["min_dihedral_deg"], "{v}");
+    assert_eq!(w["input_angle"]["kind"], "dihedral", "{w}");
+    assert_eq!(w["input_angle"]["touches"], true, "{w}");
+    assert!((w["input_angle"]["angle_deg"].as_f64().unwrap() - 3.0).abs() < 1e-9, "{w}");
+    assert_eq!(w["input_angle"]["names"], serde_json::json!(["side_a", "side_c"]), "{w}");
+    assert!(v["refinement_stopped"].is_boolean() && v.get("tets_under_1_deg").is_some() && v.get("near_degenerate").is_some(), "{v}");
+
+    // 0.5°: tets under 1° that nobody required: a WARNING on standard error, still exit 0
+    let input = wedge(dir.path(), 0.5);
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let (stdout, stderr) = (text(&o.stdout), text(&o.stderr));
+    assert!(o.status.success(), "{stderr}");
+    let under1 = stdout.lines().find(|l| l.starts_with("dihedral")).unwrap().to_string();
+    assert!(!under1.contains(" 0 under 1°"), "{stdout}");
+    let warning = stderr.lines().find(|l| l.starts_with("WARNING: ")).unwrap_or_else(|| panic!("no WARNING line: {stderr}"));
+    assert!(warning.contains("under 1°") && warning.contains("--require-min-dihedral D makes this an error"), "{warning}");
+    assert!(near_the_knife_edge(point_after(warning, "the smallest"), 5.0), "{warning}");
+    assert!(!stdout.contains("WARNING"), "warnings go to standard error: {stdout}");
+}
+
+#[test]
+fn a_refinement_that_stops_at_its_budget_says_so_in_the_text() {
+    // part.step of the corpus at radius-edge 1.1 runs out of its point budget (measured: 29,305
+    // points, 172,354 tets); the text must say that refinement stopped, and why
+    let Some(part) = common::corpus_file("part.step") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("part.mesh");
+    let o = fepre(&["mesh", part.to_str().unwrap(), "-o", out.to_str().unwrap(), "--max-radius-edge", "1.1"]);
+    let (stdout, stderr) = (text(&o.stdout), text(&o.stderr));
+    assert!(o.status.success(), "{stderr}");
+    let line = stdout.lines().find(|l| l.starts_with("refinement ")).unwrap_or_else(|| panic!("no refinement line: {stdout}"));
+    assert!(line.contains("stopped early: its point budget (") && line.contains("before every tet met radius-edge 1.1"), "{line}");
+    let above = number_after(line, "; ");
+    assert!(above > 0.0, "{line}");
+    // a mesh whose refinement ended says that instead
+    let wedge = wedge(dir.path(), 3.0);
+    let o = fepre(&["mesh", wedge.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let stdout = text(&o.stdout);
+    assert!(stdout.lines().any(|l| l.starts_with("refinement       ended")), "{stdout}");
+}
