@@ -292,6 +292,7 @@ pub fn mesh_surface(
     let rec = recover::recover(&mut tr, &mut sm, budget)?;
     stage("recovery", &mut clock);
     let mut labels = carve::carve(&mut tr, &sm, seeds)?;
+    recover::unfold_flat_tets(&mut tr, &mut sm, &mut labels);
     stage("carve", &mut clock);
     // a tenth of the shortest boundary edge: the smallest tet refinement splits
     let r_min = 0.1 * sm.all_subsegments().map(|(_, [a, b])| tr.point(a).distance(tr.point(b))).fold(f64::INFINITY, f64::min);

@@ -8,7 +8,9 @@
 //! subsegments, in which case that subsegment is split instead. Steiner points carry the
 //! location (segment or facet) that tags and the keep-surface stage need.
 
+use crate::mesh::tet_mesh::TET_FACES;
 use crate::mesh3d::mesher::MeshingError;
+use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
 use crate::core::Sign;
@@ -213,6 +215,93 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
     }
 }
 
+/// Flat tets on planar facets, after carving: a material tet two of whose walls are subfaces
+/// of one facet, across an edge inside it (no subsegment). Its four vertices lie in the
+/// facet's plane (up to the flatness merged facets allow: a grid's rectangle rounded off its
+/// plane); both diagonals of their quad are edges, its walls on the first face the exterior and
+/// its other two faces, on the second, the material. No refinement splits it (its four vertices
+/// are on the boundary and its radius-edge ratio may be good) and no flip removes it where the
+/// ring around the inner diagonal has no valid retriangulation. The facet, which may be
+/// retriangulated freely, takes the other diagonal instead: the tet's two inner faces become
+/// the walls and the tet joins the exterior. Only where the quad is convex in the facet's
+/// plane (exact orientations there) and both walls face the exterior. Returns the tets removed.
+pub(crate) fn unfold_flat_tets(tr: &mut Tetra, sm: &mut SurfaceModel, labels: &mut Labels) -> usize {
+    let mut removed = 0;
+    loop {
+        let mut changed = false;
+        for t in tr.live().collect::<Vec<_>>() {
+            if labels.get(t) == 0 || tr.walls[t as usize] == 0 {
+                continue;
+            }
+            if unfold(tr, sm, labels, t) {
+                removed += 1;
+                changed = true;
+            }
+        }
+        if !changed {
+            return removed;
+        }
+    }
+}
+
+/// [`unfold_flat_tets`] for tet `t`: true when it was removed.
+fn unfold(tr: &mut Tetra, sm: &mut SurfaceModel, labels: &mut Labels, t: u32) -> bool {
+    let v = tr.tets[t as usize].v;
+    let mut on: Vec<(usize, u32, [u32; 3])> = Vec::new();
+    for (i, fv) in TET_FACES.iter().enumerate() {
+        if tr.walls[t as usize] >> i & 1 == 0 {
+            continue;
+        }
+        if let Some((f, s)) = sm.subface(fv.map(|k| v[k])) {
+            on.push((i, f, s));
+        }
+    }
+    for x in 0..on.len() {
+        for y in x + 1..on.len() {
+            let ((i, f, a), (j, g, b)) = (on[x], on[y]);
+            if f != g {
+                continue;
+            }
+            // a = (p, q, r) and b = (q, p, s) around their shared edge (p, q)
+            let Some(k) = (0..3).find(|&k| !b.contains(&a[k])) else { continue };
+            let [p, q, r] = [a[(k + 1) % 3], a[(k + 2) % 3], a[k]];
+            let Some(m) = (0..3).find(|&m| b[m] == q && b[(m + 1) % 3] == p) else { continue };
+            let s = b[(m + 2) % 3];
+            if is_subsegment(sm, f, p, q) {
+                continue;
+            }
+            // both walls face the exterior
+            let outside = |face: usize| labels.get(tr.tets[t as usize].n[face] >> 2) == 0;
+            if !outside(i) || !outside(j) {
+                continue;
+            }
+            // the quad (q, r, p, s) convex in the facet's plane: the new triangles turn as the
+            // old ones
+            let at = |w: u32| sm.to_plane(f, tr.point(w));
+            let ccw = |x: u32, y: u32, z: u32| orient2d(at(x), at(y), at(z)) == Sign::Positive;
+            if !(ccw(p, q, r) && ccw(q, p, s) && ccw(r, p, s) && ccw(s, q, r)) {
+                continue;
+            }
+            // the tet's other faces: (r, s, p) and (r, s, q)
+            let inner: Vec<usize> = (0..4).filter(|&e| e != i && e != j).collect();
+            sm.replace_subfaces(f, [a, b], [[r, p, s], [s, q, r]]);
+            tr.set_wall(t, i, false);
+            tr.set_wall(t, j, false);
+            for e in inner {
+                tr.set_wall(t, e, true);
+            }
+            labels.set(t, 0);
+            return true;
+        }
+    }
+    false
+}
+
+/// True when `(p, q)` is a subsegment of one of facet `f`'s sides.
+fn is_subsegment(sm: &SurfaceModel, f: u32, p: u32, q: u32) -> bool {
+    sm.facets[f as usize].sides.iter().any(|&s| sm.subsegments(s).any(|e| e == [p, q] || e == [q, p]))
+}
+
 fn fail(sm: &SurfaceModel, f: u32, why: &str) -> MeshingError {
     let fc = &sm.facets[f as usize];
     MeshingError::Recovery { triangle: f as usize, tag: fc.tag, message: why.to_string() }
@@ -222,6 +311,9 @@ fn fail(sm: &SurfaceModel, f: u32, why: &str) -> MeshingError {
 mod tests {
     use super::*;
     use crate::core::FaceId;
+    use crate::core::size_field::UniformSize;
+    use crate::mesh::TriSurface;
+    use crate::mesh3d::mesher::{MeshOptions, Seeds, mesh_surface};
 
     /// A thin planar strip (a chamfer between a long side and a finely split one), as one
     /// merged facet, with an apex above it so that the points span a tetrahedron.
@@ -263,5 +355,47 @@ mod tests {
         let ab = &sm.segments[seg(&sm, 0, 1) as usize].points;
         assert_eq!(ab.len(), 3);
         assert!(tr.point(ab[1]).distance(DVec3::new(1.03, 0.0, 0.0)) < 1e-12);
+    }
+
+    /// A pyramid whose top is a rectangle bent by 1e-9 along its input diagonal (p, q), a
+    /// ridge: one merged facet. Its apex lies outside the sphere of the top's four corners, so
+    /// the Delaunay tetrahedralization holds the flat tet (p, q, r, s) under the top, with both
+    /// diagonals, in the material.
+    fn bent_pyramid() -> TriSurface {
+        let e = 1e-9;
+        let (p, r, q, s, x) = (0, 1, 2, 3, 4);
+        let mut t = TriSurface::default();
+        t.vertices = vec![DVec3::new(-1.0, -1.0, e), DVec3::new(1.0, -1.0, 0.0), DVec3::new(1.0, 1.0, e), DVec3::new(-1.0, 1.0, 0.0), DVec3::new(0.0, 0.0, -2.0)];
+        t.triangles = vec![[p, r, q], [p, q, s], [r, p, x], [q, r, x], [s, q, x], [p, s, x]];
+        t.face_tags = vec![FaceId(1), FaceId(1), FaceId(2), FaceId(3), FaceId(4), FaceId(5)];
+        t
+    }
+
+    #[test]
+    fn a_flat_tet_under_a_planar_facet_leaves_the_material() {
+        let s = bent_pyramid();
+        let points = s.vertices.clone();
+        let mut sm = SurfaceModel::new(&points, &s.triangles, &s.face_tags, true);
+        assert_eq!(sm.facets.len(), 5);
+        let mut tr = Tetra::new(points, (0..5).collect(), 1).unwrap();
+        recover(&mut tr, &mut sm, 100).unwrap();
+        let mut labels = crate::mesh3d::mesher::carve::carve(&mut tr, &sm, &Seeds::default()).unwrap();
+        let flat = |tr: &Tetra, labels: &Labels| tr.live().filter(|&t| labels.get(t) != 0 && [0, 1, 2, 3].iter().all(|v| tr.tets[t as usize].v.contains(v))).count();
+        // before the rule: the flat tet is material, and nothing later removes it (its
+        // radius-edge ratio is 0.7)
+        assert_eq!(flat(&tr, &labels), 1);
+        assert_eq!(unfold_flat_tets(&mut tr, &mut sm, &mut labels), 1);
+        assert_eq!(flat(&tr, &labels), 0);
+        // the top now has the other diagonal (r, s)
+        let top = sm.subfaces().filter(|&(f, _)| sm.facets[f as usize].tag == FaceId(1)).map(|(_, t)| t).collect::<Vec<_>>();
+        assert_eq!(top.len(), 2);
+        assert!(top.iter().all(|t| t.contains(&1) && t.contains(&3)), "{top:?}");
+        // the whole mesher: no flat tet, the volume kept (up to the 1e-9 bend)
+        let opts = MeshOptions::default().with_optimize(false).with_presize(false);
+        let (m, _) = mesh_surface(&s, &Seeds::default(), &UniformSize(f64::INFINITY), &opts).unwrap();
+        m.validate().unwrap();
+        let q = crate::quality::tet_mesh_quality(&m);
+        assert!(q.min_dihedral_deg > 5.0, "min dihedral {}", q.min_dihedral_deg);
+        assert!((m.volume() - 8.0 / 3.0).abs() < 1e-8, "{}", m.volume());
     }
 }

@@ -493,6 +493,28 @@ impl SurfaceModel {
         }
     }
 
+    /// The facet holding subface `t` (its vertices in any order), and the subface as stored
+    /// (oriented like the facet).
+    pub fn subface(&self, t: [u32; 3]) -> Option<(u32, [u32; 3])> {
+        let f = *self.index.get(&sorted(t))?;
+        let s = self.facets[f as usize].subfaces.iter().copied().find(|s| sorted(*s) == sorted(t))?;
+        Some((f, s))
+    }
+
+    /// Replaces the subfaces `old` of facet `f` by `new`, oriented like it (a flip inside the
+    /// facet: the caller has checked that both pairs tile the same quad).
+    pub fn replace_subfaces(&mut self, f: u32, old: [[u32; 3]; 2], new: [[u32; 3]; 2]) {
+        let fc = &mut self.facets[f as usize];
+        fc.subfaces.retain(|s| !old.iter().any(|o| sorted(*o) == sorted(*s)));
+        for o in old {
+            self.index.remove(&sorted(o));
+        }
+        for t in new {
+            fc.subfaces.push(t);
+            self.index.insert(sorted(t), f);
+        }
+    }
+
     /// Every subface with its facet.
     pub fn subfaces(&self) -> impl Iterator<Item = (u32, [u32; 3])> + '_ {
         self.facets.iter().enumerate().flat_map(|(f, fc)| fc.subfaces.iter().map(move |s| (f as u32, *s)))
