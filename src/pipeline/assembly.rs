@@ -7,16 +7,17 @@
 //! the solid where the file names it; the faces of a surface model's shells, which bound no
 //! solid, form one more. The solids of a surface mesh without seeds are its closed outer
 //! shells, each with the shells nested in it as voids (a shell inside an odd number of
-//! others), numbered in the order of the shells; a surface with region seeds or holes (a
-//! `.poly` file) is meshed as one, its regions given by the seeds.
+//! others, meeting none of them), numbered in the order of the shells; a surface with region
+//! seeds or holes (a `.poly` file) is meshed as one, its regions given by the seeds.
 
 use super::part::Part;
 use crate::cad::brep::{EntityRef, FaceEntry, Model};
 use crate::core::FaceId;
 use crate::mesh::TriSurface;
-use crate::mesh::topology::{ReportOptions, surface_report, triangle_shells};
+use crate::mesh::topology::{ReportOptions, intersecting_pairs, surface_report, triangle_shells};
 use crate::mesh3d::mesher::{Contact, SolidInfo, Solids};
 use serde::Serialize;
+use std::collections::BTreeSet;
 
 /// The gap of a CAD part, in chord deviations: a point of a certified tessellation lies within
 /// one chord of the B-rep, so where two solids share a face their tessellations reach at most
@@ -107,8 +108,11 @@ fn cad_solids(m: &Model, surface: &TriSurface) -> Solids {
     Solids { of_triangle, solids }
 }
 
-/// Closed outer shells with their voids; one solid when the nesting is undecided or a shell
-/// is open (the input check then says what is wrong, as for any surface).
+/// Closed outer shells with their voids; one solid when a shell is open (the input check
+/// then says what is wrong, as for any surface). A shell inside an odd number of others is a
+/// void of the innermost one, unless their triangles meet: then it is a solid of its own (two
+/// solids that overlap, or touch from inside, which the mesher then refuses by name), as is a
+/// shell whose nesting is undecided (every vertex on another shell: a duplicate).
 fn shell_solids(surface: &TriSurface) -> Solids {
     let of_shell = triangle_shells(surface);
     if !of_shell.iter().any(|s| s.is_some_and(|s| s > 0)) {
@@ -116,16 +120,25 @@ fn shell_solids(surface: &TriSurface) -> Solids {
     }
     let report = surface_report(surface, &ReportOptions::default().with_self_intersections(false));
     let shells = &report.shells;
-    if shells.len() < 2 || shells.iter().any(|s| !s.closed || s.depth.is_none()) {
+    if shells.iter().any(|s| !s.closed) {
         return one_solid(surface);
     }
-    // the outer shell of each shell's solid: itself at even depth, its parent at odd depth
-    let mut root = vec![0usize; shells.len()];
+    let mut meeting: BTreeSet<(usize, usize)> = BTreeSet::new();
+    for [a, b] in intersecting_pairs(surface) {
+        if let (Some(x), Some(y)) = (of_shell[a as usize], of_shell[b as usize]) {
+            if x != y {
+                meeting.insert((x.min(y) as usize, x.max(y) as usize));
+            }
+        }
+    }
+    // the outer shell of each shell's solid: itself, or for a void its container
+    let mut root: Vec<usize> = (0..shells.len()).collect();
     for (k, s) in shells.iter().enumerate() {
-        root[k] = match (s.depth, s.parent) {
-            (Some(d), Some(p)) if d % 2 == 1 => p,
-            _ => k,
-        };
+        if let (Some(d), Some(p)) = (s.depth, s.parent) {
+            if d % 2 == 1 && !meeting.contains(&(k.min(p), k.max(p))) {
+                root[k] = p;
+            }
+        }
     }
     let mut index = vec![u32::MAX; shells.len()];
     let mut solids = Vec::new();
