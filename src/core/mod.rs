@@ -5,7 +5,6 @@ pub mod aabb;
 pub mod bvh;
 pub mod closest;
 pub(crate) mod cdt;
-pub mod closest;
 pub mod ids;
 pub mod intersection;
 pub mod predicates;
