@@ -8,6 +8,14 @@
 //! near the surface), points inside the tet's circumsphere on the material side are tried
 //! instead: above each of its walls at the height of a well-shaped tet, and half-way from
 //! its centroid to the centre. New tets inherit the region of the tet they replace.
+//!
+//! No point comes nearer a vertex than a share of the local feature size: the shortest edge
+//! at each boundary and recovery point before refinement, carried to new points 1-Lipschitz
+//! (the least, over the tet's vertices, of their size plus the distance). Walls and the
+//! cavity corrections beside them leave the tetrahedralization short of Delaunay, so a
+//! centre can lie near a vertex there; without the floor each such point made the next
+//! tets smaller still, a cascade that spent the whole point budget in one spot (4,000 points
+//! in a ball of radius 0.03 on `featuretype.STL`) and left the rest of the part unrefined.
 
 use crate::core::{RegionId, SizeField};
 use crate::mesh3d::mesher::carve::Labels;
@@ -155,6 +163,46 @@ fn encroached_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option
     None
 }
 
+/// The share of the local feature size under which no point off a centre joins a vertex.
+const LFS_FLOOR: f64 = 0.5;
+
+/// A rejection that names no wall: the point came too near a vertex.
+const NEAR: u32 = u32::MAX;
+
+/// The share of the local feature size under which no circumcentre joins a vertex.
+const CC_FLOOR: f64 = 0.25;
+
+/// The local feature size at each point of `tr` before refinement: its shortest edge (the
+/// points are then the boundary's and recovery's, so this is the distance to the nearest
+/// other feature). Points on no live tet get infinity.
+fn local_feature_sizes(tr: &Tetra) -> Vec<f64> {
+    let mut lfs = vec![f64::INFINITY; tr.num_points()];
+    for t in tr.live() {
+        let v = tr.tets[t as usize].v;
+        for i in 0..4 {
+            for j in i + 1..4 {
+                let (a, b) = (v[i], v[j]);
+                if a == GHOST || b == GHOST || a == DEAD || b == DEAD {
+                    continue;
+                }
+                let d = tr.point(a).distance(tr.point(b));
+                lfs[a as usize] = lfs[a as usize].min(d);
+                lfs[b as usize] = lfs[b as usize].min(d);
+            }
+        }
+    }
+    lfs
+}
+
+/// The local feature size of a point `q` placed in the tet of vertices `v`: the least of each
+/// vertex's size plus its distance to `q` (a 1-Lipschitz extension of the boundary's sizes).
+fn inherited_lfs(lfs: &[f64], tr: &Tetra, v: [u32; 4], q: DVec3) -> f64 {
+    v.iter()
+        .filter(|&&x| x != GHOST && x != DEAD)
+        .map(|&x| lfs.get(x as usize).copied().unwrap_or(f64::INFINITY) + tr.point(x).distance(q))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// Refines the material tets of `tr`, up to `max_points` points in all. Tets with a circumradius at most `r_min` are left as
 /// they are: every point inserted is then at least about `r_min` from the others, which bounds
 /// the work near small input angles, where refinement alone would not end.
@@ -177,6 +225,7 @@ pub(crate) fn refine(
         badness(tr, t, size, opts, r_min, region)
     };
     let mut heap = BinaryHeap::new();
+    let mut lfs = local_feature_sizes(tr);
     for t in tr.live().collect::<Vec<_>>() {
         if labels.get(t) != 0 {
             if let Some(q) = badness(tr, t, size, opts, labels.get(t)) {
@@ -202,9 +251,23 @@ pub(crate) fn refine(
         tr.created.clear();
         // a point inside a subface's diametral sphere is not inserted: the subface is split
         // instead, or with keep-surface, the tet is worked on from inside below
-        let res = tr.insert_checked(p, t, |tr, walls| if encroached_wall(tr, walls, c).is_some() { bad_on_wall(tr, walls, c) } else { None });
+        // nor one that would come nearer a vertex than a share of the local feature size
+        // (where walls and cavity corrections leave the mesh short of Delaunay, a centre can
+        // lie near a vertex, and then the next centres nearer still)
+        let c_floor = CC_FLOOR * inherited_lfs(&lfs, tr, v, c);
+        let res = tr.insert_checked(p, t, |tr, walls| {
+            if walls.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(c) < c_floor) {
+                Some((NEAR, 0))
+            } else if encroached_wall(tr, walls, c).is_some() {
+                bad_on_wall(tr, walls, c)
+            } else {
+                None
+            }
+        });
         match res {
             Inserted::Yes(_) => {
+                debug_assert_eq!(lfs.len(), p as usize);
+                lfs.push(inherited_lfs(&lfs, tr, v, c));
                 let region = labels.get(t);
                 for s in tr.created.drain(..).collect::<Vec<_>>() {
                     labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
@@ -222,15 +285,22 @@ pub(crate) fn refine(
                 let region = labels.get(t);
                 let lmin = tet_sphere(tr, t).2.max(2.0 * r_min);
                 let mut done = false;
-                for q in inside_candidates(tr, t, if let Inserted::Rejected(wt, wk) = res { Some((wt, wk)) } else { None }) {
+                for q in inside_candidates(tr, t, if let Inserted::Rejected(wt, wk) = res { Some((wt, wk)).filter(|w| w.0 != NEAR) } else { None }) {
+                    // not too near any vertex it would join: half the tet's shortest edge, and
+                    // never under half the local feature size there (the sizes of the
+                    // boundary's vertices, carried on 1-Lipschitz), so that points off the
+                    // centre do not cascade into ever shorter edges beside a wall
+                    let q_lfs = inherited_lfs(&lfs, tr, v, q);
+                    let floor = (0.5 * lmin).max(LFS_FLOOR * q_lfs);
                     let p = tr.add_point(q);
                     tr.created.clear();
                     let res = tr.insert_checked(p, t, |tr, faces| {
-                        // not too near any vertex it would join (no cascade of ever shorter edges)
-                        let near = faces.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(q) < 0.5 * lmin);
+                        let near = faces.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(q) < floor);
                         if near { Some((0, 0)) } else { encroached_wall(tr, faces, q) }
                     });
                     if let Inserted::Yes(_) = res {
+                        debug_assert_eq!(lfs.len(), p as usize);
+                        lfs.push(q_lfs);
                         for s in tr.created.drain(..).collect::<Vec<_>>() {
                             labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
                             if let Some(q) = badness(tr, s, size, opts, region) {
