@@ -9,7 +9,7 @@ use crate::cad::step;
 use crate::core::{RegionId, SizeField};
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, mesh_solids, mesh_surface};
+use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids, mesh_surface};
 use super::assembly::{ContactReport, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
@@ -264,14 +264,27 @@ impl Part {
             sized = RegionSizes::new(size, self.region_sizes.clone());
             &sized
         };
-        let solids = solids_of(self, surface);
-        let (mut mesh, report) = if solids.solids.len() > 1 {
-            let (mesh, report, contacts) = mesh_solids(surface, &solids, gap_of(self), field, &opts).map_err(|source| self.meshing_error(source))?;
+        let mut result = self.mesh_once(surface, field, &opts);
+        if self.is_cad() && matches!(&result, Err(e) if is_recovery(e)) {
+            // a sized tessellation whose edges recovery cannot take (pieces of faces nearer
+            // each other than their triangles are long): the chords-only tessellation, cut to
+            // the size by the mesher, as a surface mesh is
+            if let Some(model) = &self.model {
+                let (chords, _) = certified_tessellation(model, tess, None, &CertifyOptions::default());
+                if chords.certificate.passed {
+                    let retry = self.mesh_once(&chords.tessellation.surface, field, &opts.clone().with_presize(true));
+                    if retry.is_ok() {
+                        self.surface = Some(chords.tessellation.surface.clone());
+                        self.certified = Some(chords);
+                        result = retry;
+                    }
+                }
+            }
+        }
+        let (mut mesh, report, solids, contacts) = result.map_err(|source| self.meshing_error(source))?;
+        if let Some(contacts) = contacts {
             self.contacts = contact_reports(&contacts, &self.face_table(), &solids);
-            (mesh, report)
-        } else {
-            mesh_surface(surface, &self.seeds, field, &opts).map_err(|source| self.meshing_error(source))?
-        };
+        }
         if let [solid] = &solids.solids[..] {
             // one solid: its name names the region it is
             if let Some(name) = &solid.name {
@@ -283,6 +296,18 @@ impl Part {
         self.seconds.mesh = t0.elapsed().as_secs_f64();
         self.mesh_report = Some(report);
         Ok(self.mesh.insert(mesh))
+    }
+
+    /// Meshes `surface` (the part's solids in it, each on its own when there are several).
+    fn mesh_once(&self, surface: &TriSurface, field: &dyn SizeField, opts: &MeshOptions) -> Result<(TetMesh, MeshReport, Solids, Option<Vec<Contact>>), MeshingError> {
+        let solids = solids_of(self, surface);
+        if solids.solids.len() > 1 {
+            let (mesh, report, contacts) = mesh_solids(surface, &solids, gap_of(self), field, opts)?;
+            Ok((mesh, report, solids, Some(contacts)))
+        } else {
+            let (mesh, report) = mesh_surface(surface, &self.seeds, field, opts)?;
+            Ok((mesh, report, solids, None))
+        }
     }
 
     /// The mesher's error for this part; an overlap of solids also names the STEP faces.
@@ -342,6 +367,15 @@ fn certified_tessellation(model: &Model, opts: &TessellateOptions, size: Option<
     let t1 = Instant::now();
     let certificate = certify(model, &tessellation, checks);
     (Certified { tessellation, certificate }, [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()])
+}
+
+/// A boundary-recovery failure, of the part or of one solid of it.
+fn is_recovery(e: &MeshingError) -> bool {
+    match e {
+        MeshingError::Recovery { .. } => true,
+        MeshingError::InSolid { source, .. } => is_recovery(source),
+        _ => false,
+    }
 }
 
 /// The certificate's failures as one message, naming faces and STEP ids.

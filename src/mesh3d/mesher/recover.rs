@@ -54,9 +54,33 @@ fn insert_point(tr: &mut Tetra, p: DVec3, near: &[u32]) -> Result<Option<u32>, S
     }
 }
 
+/// Recovery gives up when the missing subsegments grew by a quarter or more for this many
+/// rounds in a row ...
+const DIVERGING_ROUNDS: usize = 6;
+/// ... while at least this many were missing.
+const DIVERGING_MIN: usize = 50;
+/// The most rounds of subsegment splitting (recoveries that end take 10 to 20).
+const MAX_ROUNDS: usize = 64;
+
+/// The shortest piece of a segment, as a share of the segment, that recovery still splits.
+const MIN_SPLIT: f64 = 1e-12;
+
 /// Splits subsegment `[a, b]` of segment `s` at its midpoint.
+///
+/// # Errors
+/// When the subsegment is already shorter than a millionth of a millionth of its segment
+/// (two parts of the surface nearer each other there than splitting can separate: recovery
+/// would not end), and when the midpoint cannot be inserted.
 pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
     let (pa, pb) = (tr.point(a), tr.point(b));
+    // the segment's length along its pieces (its ends may meet: a closed edge)
+    let whole: f64 = sm.subsegments(s).map(|[u, v]| tr.point(u).distance(tr.point(v))).sum();
+    if pa.distance(pb) < MIN_SPLIT * whole {
+        return Err(format!(
+            "recovery does not end near {}: an input edge there had to be cut into pieces under {MIN_SPLIT:e} of its length {whole} (the surface comes nearer itself there than the mesher can separate)",
+            (pa + pb) * 0.5
+        ));
+    }
     let m = pa + (pb - pa) * 0.5;
     match insert_point(tr, m, &[a, b])? {
         Some(v) => {
@@ -178,11 +202,42 @@ pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u
 pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> Result<Recovery, MeshingError> {
     let mut stats = Recovery::default();
     let mut buf = Vec::new();
+    // subsegments missing in the last rounds, and for how many rounds in a row that grew
+    let (mut last_missing, mut growing) = (usize::MAX, 0);
     loop {
         stats.rounds += 1;
         let mut changed = false;
         // subsegments first: a facet cannot be recovered while its sides are missing
         let missing: Vec<(u32, [u32; 2])> = sm.all_subsegments().filter(|&(_, [a, b])| tr.edge_tet(a, b, &mut buf).is_none()).collect();
+        // splitting that makes more missing pieces each round does not end (pieces of
+        // the surface too near each other for midpoints to separate): stop while it is cheap
+        growing = if missing.len() >= DIVERGING_MIN && 4 * missing.len() >= 5 * last_missing { growing + 1 } else { 0 };
+        last_missing = missing.len();
+        if stats.rounds > MAX_ROUNDS && !missing.is_empty() {
+            let [a, b] = missing[0].1;
+            return Err(fail(
+                sm,
+                sm.segments[missing[0].0 as usize].facets[0],
+                &format!(
+                    "segment recovery does not end: {} input edges still missing after {MAX_ROUNDS} rounds, near {} (parts of the surface too near each other)",
+                    missing.len(),
+                    (tr.point(a) + tr.point(b)) * 0.5
+                ),
+            ));
+        }
+        if growing >= DIVERGING_ROUNDS {
+            let [a, b] = missing[0].1;
+            return Err(fail(
+                sm,
+                sm.segments[missing[0].0 as usize].facets[0],
+                &format!(
+                    "segment recovery does not converge: {} input edges missing after {} rounds, a quarter more each round, near {} (parts of the surface too near each other)",
+                    missing.len(),
+                    stats.rounds,
+                    (tr.point(a) + tr.point(b)) * 0.5
+                ),
+            ));
+        }
         for (s, [a, b]) in missing {
             // the subsegment may have been split meanwhile
             if !sm.subsegments(s).any(|e| e == [a, b]) {
