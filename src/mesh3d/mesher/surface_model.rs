@@ -80,7 +80,7 @@ const COPLANAR_SINE: f64 = 1e-6;
 
 /// The most input triangles in one merged facet (each Steiner point on a facet costs a
 /// retriangulation of the whole facet).
-const MAX_MERGED: u32 = 64;
+const MAX_MERGED: u32 = 1024;
 
 impl SurfaceModel {
     /// The model of `triangles` (vertex indices into `points`) with their tags; with `merge`,
@@ -359,6 +359,10 @@ impl SurfaceModel {
     /// surface comes to itself there).
     pub fn presize(&mut self, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64, scale: &[f64]) {
         const MAX_PIECES: f64 = 4096.0;
+        // for shape alone an edge is cut into at most this many pieces (a fillet's long
+        // strips would otherwise explode into tiny triangles; 64 made plate_holes.STL reach
+        // 3.7° but left a flat tet inside a 3° wedge: not yet)
+        const MAX_SHAPE_PIECES: f64 = 4.0;
         for s in 0..self.segments.len() {
             let (a, b) = (self.segments[s].points[0], self.segments[s].points[1]);
             let (pa, pb) = (points[a as usize], points[b as usize]);
@@ -372,7 +376,7 @@ impl SurfaceModel {
                     shape = shape.min(1.5 * min_altitude(t.map(|i| points[i as usize])));
                 }
             }
-            let shape = shape.min(scale[a as usize]).min(scale[b as usize]).max(length / 4.0);
+            let shape = shape.min(scale[a as usize]).min(scale[b as usize]).max(length / MAX_SHAPE_PIECES);
             let len = size((pa + pb) * 0.5).min(shape);
             let n = (pa.distance(pb) / len).ceil();
             let n = if n.is_finite() && n > 1.0 { n.min(MAX_PIECES) as usize } else { 1 };
