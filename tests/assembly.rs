@@ -398,8 +398,3 @@ fn corpus_abc_0000_meshes_one_region_per_solid() {
     corpus_assembly_meshes("abc-0000.step", 6);
 }
 
-#[test]
-#[ignore = "minutes; CI runs it (--include-ignored)"]
-fn corpus_wing_fuselage_meshes_one_region_per_solid() {
-    corpus_assembly_meshes("wing_fuselage.step", 2);
-}

@@ -170,20 +170,12 @@ fn the_summary_locates_the_worst_tet_and_warns_under_one_degree() {
 }
 
 #[test]
-fn a_refinement_that_stops_at_its_budget_says_so_in_the_text() {
-    // part.step of the corpus at radius-edge 1.1 runs out of its point budget (measured: 29,305
-    // points, 172,354 tets); the text must say that refinement stopped, and why
-    let Some(part) = common::corpus_file("part.step") else { return };
+fn a_refinement_that_ends_says_so_in_the_text() {
+    // (a refinement stopped at a budget: the text of each budget is checked in cli's unit
+    // tests; part.step at radius-edge 1.1 ran out of points until the local-feature-size
+    // floor of refinement.rs, and now ends)
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("part.mesh");
-    let o = fepre(&["mesh", part.to_str().unwrap(), "-o", out.to_str().unwrap(), "--max-radius-edge", "1.1"]);
-    let (stdout, stderr) = (text(&o.stdout), text(&o.stderr));
-    assert!(o.status.success(), "{stderr}");
-    let line = stdout.lines().find(|l| l.starts_with("refinement ")).unwrap_or_else(|| panic!("no refinement line: {stdout}"));
-    assert!(line.contains("stopped early: its point budget (") && line.contains("before every tet met radius-edge 1.1"), "{line}");
-    let above = number_after(line, "; ");
-    assert!(above > 0.0, "{line}");
-    // a mesh whose refinement ended says that instead
+    let out = dir.path().join("w.mesh");
     let wedge = wedge(dir.path(), 3.0);
     let o = fepre(&["mesh", wedge.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     let stdout = text(&o.stdout);

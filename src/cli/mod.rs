@@ -161,7 +161,7 @@ fn refinement_text(m: &crate::pipeline::run::MeshSummary) -> String {
         Some(s) if s.budget == "points" => format!("stopped early: its point budget ({} points) ran out before every tet met radius-edge {r} (input angles too small for it to end); {above} tets are above it", s.max_points),
         Some(s) => format!("stopped early: its bound on the bad tets worked on ran out at {} points, before every tet met radius-edge {r}; {above} tets are above it", s.points),
         None if m.refinement_stopped => format!("stopped early at its budget before every tet met radius-edge {r}; {above} tets are above it"),
-        None if above > 0 => format!("ended; {above} tets are above radius-edge {r} (refinement leaves tets under a tenth of the shortest boundary edge and points that would crowd the boundary; the optimisation allows up to {})", fmt_radius_edge_allowed(r)),
+        None if above > 0 => format!("ended; {above} tets are above radius-edge {r} (refinement leaves tets under a tenth of the shortest boundary edge, and points that would crowd the boundary or come nearer a vertex than a share of the local feature size; the optimisation allows up to {})", fmt_radius_edge_allowed(r)),
         None => format!("ended: every tet meets radius-edge {r}"),
     }
 }
@@ -193,4 +193,27 @@ pub fn positive(s: &str) -> Result<f64, String> {
 pub fn parse_fraction(s: &str) -> Result<f64, String> {
     let x: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
     if x.is_finite() && x >= 0.0 { Ok(x) } else { Err(format!("'{s}' must be a finite number >= 0")) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh3d::mesher::RefinementStop;
+    use crate::pipeline::run::MeshSummary;
+
+    #[test]
+    fn the_refinement_line_says_which_budget_stopped_it() {
+        let mut m = MeshSummary { radius_edge_bound: 1.1, tets_above_radius_edge_bound: 12, ..MeshSummary::default() };
+        m.refinement_stop = Some(RefinementStop { budget: "points", points: 29_305, max_points: 29_305 });
+        m.refinement_stopped = true;
+        let t = refinement_text(&m);
+        assert!(t.starts_with("stopped early: its point budget (29305 points) ran out before every tet met radius-edge 1.1") && t.ends_with("; 12 tets are above it"), "{t}");
+        m.refinement_stop = Some(RefinementStop { budget: "steps", points: 1_000, max_points: 29_305 });
+        assert!(refinement_text(&m).starts_with("stopped early: its bound on the bad tets worked on ran out at 1000 points"));
+        m.refinement_stop = None;
+        m.refinement_stopped = false;
+        assert!(refinement_text(&m).starts_with("ended; 12 tets are above radius-edge 1.1"));
+        m.tets_above_radius_edge_bound = 0;
+        assert_eq!(refinement_text(&m), "ended: every tet meets radius-edge 1.1");
+    }
 }
