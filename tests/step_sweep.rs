@@ -22,7 +22,7 @@ use std::time::Instant;
 /// The most triangles a certified surface may have to be meshed here: a count, so the sweep
 /// stays within minutes on two cores and meshes the same files on any machine (the files over
 /// it are listed as skipped, with their count).
-const MAX_SURFACE_TRIANGLES: usize = 0;
+const MAX_SURFACE_TRIANGLES: usize = 20_000;
 
 /// The six dihedral angles of a tet in degrees, from its outward face normals (0 for a flat
 /// tet): written here from the definition, not taken from `fepre::quality`.
