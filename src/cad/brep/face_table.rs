@@ -32,10 +32,13 @@ impl Model {
     /// Every face in id order with its unique name, colour, STEP `#id` and solid.
     ///
     /// ```
-    /// let model = fepre::cad::parts::Bracket::default().build().unwrap();
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// let model = fepre::cad::parts::Bracket::default().build()?;
     /// let table = model.face_table();
     /// assert_eq!(table.len(), model.faces.len());
     /// assert_eq!(table[0].face, fepre::core::FaceId(1));
+    /// # Ok(())
+    /// # }
     /// ```
     pub fn face_table(&self) -> Vec<FaceEntry> {
         let names: FaceNames = self.face_ids().filter_map(|id| Some((id, self.face(id).name.clone()?))).collect();

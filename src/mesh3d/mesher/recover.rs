@@ -198,7 +198,9 @@ pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u
 ///
 /// # Errors
 /// [`MeshingError::Recovery`] naming the facet and its tag when the budget of Steiner points
-/// (`budget`) runs out (very small angles between input facets can make splitting go on).
+/// (`budget`) runs out (very small angles between input facets can make splitting go on),
+/// when the missing subsegments grow by a quarter for [`DIVERGING_ROUNDS`] rounds in a row,
+/// after [`MAX_ROUNDS`] rounds, or when a piece falls under [`MIN_SPLIT`] of its segment.
 pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> Result<Recovery, MeshingError> {
     let mut stats = Recovery::default();
     let mut buf = Vec::new();
@@ -213,30 +215,17 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
         // the surface too near each other for midpoints to separate): stop while it is cheap
         growing = if missing.len() >= DIVERGING_MIN && 4 * missing.len() >= 5 * last_missing { growing + 1 } else { 0 };
         last_missing = missing.len();
-        if stats.rounds > MAX_ROUNDS && !missing.is_empty() {
-            let [a, b] = missing[0].1;
-            return Err(fail(
-                sm,
-                sm.segments[missing[0].0 as usize].facets[0],
-                &format!(
-                    "segment recovery does not end: {} input edges still missing after {MAX_ROUNDS} rounds, near {} (parts of the surface too near each other)",
-                    missing.len(),
-                    (tr.point(a) + tr.point(b)) * 0.5
-                ),
-            ));
-        }
-        if growing >= DIVERGING_ROUNDS {
-            let [a, b] = missing[0].1;
-            return Err(fail(
-                sm,
-                sm.segments[missing[0].0 as usize].facets[0],
-                &format!(
-                    "segment recovery does not converge: {} input edges missing after {} rounds, a quarter more each round, near {} (parts of the surface too near each other)",
-                    missing.len(),
-                    stats.rounds,
-                    (tr.point(a) + tr.point(b)) * 0.5
-                ),
-            ));
+        let endless = if stats.rounds > MAX_ROUNDS && !missing.is_empty() {
+            Some(format!("does not end: {} input edges still missing after {MAX_ROUNDS} rounds", missing.len()))
+        } else if growing >= DIVERGING_ROUNDS {
+            Some(format!("does not converge: {} input edges missing after {} rounds, a quarter more each round", missing.len(), stats.rounds))
+        } else {
+            None
+        };
+        if let Some(why) = endless {
+            let (s, [a, b]) = missing[0];
+            let near = (tr.point(a) + tr.point(b)) * 0.5;
+            return Err(fail(sm, sm.segments[s as usize].facets[0], &format!("segment recovery {why}, near {near} (parts of the surface too near each other)")));
         }
         for (s, [a, b]) in missing {
             // the subsegment may have been split meanwhile

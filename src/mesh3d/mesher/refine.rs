@@ -254,7 +254,8 @@ pub(crate) fn refine(
         // nor one that would come nearer a vertex than a share of the local feature size
         // (where walls and cavity corrections leave the mesh short of Delaunay, a centre can
         // lie near a vertex, and then the next centres nearer still)
-        let c_floor = CC_FLOOR * inherited_lfs(&lfs, tr, v, c);
+        let c_lfs = inherited_lfs(&lfs, tr, v, c);
+        let c_floor = CC_FLOOR * c_lfs;
         let res = tr.insert_checked(p, t, |tr, walls| {
             if walls.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(c) < c_floor) {
                 Some((NEAR, 0))
@@ -267,7 +268,7 @@ pub(crate) fn refine(
         match res {
             Inserted::Yes(_) => {
                 debug_assert_eq!(lfs.len(), p as usize);
-                lfs.push(inherited_lfs(&lfs, tr, v, c));
+                lfs.push(c_lfs);
                 let region = labels.get(t);
                 for s in tr.created.drain(..).collect::<Vec<_>>() {
                     labels.set(s, if tr.tets[s as usize].v[3] == GHOST { 0 } else { region });
