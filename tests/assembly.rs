@@ -398,3 +398,9 @@ fn corpus_abc_0000_meshes_one_region_per_solid() {
     corpus_assembly_meshes("abc-0000.step", 6);
 }
 
+
+#[test]
+#[ignore = "about 2 minutes; CI runs it (--include-ignored)"]
+fn corpus_wing_fuselage_meshes_one_region_per_solid() {
+    corpus_assembly_meshes("wing_fuselage.step", 2);
+}

@@ -146,6 +146,9 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
         Some(a) => println!("input angles     {} under {}°, the smallest {}° at {}", m.small_input_angles, m.input_angle_bound_deg, fmt_num(a.angle_deg), fmt_point(a.at[0])),
         None => println!("input angles     none under {}°", m.input_angle_bound_deg),
     }
+    if m.input_caps_repaired > 0 {
+        println!("input caps       {} flat input triangles with a vertex on their long side, each repaired with its neighbour", m.input_caps_repaired);
+    }
     println!("refinement       {}", refinement_text(m));
     if m.optimize_out_of_attempts {
         println!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);

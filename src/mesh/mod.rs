@@ -4,6 +4,7 @@
 //! Containers hold flat arrays (`f64` coordinates, `u32` indices) and parallel tag arrays;
 //! adjacency is derived on demand, never stored.
 
+pub mod caps;
 pub mod error;
 pub mod planar_mesh;
 pub mod shapes;

@@ -64,6 +64,9 @@ pub struct MeshSummary {
     pub smallest_input_angle: Option<InputAngle>,
     /// The tet with the smallest dihedral angle, and where it sits.
     pub worst_tet: Option<TetPlace>,
+    /// Input triangles that were caps (flat up to rounding, a vertex on their long side),
+    /// each repaired with its neighbour before meshing.
+    pub input_caps_repaired: usize,
 }
 
 /// The summary of `mesh` (made from `surface` with `plan`, `report` the mesher's), and the
@@ -81,6 +84,9 @@ pub(crate) struct Summarised {
 pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry]) -> Summarised {
     let q = tet_mesh_quality(mesh);
     let bound = plan.require_min_dihedral.unwrap_or(plan.mesh.min_dihedral);
+    // the angles of the surface the mesher took: caps repaired (their zero angles are gone)
+    let repaired = surface.and_then(crate::mesh::caps::repair_caps);
+    let surface = repaired.as_ref().map(|r| &r.0).or(surface);
     let angles = surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default();
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
@@ -109,6 +115,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         small_input_angles: angles.len(),
         smallest_input_angle: angles.first().cloned(),
         worst_tet,
+        input_caps_repaired: report.input_caps_repaired,
     };
     Summarised { summary, quality: q, boundary, angles }
 }

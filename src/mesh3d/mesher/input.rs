@@ -45,3 +45,4 @@ pub(crate) fn check(s: &TriSurface) -> Result<(), MeshingError> {
     }
     Ok(())
 }
+

@@ -146,6 +146,9 @@ pub struct MeshReport {
     pub seconds: f64,
     /// Which budget stopped refinement early, when one did.
     pub refinement_stop: Option<RefinementStop>,
+    /// Input triangles that were caps (flat, a vertex on their long side), each repaired with
+    /// its neighbour ([`crate::mesh::caps::repair_caps`]).
+    pub input_caps_repaired: usize,
 }
 
 /// Which budget stopped refinement early: `"points"` (the mesh reached `max_points`) or
@@ -274,6 +277,11 @@ pub fn mesh_surface(
     };
     let mut clock = Instant::now();
     input::check(surface)?;
+    // caps (flat triangles with a vertex on their long side) would make input edges meet at
+    // an angle of zero: each takes its neighbour's other half instead
+    let repaired = crate::mesh::caps::repair_caps(surface);
+    let surface = repaired.as_ref().map_or(surface, |r| &r.0);
+    let caps = repaired.as_ref().map_or(0, |r| r.1);
     stage("check", &mut clock);
     let mut points = surface.vertices.clone();
     let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
@@ -356,6 +364,7 @@ pub fn mesh_surface(
     report.nodes = mesh.vertices.len();
     report.tets = mesh.tets.len();
     report.boundary_steiner_points = sm.boundary_steiner_points();
+    report.input_caps_repaired = caps;
     report.volume_steiner_points = refined.volume_points;
     report.refinement_stopped = refined.stopped;
     report.refinement_stop = stop;

@@ -3,9 +3,10 @@
 //! Delaunay tetrahedralization.
 //!
 //! Rules (as in Delaunay refinement of piecewise linear complexes): a missing subsegment is
-//! split at its midpoint; a missing subface gets a point at its circumcentre, unless that
-//! centre lies outside the facet or inside the diametral sphere of one of the facet's
-//! subsegments, in which case that subsegment is split instead. Steiner points carry the
+//! split at its midpoint (or, next to an input vertex, on a concentric shell around it); a
+//! missing subface gets a point at its circumcentre, unless that centre lies outside the facet
+//! or inside the diametral sphere of one of the facet's subsegments, in which case that
+//! subsegment is split instead. Steiner points carry the
 //! location (segment or facet) that tags and the keep-surface stage need.
 
 use crate::mesh::tet_mesh::TET_FACES;
@@ -60,12 +61,12 @@ const DIVERGING_ROUNDS: usize = 6;
 /// ... while at least this many were missing.
 const DIVERGING_MIN: usize = 50;
 /// The most rounds of subsegment splitting (recoveries that end take 10 to 20).
-const MAX_ROUNDS: usize = 64;
+const MAX_ROUNDS: usize = 256;
 
 /// The shortest piece of a segment, as a share of the segment, that recovery still splits.
 const MIN_SPLIT: f64 = 1e-12;
 
-/// Splits subsegment `[a, b]` of segment `s` at its midpoint.
+/// Splits subsegment `[a, b]` of segment `s` (at its midpoint or on a shell: [`split_point`]).
 ///
 /// # Errors
 /// When the subsegment is already shorter than a millionth of a millionth of its segment
@@ -81,7 +82,7 @@ pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a:
             (pa + pb) * 0.5
         ));
     }
-    let m = pa + (pb - pa) * 0.5;
+    let m = split_point(sm, s, a, b, pa, pb);
     match insert_point(tr, m, &[a, b])? {
         Some(v) => {
             sm.split_segment(s, a, b, v, &tr.k.points);
@@ -89,6 +90,30 @@ pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a:
         }
         None => Ok(false),
     }
+}
+
+/// Where subsegment `[a, b]` of segment `s` is split: its midpoint, except on a piece that
+/// has one end at an end of its segment (an input vertex) and the other inside. There the
+/// point goes on the sphere around that vertex whose radius is the power of two nearest half
+/// the piece (concentric shells, as in Delaunay refinement for domains with small angles):
+/// segments that meet at a small angle are then cut at the same distances from their common
+/// vertex, so that a point on one does not encroach a piece of the other, and splitting ends.
+/// (Shells at every input vertex, not only at acute ones, measured better: featuretype.STL
+/// 129 tets under 5° against 153, plate_holes.STL 207 against 213.)
+fn split_point(sm: &SurfaceModel, s: u32, a: u32, b: u32, pa: DVec3, pb: DVec3) -> DVec3 {
+    let pts = &sm.segments[s as usize].points;
+    let is_end = |v: u32| pts.first() == Some(&v) || pts.last() == Some(&v);
+    let (from, to) = match (is_end(a), is_end(b)) {
+        (true, false) => (pa, pb),
+        (false, true) => (pb, pa),
+        _ => return pa + (pb - pa) * 0.5,
+    };
+    let len = from.distance(to);
+    let r = (0.5 * len).log2().round().exp2();
+    if !(r.is_finite() && r > 0.0 && r < len) {
+        return pa + (pb - pa) * 0.5;
+    }
+    from + (to - from) * (r / len)
 }
 
 /// Circumcentre of triangle `(a, b, c)` (in its plane).
@@ -399,6 +424,29 @@ mod tests {
         let ab = &sm.segments[seg(&sm, 0, 1) as usize].points;
         assert_eq!(ab.len(), 3);
         assert!(tr.point(ab[1]).distance(DVec3::new(1.03, 0.0, 0.0)) < 1e-12);
+    }
+
+    #[test]
+    fn a_piece_next_to_an_input_vertex_is_split_on_a_power_of_two_shell() {
+        let (mut tr, mut sm) = strip();
+        let seg = |sm: &SurfaceModel, a: u32, b: u32| sm.segments.iter().position(|s| s.points.first() == Some(&a) && s.points.last() == Some(&b)).unwrap() as u32;
+        let ab = seg(&sm, 0, 1);
+        // both ends input vertices: the midpoint, 1.03
+        assert!(split_subsegment(&mut tr, &mut sm, ab, 0, 1).unwrap());
+        let m = sm.segments[ab as usize].points[1];
+        assert!(tr.point(m).distance(DVec3::new(1.03, 0.0, 0.0)) < 1e-12);
+        // (A, m), 1.03 long: on the shell of radius 0.5 around A (not at 0.515)
+        assert!(split_subsegment(&mut tr, &mut sm, ab, 0, m).unwrap());
+        let p = sm.segments[ab as usize].points[1];
+        assert!(tr.point(p).distance(DVec3::new(0.5, 0.0, 0.0)) < 1e-12, "{}", tr.point(p));
+        // (m, B), 1.03 long, ends at B = (2.06, 0, 0): 0.5 from B
+        assert!(split_subsegment(&mut tr, &mut sm, ab, m, 1).unwrap());
+        let q = sm.segments[ab as usize].points[3];
+        assert!(tr.point(q).distance(DVec3::new(1.56, 0.0, 0.0)) < 1e-12, "{}", tr.point(q));
+        // (p, m): no end of the segment, its midpoint
+        assert!(split_subsegment(&mut tr, &mut sm, ab, p, m).unwrap());
+        let r = sm.segments[ab as usize].points[2];
+        assert!(tr.point(r).distance(DVec3::new(0.765, 0.0, 0.0)) < 1e-12, "{}", tr.point(r));
     }
 
     /// A pyramid whose top is a rectangle bent by 1e-9 along its input diagonal (p, q), a

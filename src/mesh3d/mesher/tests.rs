@@ -157,3 +157,14 @@ mod generated {
         }
     }
 }
+
+#[test]
+fn a_cap_in_the_input_is_repaired_and_the_volume_meshes() {
+    // a tessellator's flat triangle with a vertex on its long side: two input edges at an
+    // angle of zero, which recovery cannot separate
+    let s = crate::mesh::caps::tests::capped_tetrahedron();
+    let (m, r) = mesh_surface(&s, &Seeds::default(), &UniformSize(f64::INFINITY), &MeshOptions::default()).unwrap();
+    m.validate().unwrap();
+    assert_eq!(r.input_caps_repaired, 1);
+    assert!((m.volume() - 1.0 / 6.0).abs() < 1e-12, "{}", m.volume());
+}

@@ -360,6 +360,10 @@ impl Tetra {
             return;
         }
         out.push(t0);
+        // a linear search while the star is small, a set once it is large (the star of a
+        // pole vertex holds thousands of tets)
+        const SMALL: usize = 48;
+        let mut seen: rustc_hash::FxHashSet<u32> = Default::default();
         let mut i = 0;
         while i < out.len() {
             let t = out[i];
@@ -369,8 +373,20 @@ impl Tetra {
                     continue; // the face opposite v does not contain it
                 }
                 let n = self.tets[t as usize].n[f] >> 2;
-                if n != 0 && !out.contains(&n) {
-                    out.push(n);
+                if n == 0 {
+                    continue;
+                }
+                if out.len() < SMALL {
+                    if !out.contains(&n) {
+                        out.push(n);
+                    }
+                } else {
+                    if seen.is_empty() {
+                        seen.extend(out.iter().copied());
+                    }
+                    if seen.insert(n) {
+                        out.push(n);
+                    }
                 }
             }
             i += 1;
