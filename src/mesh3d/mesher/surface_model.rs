@@ -350,7 +350,7 @@ impl SurfaceModel {
     /// Cuts the surface to the size wanted before meshing (when the boundary may change):
     /// every segment into equal pieces no longer than the size at its midpoint nor, next to a
     /// facet that is a single input triangle, 1.5 times that triangle's smallest altitude, nor
-    /// near a thin feature the local feature size (these two cut an edge into 4 pieces at
+    /// near a thin feature the local feature size (these two cut an edge into 64 pieces at
     /// most: thin input triangles come out better shaped); then every facet refined in its plane by
     /// spade's constrained Delaunay refinement (angle limit 25°, area from the size), its
     /// sides kept. New points are appended to `points` as Steiner points.
@@ -360,13 +360,13 @@ impl SurfaceModel {
     pub fn presize(&mut self, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64, scale: &[f64]) {
         const MAX_PIECES: f64 = 4096.0;
         // for shape alone an edge is cut into at most this many pieces (a fillet's long
-        // strips would otherwise explode into tiny triangles; 64 made plate_holes.STL reach
-        // 3.7° but left a flat tet inside a 3° wedge: not yet)
-        const MAX_SHAPE_PIECES: f64 = 4.0;
+        // strips would otherwise explode into tiny triangles): 4 left plate_holes.STL at 0.23°
+        // and 207 tets under 5°, 64 gives 3.7° and 5
+        const MAX_SHAPE_PIECES: f64 = 64.0;
         for s in 0..self.segments.len() {
             let (a, b) = (self.segments[s].points[0], self.segments[s].points[1]);
             let (pa, pb) = (points[a as usize], points[b as usize]);
-            // the size wanted, and the shape of thin neighbours (at most 4 pieces for that:
+            // the size wanted, and the shape of thin neighbours (at most 64 pieces for that:
             // a fillet's long strips would otherwise explode into tiny triangles)
             let length = pa.distance(pb);
             let mut shape = f64::INFINITY;

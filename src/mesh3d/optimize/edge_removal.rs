@@ -8,7 +8,8 @@
 //! tets; a triangle whose tets are not both positively oriented (exact
 //! [`orient3d`](crate::core::predicates::orient3d)) is not allowed. The edge is removed only if
 //! the new tets' least score beats the old ones', no new tet exceeds the radius-edge bound
-//! (unless an old one already did by more), and [`Work::replace`] confirms the new tets fill the
+//! (unless an old one already did by more, or an old one is a sliver under
+//! [`SLIVER_DEG`](crate::mesh3d::optimize::measure::SLIVER_DEG)), and [`Work::replace`] confirms the new tets fill the
 //! same cavity.
 //!
 //! The ring is listed so that every `(a, b, r_i, r_{i+1})` is positively oriented, i.e. it turns
@@ -17,6 +18,7 @@
 
 use crate::core::ids::NONE;
 use crate::mesh3d::optimize::work::{Work, even_perm, local};
+use crate::mesh3d::optimize::measure::flip_radius_edge_bound;
 use crate::quality::tetrahedron::tet_radius_edge;
 
 /// The most tets around an edge that edge removal considers.
@@ -155,8 +157,7 @@ impl EdgeRemoval {
             stack.push((k as u32) << 16 | j as u32);
         }
         w.give_stack(stack);
-        let old_re = self.ring_tets.iter().map(|&s| tet_radius_edge(&w.corners(&w.tets[s as usize]))).fold(0.0, f64::max);
-        let bound = max_re.max(old_re);
+        let bound = flip_radius_edge_bound(self.ring_tets.iter().map(|&s| w.corners(&w.tets[s as usize])), max_re);
         if self.new.iter().any(|t| tet_radius_edge(&w.corners(t)) > bound) {
             return None;
         }

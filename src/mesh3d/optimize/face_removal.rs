@@ -9,6 +9,7 @@
 use crate::core::Sign;
 use crate::core::ids::NONE;
 use crate::mesh::tet_mesh::TET_FACES;
+use crate::mesh3d::optimize::measure::flip_radius_edge_bound;
 use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::tet_radius_edge;
 
@@ -39,8 +40,7 @@ pub(crate) fn try_flip23(w: &mut Work, t: u32, k: usize, max_re: f64) -> bool {
             return false;
         }
     }
-    let old_re = tet_radius_edge(&w.corners(&tet)).max(tet_radius_edge(&w.corners(&w.tets[u as usize])));
-    let bound = max_re.max(old_re);
+    let bound = flip_radius_edge_bound([w.corners(&tet), w.corners(&w.tets[u as usize])].into_iter(), max_re);
     if new.iter().any(|n| tet_radius_edge(&w.corners(n)) > bound) {
         return false;
     }

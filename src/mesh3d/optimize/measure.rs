@@ -34,6 +34,26 @@ pub(crate) const EDGE_FACES: [[usize; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], 
 
 const DEG: f64 = 180.0 / std::f64::consts::PI;
 
+/// A flip that replaces a tet with a dihedral angle under this many degrees (a sliver the
+/// report warns about, or a flat tet) may make tets above the radius-edge bound: any positive
+/// tet is better than it.
+pub(crate) const SLIVER_DEG: f64 = 1.0;
+
+/// The radius-edge ratio that new tets of a flip may reach, given the old tets' corners: the
+/// bound or the old tets' largest ratio, and no limit where an old tet is under
+/// [`SLIVER_DEG`].
+pub(crate) fn flip_radius_edge_bound(old: impl Iterator<Item = [DVec3; 4]>, max_re: f64) -> f64 {
+    let mut bound = max_re;
+    for p in old {
+        let (lo, _, re) = tet_min_max_dihedral_radius_edge(&p);
+        if !(lo >= SLIVER_DEG) {
+            return f64::INFINITY;
+        }
+        bound = bound.max(re);
+    }
+    bound
+}
+
 /// The two dihedral targets, as the reciprocals the score multiplies by, and the radius-edge
 /// bound.
 #[derive(Copy, Clone, Debug, PartialEq)]
