@@ -354,10 +354,16 @@ impl Tetra {
 
     /// The tets incident to vertex `v` (finite and ghost), by a walk around it.
     pub fn star(&self, v: u32, out: &mut Vec<u32>) {
+        self.star_find(v, out, |_| false);
+    }
+
+    /// Walks the star of `v` as [`Tetra::star`] does, in the same order, and stops at the first
+    /// tet for which `found` holds (then `out` holds the star only up to there).
+    fn star_find(&self, v: u32, out: &mut Vec<u32>, found: impl Fn(u32) -> bool) -> Option<u32> {
         out.clear();
         let t0 = self.vtet[v as usize];
         if t0 == NONE {
-            return;
+            return None;
         }
         out.push(t0);
         // a linear search while the star is small, a set once it is large (the star of a
@@ -367,6 +373,9 @@ impl Tetra {
         let mut i = 0;
         while i < out.len() {
             let t = out[i];
+            if found(t) {
+                return Some(t);
+            }
             let tv = self.tets[t as usize].v;
             for (f, &tf) in tv.iter().enumerate() {
                 if tf == v {
@@ -391,26 +400,25 @@ impl Tetra {
             }
             i += 1;
         }
+        None
     }
 
-    /// A tet holding edge `(a, b)`, if it is an edge of the tetrahedralization.
+    /// A tet holding edge `(a, b)`, if it is an edge of the tetrahedralization: the first in
+    /// the walk around `a`.
     pub fn edge_tet(&self, a: u32, b: u32, buf: &mut Vec<u32>) -> Option<u32> {
-        self.star(a, buf);
-        buf.iter().copied().find(|&t| self.tets[t as usize].v.contains(&b))
+        self.star_find(a, buf, |t| self.tets[t as usize].v.contains(&b))
     }
 
     /// The tet and face index of face `(a, b, c)`, if it is a face of the tetrahedralization
     /// (one of the two sides).
     pub fn face_of(&self, a: u32, b: u32, c: u32, buf: &mut Vec<u32>) -> Option<(u32, usize)> {
-        self.star(a, buf);
-        for &t in buf.iter() {
+        let t = self.star_find(a, buf, |t| {
             let v = self.tets[t as usize].v;
-            if v.contains(&b) && v.contains(&c) {
-                let f = (0..4).find(|&i| v[i] != a && v[i] != b && v[i] != c)?;
-                return Some((t, f));
-            }
-        }
-        None
+            v.contains(&b) && v.contains(&c)
+        })?;
+        let v = self.tets[t as usize].v;
+        let f = (0..4).find(|&i| v[i] != a && v[i] != b && v[i] != c)?;
+        Some((t, f))
     }
 
     /// Sets or clears the wall flag of face `f` of tet `t` and of the same face seen from its
