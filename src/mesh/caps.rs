@@ -17,8 +17,14 @@ const CAP_HEIGHT: f64 = 1e-10;
 /// The cap and its neighbour across `(a, b)` become the two triangles of their union, split
 /// at `v`: `(b, v, w)` and `(v, a, w)`, with the neighbour's tag. The surface stays closed and
 /// covers the same set; the triangle count does not change. Returns the repaired surface and
-/// the number of caps, or `None` where there are none.
+/// the number of caps, or `None` where there are none (or where `s` has indices out of range,
+/// tags that do not match its triangles, or points that are not finite: its checks name those).
 pub fn repair_caps(s: &TriSurface) -> Option<(TriSurface, usize)> {
+    // a surface that does not validate is left to the caller's checks
+    let n = s.vertices.len();
+    if s.face_tags.len() != s.triangles.len() || s.triangles.iter().flatten().any(|&v| v as usize >= n) || s.vertices.iter().any(|p| !p.is_finite()) {
+        return None;
+    }
     let (lo, hi) = s.vertices.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
     let tol = CAP_HEIGHT * lo.distance(hi);
     let p = |v: u32| s.vertices[v as usize];
@@ -117,6 +123,13 @@ pub(crate) mod tests {
         assert!(repair_caps(&r).is_none());
         let area = |s: &TriSurface| s.triangles.iter().map(|t| { let [p, q, w] = t.map(|v| s.vertices[v as usize]); (q - p).cross(w - p).length() / 2.0 }).sum::<f64>();
         assert!((area(&r) - area(&s)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_surface_with_bad_indices_is_left_to_its_checks() {
+        let mut s = capped_tetrahedron();
+        s.triangles[0][0] = 99;
+        assert!(repair_caps(&s).is_none());
     }
 
     #[test]

@@ -276,12 +276,13 @@ pub fn mesh_surface(
         *t = Instant::now();
     };
     let mut clock = Instant::now();
-    input::check(surface)?;
     // caps (flat triangles with a vertex on their long side) would make input edges meet at
-    // an angle of zero: each takes its neighbour's other half instead
+    // an angle of zero: each takes its neighbour's other half instead, before the checks
+    // (a cap may look like a crossing of its neighbours)
     let repaired = crate::mesh::caps::repair_caps(surface);
     let surface = repaired.as_ref().map_or(surface, |r| &r.0);
     let caps = repaired.as_ref().map_or(0, |r| r.1);
+    input::check(surface)?;
     stage("check", &mut clock);
     let mut points = surface.vertices.clone();
     let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
