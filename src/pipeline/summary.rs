@@ -84,8 +84,9 @@ pub(crate) struct Summarised {
 pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry]) -> Summarised {
     let q = tet_mesh_quality(mesh);
     let bound = plan.require_min_dihedral.unwrap_or(plan.mesh.min_dihedral);
-    // the angles of the surface the mesher took: caps repaired (their zero angles are gone)
-    let repaired = surface.and_then(crate::mesh::caps::repair_caps);
+    // the angles of the surface the mesher took: where it repaired caps, repaired the same
+    // way (their zero angles are gone)
+    let repaired = if report.input_caps_repaired > 0 { surface.and_then(crate::mesh::caps::repair_caps) } else { None };
     let surface = repaired.as_ref().map(|r| &r.0).or(surface);
     let angles = surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default();
     let boundary = BoundaryIndex::new(mesh);

@@ -45,4 +45,3 @@ pub(crate) fn check(s: &TriSurface) -> Result<(), MeshingError> {
     }
     Ok(())
 }
-

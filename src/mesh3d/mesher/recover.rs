@@ -6,8 +6,8 @@
 //! split at its midpoint (or, next to an input vertex, on a concentric shell around it); a
 //! missing subface gets a point at its circumcentre, unless that centre lies outside the facet
 //! or inside the diametral sphere of one of the facet's subsegments, in which case that
-//! subsegment is split instead. Steiner points carry the
-//! location (segment or facet) that tags and the keep-surface stage need.
+//! subsegment is split instead. Steiner points carry the location (segment or facet) that
+//! tags and the keep-surface stage need.
 
 use crate::mesh::tet_mesh::TET_FACES;
 use crate::mesh3d::mesher::MeshingError;
@@ -71,11 +71,12 @@ const MIN_SPLIT: f64 = 1e-12;
 /// # Errors
 /// When the subsegment is already shorter than a millionth of a millionth of its segment
 /// (two parts of the surface nearer each other there than splitting can separate: recovery
-/// would not end), and when the midpoint cannot be inserted.
+/// would not end), and when the split point cannot be inserted.
 pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
     let (pa, pb) = (tr.point(a), tr.point(b));
-    // the segment's length along its pieces (its ends may meet: a closed edge)
-    let whole: f64 = sm.subsegments(s).map(|[u, v]| tr.point(u).distance(tr.point(v))).sum();
+    // the segment's length: an input edge, straight between its two ends
+    let ends = &sm.segments[s as usize].points;
+    let whole = tr.point(ends[0]).distance(tr.point(ends[ends.len() - 1]));
     if pa.distance(pb) < MIN_SPLIT * whole {
         return Err(format!(
             "recovery does not end near {}: an input edge there had to be cut into pieces under {MIN_SPLIT:e} of its length {whole} (the surface comes nearer itself there than the mesher can separate)",

@@ -9,8 +9,8 @@
 //! [`orient3d`](crate::core::predicates::orient3d)) is not allowed. The edge is removed only if
 //! the new tets' least score beats the old ones', no new tet exceeds the radius-edge bound
 //! (unless an old one already did by more, or an old one is a sliver under
-//! [`SLIVER_DEG`](crate::mesh3d::optimize::measure::SLIVER_DEG)), and [`Work::replace`] confirms the new tets fill the
-//! same cavity.
+//! [`SLIVER_DEG`](crate::mesh3d::optimize::measure::SLIVER_DEG)), and [`Work::replace`]
+//! confirms the new tets fill the same cavity.
 //!
 //! The ring is listed so that every `(a, b, r_i, r_{i+1})` is positively oriented, i.e. it turns
 //! clockwise seen from `a`; then both tets of a ring triangle with `i < j < k` are positively

@@ -40,7 +40,7 @@ pub(crate) fn try_flip23(w: &mut Work, t: u32, k: usize, max_re: f64) -> bool {
             return false;
         }
     }
-    let bound = flip_radius_edge_bound([w.corners(&tet), w.corners(&w.tets[u as usize])].into_iter(), max_re);
+    let bound = flip_radius_edge_bound([w.corners(&tet), w.corners(&w.tets[u as usize])], max_re);
     if new.iter().any(|n| tet_radius_edge(&w.corners(n)) > bound) {
         return false;
     }

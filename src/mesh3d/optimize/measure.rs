@@ -42,7 +42,7 @@ pub(crate) const SLIVER_DEG: f64 = 1.0;
 /// The radius-edge ratio that new tets of a flip may reach, given the old tets' corners: the
 /// bound or the old tets' largest ratio, and no limit where an old tet is under
 /// [`SLIVER_DEG`].
-pub(crate) fn flip_radius_edge_bound(old: impl Iterator<Item = [DVec3; 4]>, max_re: f64) -> f64 {
+pub(crate) fn flip_radius_edge_bound(old: impl IntoIterator<Item = [DVec3; 4]>, max_re: f64) -> f64 {
     let mut bound = max_re;
     for p in old {
         let (lo, _, re) = tet_min_max_dihedral_radius_edge(&p);
