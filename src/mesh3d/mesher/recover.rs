@@ -101,7 +101,7 @@ pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a:
 /// vertex, so that a point on one does not encroach a piece of the other, and splitting ends.
 /// (Shells at every input vertex, not only at acute ones, measured better: featuretype.STL
 /// 129 tets under 5° against 153, plate_holes.STL 207 against 213.)
-fn split_point(sm: &SurfaceModel, s: u32, a: u32, b: u32, pa: DVec3, pb: DVec3) -> DVec3 {
+pub(crate) fn split_point(sm: &SurfaceModel, s: u32, a: u32, b: u32, pa: DVec3, pb: DVec3) -> DVec3 {
     let pts = &sm.segments[s as usize].points;
     let is_end = |v: u32| pts.first() == Some(&v) || pts.last() == Some(&v);
     let (from, to) = match (is_end(a), is_end(b)) {

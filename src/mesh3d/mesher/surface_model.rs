@@ -72,7 +72,13 @@ pub(crate) struct SurfaceModel {
     pub location: Vec<Location>,
     /// The facet of every current subface, by its sorted vertices.
     index: FxHashMap<[u32; 3], u32>,
+    /// Boundary points from this index on were put there by refinement (boundary splits):
+    /// merging recovery's points back leaves them.
+    pub refined_from: u32,
 }
+
+/// One facet's change by a boundary split: the facet, the subfaces removed, those added.
+pub(crate) type FacetEdit = (u32, Vec<[u32; 3]>, Vec<[u32; 3]>);
 
 /// Two input triangles sharing an edge belong to one merged facet when their tags agree and
 /// the sine of the angle between their normals is below this.
@@ -195,7 +201,7 @@ impl SurfaceModel {
                 index.insert(sorted(*t), f as u32);
             }
         }
-        SurfaceModel { facets, segments, location: vec![Location::Input; n], index }
+        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: u32::MAX }
     }
 
     /// Point `p` in facet `f`'s plane coordinates.
@@ -517,6 +523,42 @@ impl SurfaceModel {
             fc.subfaces.push(t);
             self.index.insert(sorted(t), f);
         }
+    }
+
+    /// Makes a boundary split: vertex `p` goes onto segment `s` between its consecutive points
+    /// `a` and `b` (`segment`), or else inside facet `inside`; each `(facet, removed, added)`
+    /// replaces subfaces of that facet. Returns false (and changes nothing) if `a`, `b` are not
+    /// consecutive on `s`.
+    pub fn apply_split(&mut self, p: u32, segment: Option<(u32, u32, u32)>, inside: Option<u32>, edits: &[FacetEdit]) -> bool {
+        if let Some((s, a, b)) = segment {
+            let seg = &mut self.segments[s as usize];
+            let Some(i) = seg.points.windows(2).position(|w| (w[0] == a && w[1] == b) || (w[0] == b && w[1] == a)) else {
+                return false;
+            };
+            seg.points.insert(i + 1, p);
+            self.locate_vertex(p, Location::Segment(s));
+        } else if let Some(f) = inside {
+            self.facets[f as usize].inner.push(p);
+            self.locate_vertex(p, Location::Facet(f));
+        }
+        for (f, removed, added) in edits {
+            let fc = &mut self.facets[*f as usize];
+            let gone: Vec<[u32; 3]> = removed.iter().map(|&t| sorted(t)).collect();
+            fc.subfaces.retain(|&t| !gone.contains(&sorted(t)));
+            for t in removed {
+                self.index.remove(&sorted(*t));
+            }
+            for &t in added {
+                fc.subfaces.push(t);
+                self.index.insert(sorted(t), *f);
+            }
+        }
+        true
+    }
+
+    /// The facet of subface `t` (its vertices in any order), if it is one.
+    pub fn facet_of(&self, t: [u32; 3]) -> Option<u32> {
+        self.index.get(&sorted(t)).copied()
     }
 
     /// Every subface with its facet.

@@ -74,6 +74,34 @@ fn plate_with_hole_and_torus_mesh() {
 }
 
 #[test]
+fn refinement_splits_the_boundary_and_keeps_it() {
+    // a plate with a hole at a size that leaves tets whose centres encroach the faces
+    let p = plate_with_hole(16, 40.0, 8.0, 8.0);
+    let opts = MeshOptions::default().with_optimize(false);
+    let (m, r) = mesh_surface(&p, &Seeds::default(), &UniformSize(6.0), &opts).unwrap();
+    let rep = crate::mesh::topology::surface_report(&p, &Default::default());
+    check(&m, rep.volume);
+    assert!(r.refinement_boundary_points > 0, "no boundary split: {r:?}");
+    assert!(r.boundary_steiner_points >= r.refinement_boundary_points);
+    // the boundary is the input surface: the same area, the input's tags only, closed
+    let area: f64 = m.boundary.iter().map(|t| {
+        let [a, b, c] = t.map(|i| m.vertices[i as usize]);
+        0.5 * (b - a).cross(c - a).length()
+    }).sum();
+    assert!((area - rep.area).abs() < 1e-9 * rep.area, "area {area} vs {}", rep.area);
+    let mut tags = p.face_tags.clone();
+    tags.sort();
+    tags.dedup();
+    assert!(m.face_tags.iter().all(|t| tags.binary_search(t).is_ok()));
+    let q = crate::quality::tet_mesh_quality(&m);
+    assert!(q.max_radius_edge < 4.0, "max radius-edge {}", q.max_radius_edge);
+    // keep-surface never splits it
+    let (m, r) = mesh_surface(&cube(2), &Seeds::default(), &UniformSize(0.3), &opts.clone().with_keep_surface(true)).unwrap();
+    check(&m, 1.0);
+    assert_eq!((r.refinement_boundary_points, r.boundary_steiner_points), (0, 0));
+}
+
+#[test]
 fn open_and_crossing_surfaces_are_refused() {
     let mut s = cube(1);
     s.triangles.pop();

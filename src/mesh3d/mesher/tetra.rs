@@ -66,6 +66,9 @@ pub(crate) struct Tetra {
     /// Visit stamps per slot for the cavity correction, and the current stamp.
     seen: Vec<u32>,
     stamp: u32,
+    /// Boundary insertion ([`Tetra::insert_on_boundary`]): the subfaces (sorted vertices) that
+    /// the new point, which lies in their plane, removes. Empty otherwise.
+    vanish: rustc_hash::FxHashSet<[u32; 3]>,
 }
 
 impl Tetra {
@@ -94,6 +97,7 @@ impl Tetra {
             created: Vec::new(),
             seen: Vec::new(),
             stamp: 0,
+            vanish: Default::default(),
         };
         tr.push([DEAD; 4]);
         let t0 = tr.push(first);
@@ -192,7 +196,9 @@ impl Tetra {
             self.default_start()
         };
         let walls = WallBits(&self.walls);
-        let located = if self.walled {
+        let located = if !self.vanish.is_empty() {
+            Located::Conflict(start) // a boundary insertion starts in a tet it conflicts with
+        } else if self.walled {
             locate_walled(&self.k, &self.tets, &Everything, &walls, &mut self.sc.rng, start, p, 4 * self.tets.len() + 16)
         } else {
             locate(&self.k, &self.tets, &Everything, &mut self.sc.rng, start, p)
@@ -222,6 +228,12 @@ impl Tetra {
         self.sc.boundary = boundary;
         if let Some((t, f)) = verdict {
             return Inserted::Rejected(t, f);
+        }
+        if !self.vanish.is_empty() {
+            // the subfaces the point removes get no new tet: the new faces on their outline
+            // stay unpaired and look at slot 0 (outside) once filled
+            let vanish = &self.vanish;
+            self.sc.boundary.retain(|(f, r)| r >> 2 != 0 || !vanish.contains(&sorted3(*f)));
         }
         let m = self.sc.boundary.len();
         let c = self.sc.cavity.len();
@@ -258,6 +270,25 @@ impl Tetra {
         Inserted::Yes(last)
     }
 
+    /// Inserts point `p` (already added), which lies on the boundary in the plane of the
+    /// subfaces `vanish` (sorted vertices) that it removes, once the exterior is gone (those
+    /// subfaces face slot 0). The cavity grows from `start`, a material tet on one of them
+    /// whose circumsphere holds `p`; the subfaces get no new tet, and the new faces along
+    /// their outline look at slot 0 (the caller makes them walls). `check` as for
+    /// [`Tetra::insert_checked`].
+    pub fn insert_on_boundary<F>(&mut self, p: u32, start: u32, vanish: rustc_hash::FxHashSet<[u32; 3]>, check: F) -> Inserted
+    where
+        F: FnOnce(&Tetra, &[([u32; 3], u32)]) -> Option<(u32, usize)>,
+    {
+        if vanish.is_empty() {
+            return Inserted::Refused;
+        }
+        self.vanish = vanish;
+        let res = self.insert_checked(p, start, check);
+        self.vanish.clear();
+        res
+    }
+
     /// Gives back cavity tets whose boundary faces `p` does not see strictly (their new tet
     /// would be flat or inverted), until every boundary face is visible or the tet holding `p`
     /// itself would go. Rebuilds the boundary list. Returns false in the latter case.
@@ -267,7 +298,7 @@ impl Tetra {
             // cavity tet with a wall to another cavity tet, goes (all at once)
             let mut bad: Vec<u32> = Vec::new();
             for &(f, r) in &self.sc.boundary {
-                if f.contains(&GHOST) {
+                if f.contains(&GHOST) || (r >> 2 == 0 && !self.vanish.is_empty() && self.vanish.contains(&sorted3(f))) {
                     continue;
                 }
                 if self.k.orient(f[0], f[1], f[2], p) != Sign::Positive {
@@ -447,6 +478,12 @@ impl Tetra {
     }
 }
 
+
+/// `t` sorted.
+fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
+    t.sort_unstable();
+    t
+}
 
 /// Four points spanning a positive tet, in insertion order.
 fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
