@@ -317,12 +317,14 @@ pub(crate) fn unfold_flat_tets(tr: &mut Tetra, sm: &mut SurfaceModel, labels: &m
 /// [`unfold_flat_tets`] for tet `t`: true when it was removed.
 fn unfold(tr: &mut Tetra, sm: &mut SurfaceModel, labels: &mut Labels, t: u32) -> bool {
     let v = tr.tets[t as usize].v;
+    // two walls on one facet at least (a lookup by hash; the subfaces as stored only then)
+    let facets: Vec<(usize, u32)> = (0..4).filter(|&i| tr.walls[t as usize] >> i & 1 != 0).filter_map(|i| sm.facet_of(TET_FACES[i].map(|k| v[k])).map(|f| (i, f))).collect();
+    if !facets.iter().enumerate().any(|(x, a)| facets[x + 1..].iter().any(|b| b.1 == a.1)) {
+        return false;
+    }
     let mut on: Vec<(usize, u32, [u32; 3])> = Vec::new();
-    for (i, fv) in TET_FACES.iter().enumerate() {
-        if tr.walls[t as usize] >> i & 1 == 0 {
-            continue;
-        }
-        if let Some((f, s)) = sm.subface(fv.map(|k| v[k])) {
+    for &(i, _) in &facets {
+        if let Some((f, s)) = sm.subface(TET_FACES[i].map(|k| v[k])) {
             on.push((i, f, s));
         }
     }

@@ -543,8 +543,9 @@ impl SurfaceModel {
         }
         for (f, removed, added) in edits {
             let fc = &mut self.facets[*f as usize];
-            let gone: Vec<[u32; 3]> = removed.iter().map(|&t| sorted(t)).collect();
-            fc.subfaces.retain(|&t| !gone.contains(&sorted(t)));
+            // the removed ones are the stored ones, turned
+            let turned = |t: [u32; 3], r: [u32; 3]| t == r || t == [r[1], r[2], r[0]] || t == [r[2], r[0], r[1]];
+            fc.subfaces.retain(|&t| !removed.iter().any(|&r| turned(t, r)));
             for t in removed {
                 self.index.remove(&sorted(*t));
             }
