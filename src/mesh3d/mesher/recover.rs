@@ -232,11 +232,41 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
     let mut buf = Vec::new();
     // subsegments missing in the last rounds, and for how many rounds in a row that grew
     let (mut last_missing, mut growing) = (usize::MAX, 0);
+    // an edge or face found present stays so while no tet with one of its vertices is made (an
+    // edge that goes has its ends on the outline of the cavity that took it, so they are
+    // vertices of the new tets): `touched[v]` is the round before whose checks a tet with `v`
+    // was last made, and a present edge or face remembers the round it was found in
+    let mut touched: Vec<usize> = Vec::new();
+    let mut present: rustc_hash::FxHashMap<[u32; 2], usize> = Default::default();
+    let mut faces_present: rustc_hash::FxHashMap<[u32; 3], usize> = Default::default();
     loop {
         stats.rounds += 1;
+        let round = stats.rounds;
         let mut changed = false;
+        touched.resize(tr.num_points(), usize::MAX);
+        for &t in &tr.created {
+            for v in tr.tets[t as usize].v {
+                if let Some(x) = touched.get_mut(v as usize) {
+                    *x = round;
+                }
+            }
+        }
+        tr.created.clear();
+        let fresh = |touched: &[usize], v: &[u32], since: Option<&usize>| since.is_some_and(|&r| v.iter().all(|&x| touched.get(x as usize).is_some_and(|&t| t == usize::MAX || t <= r)));
         // subsegments first: a facet cannot be recovered while its sides are missing
-        let missing: Vec<(u32, [u32; 2])> = sm.all_subsegments().filter(|&(_, [a, b])| tr.edge_tet(a, b, &mut buf).is_none()).collect();
+        let missing: Vec<(u32, [u32; 2])> = sm
+            .all_subsegments()
+            .filter(|&(_, e)| {
+                if fresh(&touched, &e, present.get(&e)) {
+                    return false;
+                }
+                let here = tr.edge_tet(e[0], e[1], &mut buf).is_some();
+                if here {
+                    present.insert(e, round);
+                }
+                !here
+            })
+            .collect();
         // splitting that makes more missing pieces each round does not end (pieces of
         // the surface too near each other for midpoints to separate): stop while it is cheap
         growing = if missing.len() >= DIVERGING_MIN && 4 * missing.len() >= 5 * last_missing { growing + 1 } else { 0 };
@@ -262,8 +292,19 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
             changed |= split_subsegment(tr, sm, s, a, b).map_err(|m| fail(sm, sm.segments[s as usize].facets[0], &m))?;
         }
         if !changed {
-            let missing: Vec<(u32, [u32; 3])> =
-                sm.subfaces().filter(|&(_, [a, b, c])| tr.face_of(a, b, c, &mut buf).is_none()).collect();
+            let missing: Vec<(u32, [u32; 3])> = sm
+                .subfaces()
+                .filter(|&(_, t)| {
+                    if fresh(&touched, &t, faces_present.get(&t)) {
+                        return false;
+                    }
+                    let here = tr.face_of(t[0], t[1], t[2], &mut buf).is_some();
+                    if here {
+                        faces_present.insert(t, round);
+                    }
+                    !here
+                })
+                .collect();
             for (f, t) in missing {
                 if !sm.facets[f as usize].subfaces.contains(&t) {
                     continue;
