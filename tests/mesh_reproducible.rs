@@ -1,6 +1,6 @@
-//! No clock, thread count or load steers a mesh: `fepre mesh Kurbelwelle.stp` and `fepre mesh
-//! Angled.step` (corpus) with one and two rayon threads, twice each, while a thread of this
-//! process spins flat out, write one file each, byte for byte.
+//! No clock, thread count or load steers a mesh: `fepre mesh Kurbelwelle.stp`, `fepre mesh
+//! Angled.step` and `fepre mesh plate_holes.STL` (corpus) with one and two rayon threads, twice
+//! each, while a thread of this process spins flat out, write one file each, byte for byte.
 
 mod common;
 
@@ -16,7 +16,8 @@ fn fingerprint(b: &[u8]) -> u64 {
 #[test]
 #[ignore = "release, four meshings of a corpus part; run with --include-ignored (CI does)"]
 fn a_corpus_part_meshes_to_the_same_bytes_for_any_thread_count_under_load() {
-    for name in ["Kurbelwelle.stp", "Angled.step"] {
+    // two STEP parts, and a surface mesh whose boundary refinement splits
+    for name in ["Kurbelwelle.stp", "Angled.step", "plate_holes.STL"] {
         if let Some(part) = common::corpus_file(name) {
             same_bytes_under_load(&part);
         }

@@ -197,13 +197,21 @@ fn corpus_part_report(name: &str) -> Option<(TetMesh, fepre::mesh3d::mesher::Mes
 
 #[test]
 fn corpus_fandisk_and_plate_holes() {
-    corpus_part("fandisk.obj");
-    // the thin fillet strips of the STL are cut for shape before meshing: with at most 4 pieces
-    // per edge it kept 0.23° and 207 tets under 5°
+    // no more tets under 5° than TetGen -pq1.414/18 leaves on fandisk (43; the worst touch its
+    // 0.18° input corner): refinement splits the faces their centres encroach (it left 76)
+    if let Some((m, report)) = corpus_part_report("fandisk.obj") {
+        let q = fepre::quality::tet_mesh_quality(&m);
+        assert!(report.refinement_boundary_points > 0, "fandisk: no boundary split");
+        assert!(q.tets_min_dihedral_below_5 <= 43, "fandisk: {} tets under 5°", q.tets_min_dihedral_below_5);
+    }
+    // the thin fillet strips of the STL are cut for shape before meshing (with at most 4 pieces
+    // per edge it kept 0.23° and 207 tets under 5°), and encroached faces are split (without,
+    // 3.68° and 5 tets under 5°)
     let Some((m, _)) = corpus_part_report("plate_holes.STL") else { return };
     let q = fepre::quality::tet_mesh_quality(&m);
-    assert!(q.min_dihedral_deg >= 1.0, "plate_holes: min dihedral {}°", q.min_dihedral_deg);
-    assert!(q.tets_min_dihedral_below_5 < 50, "plate_holes: {} tets under 5°", q.tets_min_dihedral_below_5);
+    println!("plate_holes: {:.3}° .. {:.3}°, {} tets under 5°", q.min_dihedral_deg, q.max_dihedral_deg, q.tets_min_dihedral_below_5);
+    assert!(q.min_dihedral_deg >= 5.0, "plate_holes: min dihedral {}°", q.min_dihedral_deg);
+    assert_eq!(q.tets_min_dihedral_below_5, 0, "plate_holes: tets under 5°");
 }
 
 #[test]
@@ -214,5 +222,6 @@ fn corpus_featuretype() {
     let Some((m, report)) = corpus_part_report("featuretype.STL") else { return };
     assert_eq!(report.refinement_stop, None, "featuretype: refinement stopped at a budget");
     let q = fepre::quality::tet_mesh_quality(&m);
-    assert!(q.tets_min_dihedral_below_5 < 1000, "featuretype: {} tets under 5°", q.tets_min_dihedral_below_5);
+    // 71 before refinement split the boundary, 41 with it
+    assert!(q.tets_min_dihedral_below_5 < 60, "featuretype: {} tets under 5°", q.tets_min_dihedral_below_5);
 }
