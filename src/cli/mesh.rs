@@ -157,11 +157,11 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         return Ok(());
     }
     crate::cli::print_mesh_summary(&m);
-    if mesher.refinement_boundary_points > 0 {
-        println!("boundary Steiner {} ({} by refinement, splitting faces that its points encroached)", r.boundary_steiner_points, mesher.refinement_boundary_points);
-    } else {
-        println!("boundary Steiner {}", r.boundary_steiner_points);
-    }
+    let by_refinement = match mesher.refinement_boundary_points {
+        0 => String::new(),
+        n => format!(" ({n} by refinement, splitting faces that its points encroached)"),
+    };
+    println!("boundary Steiner {}{by_refinement}", r.boundary_steiner_points);
     println!("size             {:.4} (global)", r.global_size);
     println!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
     for (stage, s) in &mesher.stage_seconds {

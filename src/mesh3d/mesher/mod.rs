@@ -341,7 +341,9 @@ pub fn mesh_surface(
     let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points, splits.then_some(&mut sm))?;
     let mut stop = refinement_stop(refined.stopped, tr.num_points(), max_points);
     stage("refine", &mut clock);
-    keep::drop_exterior(&mut tr, &labels);
+    if !splits {
+        keep::drop_exterior(&mut tr, &labels);
+    }
     if options.keep_surface {
         // merging is easiest once the material has points of its own near the boundary
         let left = keep::keep_surface(&mut tr, &mut sm, false);

@@ -130,7 +130,7 @@ pub(crate) fn circumcenter(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 
 /// The subsegment of facet `f` whose diametral sphere holds `p` (the one whose midpoint is
 /// nearest), if any.
-pub(crate) fn encroached_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, p: DVec3) -> Option<(u32, [u32; 2])> {
+fn encroached_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, p: DVec3) -> Option<(u32, [u32; 2])> {
     let mut best: Option<(f64, u32, [u32; 2])> = None;
     for &s in &sm.facets[f as usize].sides {
         for [u, v] in sm.subsegments(s) {
@@ -149,7 +149,7 @@ pub(crate) fn encroached_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, p: DV
 /// The side subsegment of facet `f` that separates a point `g` inside it from `p` outside it:
 /// of the subsegments that the segment from `g` to `p` meets (exact orientation tests in the
 /// facet's plane), the one met first; where rounding leaves none, the one nearest `p`.
-pub(crate) fn separating_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, g: DVec3, p: DVec3) -> Option<(u32, [u32; 2])> {
+fn separating_subsegment(tr: &Tetra, sm: &SurfaceModel, f: u32, g: DVec3, p: DVec3) -> Option<(u32, [u32; 2])> {
     let (g2, p2) = (sm.to_plane(f, g), sm.to_plane(f, p));
     let mut first: Option<(f64, u32, [u32; 2])> = None;
     let mut nearest: Option<(f64, u32, [u32; 2])> = None;
@@ -187,26 +187,50 @@ fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     p.distance(a + e * t)
 }
 
+/// Where Delaunay refinement splits a subface of facet `f` (recovery's missing subfaces, and
+/// refinement's encroached ones).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum SubfaceSplit {
+    /// At its circumcentre: it lies in the facet and encroaches no subsegment.
+    Centre,
+    /// This subsegment of the facet's sides instead.
+    Subsegment(u32, [u32; 2]),
+    /// The centre lies outside a facet that has no sides (no closed surface has one).
+    NoSides,
+}
+
+/// Where subface `t` of facet `f`, of circumcentre `cc`, is split: the subsegment that `cc`
+/// encroaches (the one whose midpoint is nearest); where `cc` lies outside the facet, the side
+/// subsegment between the subface and it (one that the centre does not encroach is encroached
+/// by a vertex of the facet, Ruppert's lemma, so splitting it is the rule for encroached
+/// subsegments); else the centre itself.
+pub(crate) fn subface_split(tr: &Tetra, sm: &SurfaceModel, f: u32, t: [u32; 3], cc: DVec3) -> SubfaceSplit {
+    if let Some((s, e)) = encroached_subsegment(tr, sm, f, cc) {
+        return SubfaceSplit::Subsegment(s, e);
+    }
+    if sm.inside(f, cc, &tr.k.points) {
+        return SubfaceSplit::Centre;
+    }
+    let g = t.map(|v| tr.point(v)).iter().sum::<DVec3>() / 3.0;
+    match separating_subsegment(tr, sm, f, g, cc) {
+        Some((s, e)) => SubfaceSplit::Subsegment(s, e),
+        None => SubfaceSplit::NoSides,
+    }
+}
+
 /// Splits subface `[a, b, c]` of facet `f`: at its circumcentre if that lies in the facet and
 /// encroaches no subsegment, else the encroached subsegment, or where the centre lies outside
 /// the facet, the side subsegment between the subface and the centre.
 pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u32; 3], stats: &mut Recovery) -> Result<bool, String> {
     let [pa, pb, pc] = t.map(|v| tr.point(v));
     let cc = circumcenter(pa, pb, pc);
-    if let Some((s, [u, v])) = encroached_subsegment(tr, sm, f, cc) {
-        stats.segment_points += 1;
-        return split_subsegment(tr, sm, s, u, v);
-    }
-    if !sm.inside(f, cc, &tr.k.points) {
-        // a side subsegment lies between the subface and its centre; one that the centre does
-        // not encroach is encroached by a vertex of the facet (Ruppert's lemma), so
-        // splitting it is the rule for encroached subsegments
-        let g = (pa + pb + pc) / 3.0;
-        if let Some((s, [u, v])) = separating_subsegment(tr, sm, f, g, cc) {
+    match subface_split(tr, sm, f, t, cc) {
+        SubfaceSplit::Subsegment(s, [u, v]) => {
             stats.segment_points += 1;
             return split_subsegment(tr, sm, s, u, v);
         }
-        return Err(format!("facet {f} has no sides"));
+        SubfaceSplit::NoSides => return Err(format!("facet {f} has no sides")),
+        SubfaceSplit::Centre => {}
     }
     // where rounding puts the centre on a vertex, the subface's centroid serves
     let centroid = (pa + pb + pc) / 3.0;
@@ -243,7 +267,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
         stats.rounds += 1;
         let round = stats.rounds;
         let mut changed = false;
-        touched.resize(tr.num_points(), usize::MAX);
+        touched.resize(tr.num_points(), 0);
         for &t in &tr.created {
             for v in tr.tets[t as usize].v {
                 if let Some(x) = touched.get_mut(v as usize) {
@@ -252,7 +276,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
             }
         }
         tr.created.clear();
-        let fresh = |touched: &[usize], v: &[u32], since: Option<&usize>| since.is_some_and(|&r| v.iter().all(|&x| touched.get(x as usize).is_some_and(|&t| t == usize::MAX || t <= r)));
+        let fresh = |touched: &[usize], v: &[u32], since: Option<&usize>| since.is_some_and(|&r| v.iter().all(|&x| touched.get(x as usize).is_some_and(|&t| t <= r)));
         // subsegments first: a facet cannot be recovered while its sides are missing
         let missing: Vec<(u32, [u32; 2])> = sm
             .all_subsegments()

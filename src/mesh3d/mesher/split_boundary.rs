@@ -21,7 +21,7 @@ use crate::core::Sign;
 use crate::core::predicates::{incircle, orient2d};
 use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use crate::mesh3d::mesher::carve::Labels;
-use crate::mesh3d::mesher::recover::{circumcenter, encroached_subsegment, separating_subsegment, split_point};
+use crate::mesh3d::mesher::recover::{SubfaceSplit, circumcenter, split_point, subface_split};
 use crate::mesh3d::mesher::surface_model::{FacetEdit, SurfaceModel};
 use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
 use glam::DVec3;
@@ -278,9 +278,8 @@ fn least_first(t: [u32; 3]) -> [u32; 3] {
     [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
 }
 
-fn sorted(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
+fn sorted(t: [u32; 3]) -> [u32; 3] {
+    crate::mesh::tet_mesh::sorted3(t).0
 }
 
 /// Labels the tets in `tr.created`: from old neighbours across faces that are no walls, then
@@ -330,22 +329,15 @@ fn label_new(tr: &Tetra, labels: &mut Labels) {
     }
 }
 
-/// The local feature size at `q` from the points `v`: the least of each one's size plus its
-/// distance to `q` (1-Lipschitz).
-fn lfs_at(lfs: &[f64], tr: &Tetra, v: &[u32], q: DVec3) -> f64 {
-    v.iter().map(|&x| lfs.get(x as usize).copied().unwrap_or(f64::INFINITY) + tr.point(x).distance(q)).fold(f64::INFINITY, f64::min)
-}
-
-/// Splits subface `face` (a wall of `tr`) as Delaunay refinement does: at its
-/// circumcentre when that lies in its facet and encroaches none of the facet's subsegments,
-/// else the subsegment it encroaches (the one whose midpoint is nearest), or where it lies
-/// outside the facet, the side subsegment between them (at its midpoint, or on a shell around
-/// an input vertex). Nothing is split whose new point would come nearer its neighbours than
-/// `floor` times the local feature size there (`lfs`, per point), nor a subface with a
+/// Splits subface `face` (a wall of `tr`) as Delaunay refinement does
+/// ([`subface_split`]): at its circumcentre, or the subsegment that centre encroaches or that
+/// lies between the subface and it (at its midpoint, or on a shell around an input vertex).
+/// Nothing is split whose new point would come nearer its neighbours than `floor` times the
+/// local feature size there (`size_at(tr, neighbours, point)`), nor a subface with a
 /// circumradius or a subsegment with half a length of at most `r_min`: that bounds the work
-/// near small input angles. Returns the new vertex; `lfs` gets its size.
+/// near small input angles. Returns the new vertex and its local feature size.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn split_wall(tr: &mut Tetra, sm: &mut SurfaceModel, edges: &mut FacetEdges, labels: &mut Labels, lfs: &mut Vec<f64>, face: [u32; 3], floor: f64, r_min: f64) -> Option<u32> {
+pub(crate) fn split_wall(tr: &mut Tetra, sm: &mut SurfaceModel, edges: &mut FacetEdges, labels: &mut Labels, size_at: &dyn Fn(&Tetra, &[u32], DVec3) -> f64, face: [u32; 3], floor: f64, r_min: f64) -> Option<(u32, f64)> {
     if face.contains(&GHOST) || face.contains(&DEAD) {
         return None;
     }
@@ -354,31 +346,23 @@ pub(crate) fn split_wall(tr: &mut Tetra, sm: &mut SurfaceModel, edges: &mut Face
     let [pa, pb, pc] = seed.map(|x| tr.point(x));
     let cc = circumcenter(pa, pb, pc);
     let r = cc.distance(pa);
-    if !cc.is_finite() || r <= r_min || r < floor * lfs_at(lfs, tr, &seed, cc) {
+    if !cc.is_finite() || r <= r_min || r < floor * size_at(tr, &seed, cc) {
         return None;
     }
-    let sub = if let Some(e) = encroached_subsegment(tr, sm, f, cc) {
-        Some(e)
-    } else if !sm.inside(f, cc, &tr.k.points) {
-        separating_subsegment(tr, sm, f, (pa + pb + pc) / 3.0, cc)
-    } else {
-        None
-    };
-    let (p, at, near) = match sub {
-        Some((s, [a, b])) => {
+    let (p, at, near) = match subface_split(tr, sm, f, seed, cc) {
+        SubfaceSplit::Subsegment(s, [a, b]) => {
             let (qa, qb) = (tr.point(a), tr.point(b));
             let m = split_point(sm, s, a, b, qa, qb);
             let half = m.distance(qa).min(m.distance(qb));
-            if half <= r_min || half < floor * lfs_at(lfs, tr, &[a, b], m) {
+            if half <= r_min || half < floor * size_at(tr, &[a, b], m) {
                 return None;
             }
             (m, At::Segment { s, a, b }, vec![a, b])
         }
-        None => (cc, At::Facet { f, seed }, seed.to_vec()),
+        SubfaceSplit::Centre => (cc, At::Facet { f, seed }, seed.to_vec()),
+        SubfaceSplit::NoSides => return None,
     };
-    let size = lfs_at(lfs, tr, &near, p);
+    let size = size_at(tr, &near, p);
     let v = insert(tr, sm, edges, labels, p, at)?;
-    debug_assert_eq!(lfs.len(), v as usize);
-    lfs.push(size);
-    Some(v)
+    Some((v, size))
 }

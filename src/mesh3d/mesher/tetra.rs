@@ -11,7 +11,7 @@
 use crate::core::Sign;
 use crate::core::ids::NONE;
 use crate::core::spatial_order::brio_order;
-use crate::mesh::tet_mesh::TET_FACES;
+use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh3d::delaunay::cavity::{Everything, IN, Located, Marks, OUT, Scratch, Walls, dig_walled, fill, link_star, locate, locate_walled};
 use crate::mesh3d::delaunay::kernel::{FloatKernel, Kernel};
 use crate::mesh3d::delaunay::store::{DEAD, GHOST, Tet, cavity_slots, free_slot};
@@ -233,7 +233,7 @@ impl Tetra {
             // the subfaces the point removes get no new tet: the new faces on their outline
             // stay unpaired and look at slot 0 (outside) once filled
             let vanish = &self.vanish;
-            self.sc.boundary.retain(|(f, r)| r >> 2 != 0 || !vanish.contains(&sorted3(*f)));
+            self.sc.boundary.retain(|(f, r)| r >> 2 != 0 || !vanish.contains(&sorted3(*f).0));
         }
         let m = self.sc.boundary.len();
         let c = self.sc.cavity.len();
@@ -298,7 +298,7 @@ impl Tetra {
             // cavity tet with a wall to another cavity tet, goes (all at once)
             let mut bad: Vec<u32> = Vec::new();
             for &(f, r) in &self.sc.boundary {
-                if f.contains(&GHOST) || (r >> 2 == 0 && !self.vanish.is_empty() && self.vanish.contains(&sorted3(f))) {
+                if f.contains(&GHOST) || (r >> 2 == 0 && !self.vanish.is_empty() && self.vanish.contains(&sorted3(f).0)) {
                     continue;
                 }
                 if self.k.orient(f[0], f[1], f[2], p) != Sign::Positive {
@@ -478,12 +478,6 @@ impl Tetra {
     }
 }
 
-
-/// `t` sorted.
-fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
-}
 
 /// Four points spanning a positive tet, in insertion order.
 fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
