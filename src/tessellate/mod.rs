@@ -19,6 +19,7 @@
 pub mod certificate;
 pub mod edge_points;
 pub mod face_mesh;
+mod feature_size;
 pub mod quadrature;
 mod refine;
 mod sizing;
@@ -139,15 +140,30 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
         }
     }
     let max_straight = (8.0 * tol * model_size).sqrt() / 4.0;
-    let edges: Vec<EdgePoints> = model
-        .edges
-        .iter()
-        .zip(&on_curved)
-        .map(|(e, &curved)| {
-            let straight = if curved { max_straight } else { 0.0 };
-            edge_points::discretise(model, e, tol, opts.max_angle_deg, straight, size, &mut vertices)
-        })
-        .collect();
+    let discretise = |size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>| -> Vec<EdgePoints> {
+        model
+            .edges
+            .iter()
+            .zip(&on_curved)
+            .map(|(e, &curved)| {
+                let straight = if curved { max_straight } else { 0.0 };
+                edge_points::discretise(model, e, tol, opts.max_angle_deg, straight, size, vertices)
+            })
+            .collect()
+    };
+    // to a size: faces narrower than it (strips, chamfers, holes near a side) ask for less,
+    // measured on the chords of the edges
+    let narrow;
+    let size: Option<&dyn SizeField> = match size {
+        Some(h) => {
+            let mut chords = vertices.clone();
+            let edges = discretise(None, &mut chords);
+            narrow = feature_size::FeatureSize::new(model, &edges, &chords, h);
+            Some(&narrow)
+        }
+        None => None,
+    };
+    let edges = discretise(size, &mut vertices);
     let mut triangles = Vec::new();
     let mut face_tags = Vec::new();
     let mut failed = Vec::new();

@@ -1,0 +1,193 @@
+//! The size a face's width asks for: along a B-rep edge, a multiple of the distance across
+//! its faces to their nearest other edge (a narrow strip, a chamfer, a hole near a face's
+//! side), carried into the faces 1-Lipschitz.
+//!
+//! Without it, a face narrower than the size gets triangles as long as the size and as wide
+//! as the face (angles of 1° on the 0.06 mm strips of the corpus' `part.step` at size 8.5),
+//! and every tet on them is a sliver. Edges that share a vertex are not measured against each
+//! other: their distance goes to zero at the vertex (a small input angle, which no size
+//! removes).
+
+use super::edge_points::EdgePoints;
+use crate::cad::brep::Model;
+use crate::core::aabb::Aabb;
+use crate::core::bvh::Bvh;
+use crate::core::closest::closest_point_on_segment;
+use crate::core::SizeField;
+use glam::DVec3;
+
+/// Edges are cut to this many times the width of the face across them: a strip of width `w`
+/// then gets triangles of base `1.5 w` and height `w`, angles of 53° and more.
+const WIDTH_FACTOR: f64 = 1.5;
+
+/// The size never falls under this share of the size asked for: a face far narrower than
+/// the size (a sliver face of the CAD model) keeps thin triangles rather than a hundred
+/// thousand small ones.
+const FLOOR: f64 = 1.0 / 64.0;
+
+/// Bisections of an edge piece at most when looking for its narrowest place.
+const MAX_DEPTH: u32 = 14;
+
+/// A size field: the smaller of the one asked for and the width-driven sizes at sample points
+/// of the edges, each grown by the distance from its point.
+pub(super) struct FeatureSize<'a> {
+    inner: &'a dyn SizeField,
+    /// Sample points and their sizes (only where the width asks for less than `inner`).
+    samples: Vec<(DVec3, f64)>,
+    bvh: Bvh,
+}
+
+impl SizeField for FeatureSize<'_> {
+    fn size_at(&self, p: DVec3) -> f64 {
+        let mut h = self.inner.size_at(p);
+        if self.samples.is_empty() {
+            return h;
+        }
+        self.bvh.for_each_overlapping(&Aabb { min: p, max: p }, |i| {
+            let (x, s) = self.samples[i as usize];
+            h = h.min(s + x.distance(p));
+        });
+        h
+    }
+
+    fn size_in(&self, p: DVec3, region: crate::core::RegionId) -> f64 {
+        self.size_at(p).min(self.inner.size_in(p, region))
+    }
+}
+
+impl<'a> FeatureSize<'a> {
+    /// The field for `model` whose edges have the chord-only points `edges` (vertex indices
+    /// into `vertices`), on top of `inner`.
+    pub fn new(model: &Model, edges: &[EdgePoints], vertices: &[DVec3], inner: &'a dyn SizeField) -> FeatureSize<'a> {
+        // the faces on each edge
+        let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); model.edges.len()];
+        for (f, face) in model.faces.iter().enumerate() {
+            for &l in &face.loops {
+                for c in &model.loops[l as usize].coedges {
+                    let fs = &mut faces_of[c.edge as usize];
+                    if !fs.contains(&(f as u32)) {
+                        fs.push(f as u32);
+                    }
+                }
+            }
+        }
+        // every chord segment of every edge
+        let mut segs: Vec<(u32, DVec3, DVec3)> = Vec::new();
+        for (e, ep) in edges.iter().enumerate() {
+            if model.edges[e].degenerate {
+                continue;
+            }
+            for w in ep.ids.windows(2) {
+                let (a, b) = (vertices[w[0] as usize], vertices[w[1] as usize]);
+                if a != b {
+                    segs.push((e as u32, a, b));
+                }
+            }
+        }
+        let bvh = Bvh::build(segs.iter().enumerate().map(|(i, &(_, a, b))| (i as u32, Aabb::from_points([a, b].iter()))));
+        let ends = |e: usize| [model.edges[e].start, model.edges[e].end];
+        // the distance from `x` on edge `e` to the nearest other edge of its faces (sharing
+        // no vertex with it), looked for within `r`
+        let width = |e: usize, x: DVec3, r: f64| -> f64 {
+            let mut d = f64::INFINITY;
+            let q = Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) };
+            let mine = ends(e);
+            bvh.for_each_overlapping(&q, |i| {
+                let (o, a, b) = segs[i as usize];
+                let o = o as usize;
+                if o == e || ends(o).iter().any(|v| mine.contains(v)) || !faces_of[o].iter().any(|f| faces_of[e].contains(f)) {
+                    return;
+                }
+                d = d.min(x.distance(closest_point_on_segment(x, a, b)));
+            });
+            d
+        };
+        let mut samples = Vec::new();
+        for (e, ep) in edges.iter().enumerate() {
+            if model.edges[e].degenerate || faces_of[e].is_empty() {
+                continue;
+            }
+            let pts: Vec<DVec3> = ep.ids.iter().map(|&v| vertices[v as usize]).collect();
+            // the size the width asks for at x, if under the size asked for there
+            let want = |x: DVec3| -> Option<f64> {
+                let h = inner.size_at(x);
+                if !(h.is_finite() && h > 0.0) {
+                    return None;
+                }
+                let w = width(e, x, h / WIDTH_FACTOR);
+                let s = (WIDTH_FACTOR * w).max(FLOOR * h);
+                (s < h).then_some(s)
+            };
+            for w in pts.windows(2) {
+                // pieces no longer than the size at their ends, then halved where the width
+                // asks for less than the piece is long
+                let (a, b) = (w[0], w[1]);
+                let h = inner.size_at(a).min(inner.size_at(b));
+                let n = if h > 0.0 && h.is_finite() { ((a.distance(b) / h).ceil() as usize).clamp(1, 4096) } else { 1 };
+                for k in 0..n {
+                    let (p, q) = (a.lerp(b, k as f64 / n as f64), a.lerp(b, (k + 1) as f64 / n as f64));
+                    sample_piece(&want, p, q, 0, &mut samples);
+                }
+            }
+            if let Some(&last) = pts.last() {
+                if let Some(s) = want(last) {
+                    samples.push((last, s));
+                }
+            }
+        }
+        samples.sort_by(|x, y| x.0.x.total_cmp(&y.0.x).then(x.0.y.total_cmp(&y.0.y)).then(x.0.z.total_cmp(&y.0.z)).then(x.1.total_cmp(&y.1)));
+        samples.dedup();
+        // a sample matters where its size plus the distance is under the size asked for
+        let bvh = Bvh::build(samples.iter().enumerate().map(|(i, &(x, s))| {
+            let r = (inner.size_at(x) - s).max(0.0);
+            (i as u32, Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) })
+        }));
+        FeatureSize { inner, samples, bvh }
+    }
+
+    /// Sample points in all (for reports and tests).
+    pub fn len(&self) -> usize {
+        self.samples.len()
+    }
+}
+
+/// Samples the piece `p`-`q` of an edge: its start, and its halves again where the width at
+/// either end asks for a size under the piece's length.
+fn sample_piece(want: &dyn Fn(DVec3) -> Option<f64>, p: DVec3, q: DVec3, depth: u32, out: &mut Vec<(DVec3, f64)>) {
+    let (sp, sq) = (want(p), want(q));
+    let len = p.distance(q);
+    let small = sp.into_iter().chain(sq).fold(f64::INFINITY, f64::min);
+    if depth < MAX_DEPTH && small < len {
+        let m = p.lerp(q, 0.5);
+        sample_piece(want, p, m, depth + 1, out);
+        sample_piece(want, m, q, depth + 1, out);
+    } else if let Some(s) = sp {
+        out.push((p, s));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::size_field::UniformSize;
+
+    #[test]
+    fn a_narrow_strip_asks_for_its_width_and_a_wide_face_for_nothing() {
+        // a bracket 0.4 thick: its side faces are strips 0.4 wide
+        let thin = crate::cad::parts::Bracket { thickness: 0.4, ..Default::default() }.build().unwrap();
+        let t = super::super::tessellate(&thin, &super::super::TessellateOptions::default());
+        let inner = UniformSize(5.0);
+        let f = FeatureSize::new(&thin, &t.edges, &t.surface.vertices, &inner);
+        assert!(f.len() > 0);
+        // on a long edge of a side, 1.5 times the thickness
+        let h = f.size_at(DVec3::new(40.0, 0.0, 0.0));
+        assert!((h - 0.6).abs() < 0.05, "{h}");
+        // on the top face, 5 from the sides: the size asked for (0.6 + 5 is more)
+        assert_eq!(f.size_at(DVec3::new(5.0, 5.0, 0.4)), 5.0);
+        // the default bracket (8 thick, holes 10.5 from the sides) asks for nothing more
+        let plain = crate::cad::parts::Bracket::default().build().unwrap();
+        let t = super::super::tessellate(&plain, &super::super::TessellateOptions::default());
+        let f = FeatureSize::new(&plain, &t.edges, &t.surface.vertices, &inner);
+        assert_eq!(f.len(), 0);
+    }
+}
