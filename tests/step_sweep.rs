@@ -1,7 +1,7 @@
 //! The STEP sweep (`shared/step_sweep`: real exports of many CAD systems): every file whose
 //! tessellation fepre certifies is meshed at `fepre mesh`'s defaults, and a table (by file:
 //! solids, tets, dihedral angles, tets under 1°, seconds, or the error) is written to
-//! `target/step_sweep.md` (`tools/step_sweep_table.sh` copies it into `docs/benchmarks.md`).
+//! `target/step_sweep.md` (copied by hand into `docs/benchmarks.md`, with the date).
 //!
 //! Asserted, as it holds today and must keep holding: every mesh validates, and the report's
 //! counts of tets under 1° and 5° are those counted here, independently, from the tets (so no
