@@ -70,11 +70,16 @@ pub struct MeshOptions {
     /// boundary recovery puts on it are then merged back where they can be, as with
     /// `keep_surface`, and the others stay (their triangles inherit their tags).
     pub presize: bool,
+    /// Let the optimisation slide boundary vertices where the boundary stays as it is: in
+    /// the plane of a flat face, along a straight edge between two flat faces
+    /// ([`crate::mesh3d::optimize::OptimizeOptions::slide_boundary`]). Never with
+    /// `keep_surface`; in an assembly, never on faces in contact with another solid.
+    pub slide_boundary: bool,
 }
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, keep_surface: false, seed: 0x5eed, optimize: true, presize: true }
+        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, keep_surface: false, seed: 0x5eed, optimize: true, presize: true, slide_boundary: true }
     }
 }
 
@@ -97,6 +102,11 @@ impl MeshOptions {
     /// Sets [`MeshOptions::keep_surface`].
     pub fn with_keep_surface(mut self, keep: bool) -> Self {
         self.keep_surface = keep;
+        self
+    }
+    /// Sets [`MeshOptions::slide_boundary`].
+    pub fn with_boundary_sliding(mut self, slide: bool) -> Self {
+        self.slide_boundary = slide;
         self
     }
     /// Sets [`MeshOptions::presize`].
@@ -274,6 +284,18 @@ pub fn mesh_surface(
     size: &dyn SizeField,
     options: &MeshOptions,
 ) -> Result<(TetMesh, MeshReport), MeshingError> {
+    mesh_surface_pinned(surface, seeds, size, options, &[])
+}
+
+/// [`mesh_surface`] with the vertices of faces tagged `pinned` kept where they are (an
+/// assembly's faces in contact with another solid, whose nodes must stay shared or tied).
+pub(crate) fn mesh_surface_pinned(
+    surface: &TriSurface,
+    seeds: &Seeds,
+    size: &dyn SizeField,
+    options: &MeshOptions,
+    pinned: &[FaceId],
+) -> Result<(TetMesh, MeshReport), MeshingError> {
     let start = Instant::now();
     let mut report = MeshReport::default();
     let mut stage = |name: &str, t: &mut Instant| {
@@ -373,7 +395,9 @@ pub fn mesh_surface(
             // hopeless inputs (tiny input angles) must not take forever: a count of attempts
             // proportional to the tets, never a time, so that the mesh is the same on any
             // machine under any load
-            .with_max_attempts(Some(mesh.tets.len() / TETS_PER_OPTIMIZE_ATTEMPT + 10_000));
+            .with_max_attempts(Some(mesh.tets.len() / TETS_PER_OPTIMIZE_ATTEMPT + 10_000))
+            .with_boundary_sliding(options.slide_boundary && !options.keep_surface)
+            .with_pinned_faces(pinned.to_vec());
         let r = crate::mesh3d::optimize::optimize(&mut mesh, &opts).map_err(|e| MeshingError::Internal(e.to_string()))?;
         report.optimize = Some(r);
         stage("optimize", &mut clock);

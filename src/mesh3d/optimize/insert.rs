@@ -1,7 +1,8 @@
 //! Vertex insertion, for bad tets that flips and smoothing cannot improve (typically slivers
 //! whose four vertices are fixed).
 //!
-//! A new vertex `p` goes at the circumcentre of the bad tet (or, failing that, its centroid).
+//! A new vertex `p` goes at the circumcentre of the bad tet (or, failing that, its centroid, or
+//! above one of its constrained faces at the height of a well-shaped tet on it).
 //! Its cavity starts from the tet containing `p`, found by a walk decided with exact
 //! [`orient3d`](crate::core::predicates::orient3d), and grows over unconstrained faces to the
 //! tets whose circumsphere contains `p` (exact [`insphere`](crate::core::predicates::insphere));
@@ -22,6 +23,9 @@ use glam::DVec3;
 
 /// The most tets a cavity may hold.
 const MAX_CAVITY: usize = 48;
+/// Heights above a tet's constrained face, in mean edges of the face, of the points tried
+/// there (0.82 is a regular tet's height).
+const ABOVE_WALL: [f64; 2] = [0.8, 0.5];
 /// The most steps of the point-location walk.
 const MAX_WALK: usize = 64;
 
@@ -134,7 +138,22 @@ impl Inserter {
         let tet = w.tets[t as usize];
         let c = w.corners(&tet);
         let centroid = (c[0] + c[1] + c[2] + c[3]) * 0.25;
-        let candidates = [circumcentre(&c), Some(centroid)];
+        let mut candidates = vec![circumcentre(&c), Some(centroid)];
+        // above each constrained face, at the height of a well-shaped tet on it: a sliver on a
+        // wall (its fourth vertex near the wall's plane, its centre far off or behind the wall)
+        // gets a vertex of its own there
+        for (k, f) in TET_FACES.iter().enumerate() {
+            if !w.constrained(t, k) {
+                continue;
+            }
+            let [a, b, d] = f.map(|i| c[i]);
+            let n = (d - a).cross(b - a).normalize_or_zero(); // into the tet
+            let edge = (a.distance(b) + b.distance(d) + d.distance(a)) / 3.0;
+            let g = (a + b + d) / 3.0;
+            for h in ABOVE_WALL {
+                candidates.push(Some(g + n * (h * edge)));
+            }
+        }
         for p in candidates.into_iter().flatten() {
             // a circumcentre far away is of no use
             if p.distance(centroid) > 2.0 * tet_circumradius(&c) {

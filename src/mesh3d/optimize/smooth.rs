@@ -14,13 +14,16 @@
 //!    [`orient3d`](crate::core::predicates::orient3d) at the very position that is kept;
 //! 3. this repeats while the score rises.
 //!
-//! Only vertices on no constrained face move (a constrained face's vertices are fixed), so the
-//! boundary, the region interfaces and the union of the star (hence the volume, up to rounding)
-//! stay as they are.
+//! Vertices on no constrained face move freely. A constrained face's vertices are fixed, but
+//! for those that may slide ([`crate::mesh3d::optimize::slide`]): their gradients are projected
+//! on their plane or line and every position tried is put back on it. So the boundary, the
+//! region interfaces and the union of the star (hence the volume, up to rounding) stay as they
+//! are.
 
 use crate::core::Sign;
 use crate::core::predicates::orient3d;
 use crate::mesh3d::optimize::measure::{Term, score, terms_below};
+use crate::mesh3d::optimize::slide::Slide;
 use crate::mesh3d::optimize::work::{Work, local};
 use crate::quality::tetrahedron::tet_radius_edge;
 use glam::DVec3;
@@ -99,7 +102,7 @@ impl Smoother {
 
     /// Loads the star of `v`; false if `v` is fixed or has no star.
     fn load(&mut self, w: &mut Work, v: u32) -> bool {
-        if w.fixed[v as usize] || !w.star(v, &mut self.star) {
+        if (w.fixed[v as usize] && w.slide[v as usize].is_none()) || !w.star(v, &mut self.star) {
             return false;
         }
         self.at.clear();
@@ -113,7 +116,7 @@ impl Smoother {
     /// keep radius-edge ratios within `max(max_re, the star's worst before)`.
     pub(crate) fn try_smooth(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {
         let vi = v as usize;
-        if w.fixed[vi] || self.failed.get(vi).is_some_and(|&f| f != 0 && w.touched[vi] <= f) {
+        if (w.fixed[vi] && w.slide[vi].is_none()) || self.failed.get(vi).is_some_and(|&f| f != 0 && w.touched[vi] <= f) {
             // fixed, or failed before and no tet at it changed since: it would fail again
             return false;
         }
@@ -133,7 +136,8 @@ impl Smoother {
         }
         let x0 = w.pts[v as usize];
         let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
-        let Some((x, f)) = self.optimise(w, x0, f0) else {
+        let slide = if w.fixed[v as usize] { w.slide[v as usize] } else { None };
+        let Some((x, f)) = self.optimise(w, x0, f0, slide) else {
             return false;
         };
         if f <= f0 + MIN_GAIN {
@@ -160,7 +164,7 @@ impl Smoother {
 
     /// Optimises the position of the star's vertex from `x0` (least score `f0`): the best
     /// position found and its least score, every star tet positive there.
-    fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64) -> Option<(DVec3, f64)> {
+    fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64, slide: Option<Slide>) -> Option<(DVec3, f64)> {
         // a length scale: the mean distance to the star's other vertices
         let mut scale = 0.0;
         for s in 0..self.star.len() {
@@ -179,7 +183,7 @@ impl Smoother {
             self.grads.clear();
             for t in &self.terms {
                 if t.value <= f + ACTIVE {
-                    self.grads.push(t.grad);
+                    self.grads.push(slide.map_or(t.grad, |s| s.project(t.grad)));
                 }
             }
             let d = min_norm(&self.grads);
@@ -196,7 +200,7 @@ impl Smoother {
             }
             let mut moved = false;
             for _ in 0..HALVINGS {
-                let y = x + d * alpha;
+                let y = slide.map_or(x + d * alpha, |s| s.snap(x + d * alpha));
                 if let Some(fy) = self.evaluate(w, y, f + MIN_GAIN) {
                     if fy > f + MIN_GAIN {
                         x = y;
@@ -223,7 +227,7 @@ impl Smoother {
         }
         let x0 = w.pts[v as usize];
         let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
-        let Some((x, f)) = self.optimise(w, x0, f0) else {
+        let Some((x, f)) = self.optimise(w, x0, f0, None) else {
             return false;
         };
         if f <= f0 + MIN_GAIN {

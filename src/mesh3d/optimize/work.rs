@@ -14,6 +14,7 @@ use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TetMesh};
 use crate::mesh3d::optimize::measure::{Judged, Targets};
+use crate::mesh3d::optimize::slide::Slide;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -40,8 +41,11 @@ pub(crate) struct Work {
     free: Vec<u32>,
     /// One live tet at each vertex.
     pub v2t: Vec<u32>,
-    /// Vertices of constrained faces: they never move.
+    /// Vertices of constrained faces: they never move, unless they may slide.
     pub fixed: Vec<bool>,
+    /// How each fixed vertex may slide without changing the boundary
+    /// ([`crate::mesh3d::optimize::slide`]); all `None` unless the options allow it.
+    pub slide: Vec<Option<Slide>>,
     /// Per vertex, the [`Work::clock`] of the last change of a tet at it.
     pub touched: Vec<u32>,
     /// Counts the changes (topological or moves), from 1.
@@ -261,6 +265,7 @@ impl Work {
             touched: vec![0; nv],
             clock: 1,
             fixed,
+            slide: vec![None; nv],
             mark: vec![0; nt],
             stamp: 0,
             tg,
@@ -549,6 +554,7 @@ impl Work {
         self.v2t.push(NONE);
         self.touched.push(self.clock);
         self.fixed.push(false);
+        self.slide.push(None);
         (self.pts.len() - 1) as u32
     }
 
@@ -559,6 +565,7 @@ impl Work {
             self.v2t.pop();
             self.touched.pop();
             self.fixed.pop();
+            self.slide.pop();
         }
     }
 

@@ -163,6 +163,7 @@ fn merge_optimize(a: &OptimizeReport, b: &OptimizeReport) -> OptimizeReport {
         flips44: a.flips44 + b.flips44,
         edge_removals: a.edge_removals + b.edge_removals,
         smoothing_moves: a.smoothing_moves + b.smoothing_moves,
+        boundary_moves: a.boundary_moves + b.boundary_moves,
         insertions: a.insertions + b.insertions,
         passes: a.passes.max(b.passes),
         attempts: a.attempts + b.attempts,

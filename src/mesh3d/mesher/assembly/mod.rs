@@ -8,7 +8,7 @@
 //! 2. triangles of different solids within the gap of each other are paired (one BVH over
 //!    all of them); [`overlap`] refuses solids whose interiors overlap deeper than the gap,
 //!    [`contact`] measures the area over which facing faces touch, per pair of faces;
-//! 3. each solid is meshed on its own by [`mesh_surface`] (in parallel, results in solid
+//! 3. each solid is meshed on its own by [`mesh_surface`](crate::mesh3d::mesher::mesh_surface) (in parallel, results in solid
 //!    order: the same mesh for any thread count), which always works for solids that only
 //!    touch;
 //! 4. [`merge`] makes one mesh: region tag and name per solid, face tags kept, and where two
@@ -25,7 +25,7 @@ use crate::core::bvh::Bvh;
 use crate::core::intersection::is_degenerate;
 use crate::core::{Aabb, FaceId, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{MeshOptions, MeshReport, MeshingError, Seeds, input, mesh_surface};
+use crate::mesh3d::mesher::{MeshOptions, MeshReport, MeshingError, Seeds, input, mesh_surface_pinned};
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -140,7 +140,16 @@ pub fn mesh_solids(surface: &TriSurface, solids: &Solids, gap: f64, size: &dyn S
             if s > first_failed.load(Ordering::Relaxed) {
                 return None;
             }
-            let r = mesh_surface(&p.surface, &Seeds::default(), size, options).map_err(|e| in_solid(s, p, e));
+            // faces in contact keep their vertices: their nodes are merged with the other
+            // solid's where the triangles coincide, or tied
+            let tag = solids.solids[s].tag;
+            let pinned: Vec<FaceId> = contacts
+                .iter()
+                .flat_map(|c| [(c.solid_a, c.face_a), (c.solid_b, c.face_b)])
+                .filter(|&(r, _)| r == tag)
+                .map(|(_, f)| f)
+                .collect();
+            let r = mesh_surface_pinned(&p.surface, &Seeds::default(), size, options, &pinned).map_err(|e| in_solid(s, p, e));
             if r.is_err() {
                 first_failed.fetch_min(s, Ordering::Relaxed);
             }
