@@ -40,6 +40,11 @@ pub struct MeshSummary {
     pub tets_under_5_deg: usize,
     /// Tets with a dihedral angle under 1°.
     pub tets_under_1_deg: usize,
+    /// Of the tets under 5°, those that touch no input angle under 5° (see
+    /// [`crate::quality::worst_tet::touches_angle_below`]): the ones the input does not explain.
+    pub tets_under_5_deg_unexplained: usize,
+    /// Of the tets under 1°, those that touch no input angle under 1°.
+    pub tets_under_1_deg_unexplained: usize,
     /// Near-degenerate tets (volume-length ratio under
     /// [`crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH`]).
     pub near_degenerate: usize,
@@ -92,6 +97,11 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
     let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
+    let (unexplained_5, unexplained_1) = if bound >= 5.0 {
+        unexplained(mesh, &angles)
+    } else {
+        unexplained(mesh, &surface.map(|s| small_input_angles(s, 5.0, !plan.mesh.keep_surface)).unwrap_or_default())
+    };
     let r_bound = plan.mesh.max_radius_edge;
     let above = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
     let opt = report.optimize.as_ref();
@@ -105,6 +115,8 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         max_radius_edge: q.max_radius_edge,
         tets_under_5_deg: q.tets_min_dihedral_below_5,
         tets_under_1_deg: q.tets_min_dihedral_below_1,
+        tets_under_5_deg_unexplained: unexplained_5,
+        tets_under_1_deg_unexplained: unexplained_1,
         near_degenerate: q.near_degenerate,
         refinement_stopped: report.refinement_stopped,
         refinement_stop: report.refinement_stop.clone(),
@@ -119,6 +131,28 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         input_caps_repaired: report.input_caps_repaired,
     };
     Summarised { summary, quality: q, boundary, angles }
+}
+
+/// The tets under 5° and under 1° that touch no input angle as small (`angles` smallest first;
+/// every angle under 5° among them).
+fn unexplained(mesh: &TetMesh, angles: &[InputAngle]) -> (usize, usize) {
+    use crate::quality::tetrahedron::tet_min_max_dihedral;
+    use crate::quality::worst_tet::touches_angle_below;
+    let (mut five, mut one) = (0, 0);
+    for t in &mesh.tets {
+        let p = t.map(|v| mesh.vertices[v as usize]);
+        let lo = tet_min_max_dihedral(&p).0;
+        if !(lo < 5.0) {
+            continue;
+        }
+        if !touches_angle_below(&p, angles, 5.0) {
+            five += 1;
+        }
+        if lo < 1.0 && !touches_angle_below(&p, angles, 1.0) {
+            one += 1;
+        }
+    }
+    (five, one)
 }
 
 /// Names a face tag: the face table's unique name, else the mesh's.

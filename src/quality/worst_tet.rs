@@ -198,6 +198,15 @@ impl BoundaryIndex {
     }
 }
 
+/// Whether the tet with corners `p` touches one of `angles` (smallest first, as
+/// [`crate::quality::input_angles::small_input_angles`] lists them) smaller than `below`
+/// degrees: one of its vertices lies on the angle's edge or vertex, within [`TOUCH_RELATIVE`]
+/// of the tet's longest edge. There the input itself bounds the tet's angles.
+pub fn touches_angle_below(p: &[DVec3; 4], angles: &[InputAngle], below: f64) -> bool {
+    let longest = TET_EDGES.iter().map(|[i, j]| p[*i].distance(p[*j])).fold(0.0, f64::max);
+    angles.iter().take_while(|a| a.angle_deg < below).any(|a| p.iter().any(|&v| a.distance(v) <= TOUCH_RELATIVE * longest))
+}
+
 /// A length or coordinate with six significant digits, without trailing zeros.
 pub fn fmt_num(x: f64) -> String {
     if !x.is_finite() {
