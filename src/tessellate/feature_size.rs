@@ -145,8 +145,9 @@ impl<'a> FeatureSize<'a> {
         FeatureSize { inner, samples, bvh }
     }
 
-    /// Sample points in all (for reports and tests).
-    pub fn len(&self) -> usize {
+    /// Sample points in all.
+    #[cfg(test)]
+    fn samples(&self) -> usize {
         self.samples.len()
     }
 }
@@ -178,7 +179,7 @@ mod tests {
         let t = super::super::tessellate(&thin, &super::super::TessellateOptions::default());
         let inner = UniformSize(5.0);
         let f = FeatureSize::new(&thin, &t.edges, &t.surface.vertices, &inner);
-        assert!(f.len() > 0);
+        assert!(f.samples() > 0);
         // on a long edge of a side, 1.5 times the thickness
         let h = f.size_at(DVec3::new(40.0, 0.0, 0.0));
         assert!((h - 0.6).abs() < 0.05, "{h}");
@@ -188,6 +189,6 @@ mod tests {
         let plain = crate::cad::parts::Bracket::default().build().unwrap();
         let t = super::super::tessellate(&plain, &super::super::TessellateOptions::default());
         let f = FeatureSize::new(&plain, &t.edges, &t.surface.vertices, &inner);
-        assert_eq!(f.len(), 0);
+        assert_eq!(f.samples(), 0);
     }
 }
