@@ -165,6 +165,7 @@ fn merge_optimize(a: &OptimizeReport, b: &OptimizeReport) -> OptimizeReport {
         smoothing_moves: a.smoothing_moves + b.smoothing_moves,
         boundary_moves: a.boundary_moves + b.boundary_moves,
         insertions: a.insertions + b.insertions,
+        insertion_attempts: a.insertion_attempts + b.insertion_attempts,
         passes: a.passes.max(b.passes),
         attempts: a.attempts + b.attempts,
         out_of_attempts: a.out_of_attempts || b.out_of_attempts,
