@@ -97,7 +97,10 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
     let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
-    let (unexplained_5, unexplained_1) = if bound >= 5.0 {
+    // a second pass over the tets only where some are under 5°
+    let (unexplained_5, unexplained_1) = if q.tets_min_dihedral_below_5 == 0 {
+        (0, 0)
+    } else if bound >= 5.0 {
         unexplained(mesh, &angles)
     } else {
         unexplained(mesh, &surface.map(|s| small_input_angles(s, 5.0, !plan.mesh.keep_surface)).unwrap_or_default())

@@ -22,7 +22,7 @@ use crate::mesh::TetMesh;
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh3d::optimize::work::Work;
 use glam::DVec3;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Normals this close to parallel (the sine of their angle), and vertices this close to the
 /// plane (relative to the longest edge of the faces at the vertex), count as flat.
@@ -73,7 +73,7 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId]) -> Vec<Option<
     let mut out = vec![None; nv];
     let tag_of: FxHashMap<[u32; 3], u32> = mesh.boundary.iter().zip(&mesh.face_tags).map(|(t, g)| (sorted3(*t).0, g.0)).collect();
     // every constrained face once (an interface face is seen from both of its tets)
-    let mut seen: FxHashMap<[u32; 3], ()> = FxHashMap::default();
+    let mut seen: FxHashSet<[u32; 3]> = FxHashSet::default();
     let mut faces: Vec<Face> = Vec::new();
     for (t, tet) in w.tets.iter().enumerate() {
         if w.cons[t] == 0 || tet[0] == NONE {
@@ -85,7 +85,7 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId]) -> Vec<Option<
             }
             let v = f.map(|i| tet[i]);
             let key = sorted3(v).0;
-            if seen.insert(key, ()).is_some() {
+            if !seen.insert(key) {
                 continue;
             }
             let other = w.nbr[t][k];

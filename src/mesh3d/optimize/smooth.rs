@@ -102,7 +102,7 @@ impl Smoother {
 
     /// Loads the star of `v`; false if `v` is fixed or has no star.
     fn load(&mut self, w: &mut Work, v: u32) -> bool {
-        if (w.fixed[v as usize] && w.slide[v as usize].is_none()) || !w.star(v, &mut self.star) {
+        if !w.movable(v) || !w.star(v, &mut self.star) {
             return false;
         }
         self.at.clear();
@@ -116,7 +116,7 @@ impl Smoother {
     /// keep radius-edge ratios within `max(max_re, the star's worst before)`.
     pub(crate) fn try_smooth(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {
         let vi = v as usize;
-        if (w.fixed[vi] && w.slide[vi].is_none()) || self.failed.get(vi).is_some_and(|&f| f != 0 && w.touched[vi] <= f) {
+        if !w.movable(v) || self.failed.get(vi).is_some_and(|&f| f != 0 && w.touched[vi] <= f) {
             // fixed, or failed before and no tet at it changed since: it would fail again
             return false;
         }
@@ -136,7 +136,7 @@ impl Smoother {
         }
         let x0 = w.pts[v as usize];
         let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
-        let slide = if w.fixed[v as usize] { w.slide[v as usize] } else { None };
+        let slide = w.slide[v as usize];
         let Some((x, f)) = self.optimise(w, x0, f0, slide) else {
             return false;
         };

@@ -291,6 +291,12 @@ impl Work {
         mesh.region_tags = regions;
     }
 
+    /// Whether vertex `v` may move: on no constrained face, or allowed to slide.
+    #[inline]
+    pub(crate) fn movable(&self, v: u32) -> bool {
+        !self.fixed[v as usize] || self.slide[v as usize].is_some()
+    }
+
     /// Whether slot `t` holds a live tet.
     #[inline]
     pub(crate) fn alive(&self, t: u32) -> bool {
