@@ -236,25 +236,38 @@ fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut Vec<DVe
     Ok(out)
 }
 
-/// Points strictly between `a` and `b` on the straight `(u, v)` segment, so that its image on
-/// the surface is within `tol` of the chords between them (midpoint test after uniform
-/// subdivision, at most 256 pieces).
-fn iso_points(surf: &Surface, a: DVec2, b: DVec2, tol: f64) -> Vec<DVec2> {
+/// Points strictly between `a` and `b` on the straight `(u, v)` segment of a cut, as an
+/// edge gets them: the image on the surface within `tol` of the chords (midpoint test after
+/// uniform subdivision, at most 256 pieces), no piece longer than `max_straight` (the rule
+/// for a straight edge on a curved face), and with a size field spaced by it. Without the
+/// last two a cut along a cylinder, whose image is a straight line, was one chord as long as
+/// the cylinder beside sized points: a fan of needles that the volume mesh cannot repair.
+fn iso_points(surf: &Surface, a: DVec2, b: DVec2, tol: f64, max_straight: f64, size: Option<&dyn SizeField>) -> Vec<DVec2> {
     let at = |t: f64| a + (b - a) * t;
+    let point = |t: f64| {
+        let uv = at(t);
+        surf.point(uv.x, uv.y)
+    };
     let mut n = 1usize;
     while n < 256 {
         let ok = (0..n).all(|k| {
             let (t0, t1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
-            let (p0, p1) = (surf.point(at(t0).x, at(t0).y), surf.point(at(t1).x, at(t1).y));
-            let pm = surf.point(at(0.5 * (t0 + t1)).x, at(0.5 * (t0 + t1)).y);
-            (pm - 0.5 * (p0 + p1)).length() <= tol
+            (point(0.5 * (t0 + t1)) - 0.5 * (point(t0) + point(t1))).length() <= tol
         });
         if ok {
             break;
         }
         n *= 2;
     }
-    (1..n).map(|k| at(k as f64 / n as f64)).collect()
+    if max_straight > 0.0 {
+        let len: f64 = (0..n).map(|k| point(k as f64 / n as f64).distance(point((k + 1) as f64 / n as f64))).sum();
+        n = n.max(((len / max_straight).ceil() as usize).min(256));
+    }
+    let mut ts: Vec<f64> = (0..=n).map(|k| k as f64 / n as f64).collect();
+    if let Some(size) = size {
+        ts = super::sizing::edge_params(&point, &ts, size);
+    }
+    ts[1..ts.len() - 1].iter().map(|&t| at(t)).collect()
 }
 
 /// Signed area of a polygon (positive counter-clockwise).
@@ -268,7 +281,8 @@ fn signed_area(p: &[DVec2]) -> f64 {
 /// such as a cylinder between two circles) or to a pole line (one such loop: a cone up to
 /// its apex, a spherical cap). The cut runs between existing boundary vertices, so no vertex
 /// is added on an edge and the surface stays watertight.
-fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, vertices: &mut Vec<DVec3>) -> Result<Vec<UvLoop>, String> {
+#[allow(clippy::too_many_arguments)]
+fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<Vec<UvLoop>, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let dom = surf.domain();
@@ -341,7 +355,7 @@ fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, vertices
             // b_seq runs from b0 to b0 - ga; shifted by +ga it runs from b0 + ga to b0
             // points along the cut from a0 to b0, shared by its two sides (u and u + ga)
             let b0 = b_seq[0].0;
-            let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, b0, tol)
+            let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, b0, tol, max_straight, size)
                 .into_iter()
                 .map(|uv| {
                     vertices.push(surf.point(uv.x, uv.y));
@@ -399,7 +413,7 @@ fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, vertices
                 }
             };
             // points along the cut from a0 to the pole, shared by its two sides
-            let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, DVec2::new(a0.0.x, vp), tol)
+            let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, DVec2::new(a0.0.x, vp), tol, max_straight, size)
                 .into_iter()
                 .map(|uv| {
                     vertices.push(surf.point(uv.x, uv.y));
@@ -510,10 +524,11 @@ pub struct FaceMesh {
 ///
 /// # Errors
 /// A message saying why the face could not be meshed.
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
+#[allow(clippy::too_many_arguments)]
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
-    let loops = uv_loops(model, fid, edges, tol, vertices)?;
+    let loops = uv_loops(model, fid, edges, tol, max_straight, size, vertices)?;
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
     for (p, _) in loops.iter().flatten() {
         lo = lo.min(*p);

@@ -171,7 +171,7 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
     let mut domains = Vec::with_capacity(model.faces.len());
     for fid in model.face_ids() {
         let face = model.face(fid);
-        match face_mesh::mesh_face(model, fid, &edges, tol, opts, size, &mut vertices) {
+        match face_mesh::mesh_face(model, fid, &edges, tol, max_straight, opts, size, &mut vertices) {
             Ok(fm) => {
                 let start = triangles.len();
                 face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));

@@ -146,6 +146,11 @@ fn corner_angles(p: [DVec3; 3]) -> [f64; 3] {
     })
 }
 
+/// The longest triangle edge of a surface.
+fn longest_edge(s: &crate::mesh::TriSurface) -> f64 {
+    s.triangles.iter().flat_map(|t| [0, 1, 2].map(|k| s.vertices[t[k] as usize].distance(s.vertices[t[(k + 1) % 3] as usize]))).fold(0.0, f64::max)
+}
+
 #[test]
 fn a_size_field_gives_well_shaped_triangles_of_the_size() {
     // the bracket (planes, holes, a fillet): chord-only triangles are long and thin along the
@@ -163,8 +168,49 @@ fn a_size_field_gives_well_shaped_triangles_of_the_size() {
     assert!(thin(&plain) > 0.05, "chord-only thin share {}", thin(&plain));
     assert!(thin(&sized) < 0.01, "sized thin share {}", thin(&sized));
     let s = &sized.surface;
-    let longest = s.triangles.iter().flat_map(|t| [0, 1, 2].map(|k| s.vertices[t[k] as usize].distance(s.vertices[t[(k + 1) % 3] as usize]))).fold(0.0, f64::max);
+    let longest = longest_edge(s);
     assert!(longest <= 2.0 * h, "longest edge {longest} for size {h}");
     let c = certificate::certify(m, &sized, &certificate::CertifyOptions::default());
     assert!(c.passed, "{:?}", c.failures);
+}
+
+/// A rod whose cylinder face is bounded by its two end circles only (no seam edge, as some
+/// CAD systems write it): the face mesher joins the circles by a cut of its own.
+const ROD: &str = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('rod','',(''),(''),'','sys','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=DIRECTION('',(0.,0.,1.));\n#3=DIRECTION('',(1.,0.,0.));\n\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n#5=CYLINDRICAL_SURFACE('',#4,5.);\n#6=CIRCLE('',#4,5.);\n\
+#7=CARTESIAN_POINT('',(5.,0.,0.));\n#8=VERTEX_POINT('',#7);\n#9=EDGE_CURVE('',#8,#8,#6,.T.);\n\
+#10=CARTESIAN_POINT('',(0.,0.,200.));\n#11=AXIS2_PLACEMENT_3D('',#10,#2,#3);\n#12=CIRCLE('',#11,5.);\n\
+#13=CARTESIAN_POINT('',(5.,0.,200.));\n#14=VERTEX_POINT('',#13);\n#15=EDGE_CURVE('',#14,#14,#12,.T.);\n\
+#16=ORIENTED_EDGE('',*,*,#9,.T.);\n#17=EDGE_LOOP('',(#16));\n#18=FACE_BOUND('',#17,.T.);\n\
+#19=ORIENTED_EDGE('',*,*,#15,.F.);\n#20=EDGE_LOOP('',(#19));\n#21=FACE_BOUND('',#20,.T.);\n\
+#22=ADVANCED_FACE('',(#18,#21),#5,.T.);\n\
+#24=DIRECTION('',(0.,0.,-1.));\n#25=AXIS2_PLACEMENT_3D('',#1,#24,#3);\n#26=PLANE('',#25);\n\
+#27=ORIENTED_EDGE('',*,*,#9,.F.);\n#28=EDGE_LOOP('',(#27));\n#29=FACE_OUTER_BOUND('',#28,.T.);\n#30=ADVANCED_FACE('',(#29),#26,.T.);\n\
+#31=AXIS2_PLACEMENT_3D('',#10,#2,#3);\n#32=PLANE('',#31);\n\
+#33=ORIENTED_EDGE('',*,*,#15,.T.);\n#34=EDGE_LOOP('',(#33));\n#35=FACE_OUTER_BOUND('',#34,.T.);\n#36=ADVANCED_FACE('',(#35),#32,.T.);\n\
+#37=CLOSED_SHELL('',(#22,#30,#36));\n#38=MANIFOLD_SOLID_BREP('',#37);\n\
+#40=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\n\
+#41=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#40)) REPRESENTATION_CONTEXT('','') );\n\
+#42=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#4,#38),#41);\nENDSEC;\nEND-ISO-10303-21;\n";
+
+#[test]
+fn a_cut_around_a_cylinder_is_sized_like_an_edge() {
+    // the cut between the two circles used to be one chord as long as the rod beside the
+    // sized points of the face: a fan of needles 200 long on a face sized to 10
+    let m = crate::cad::step::read_bytes(std::path::Path::new("rod.stp"), ROD.as_bytes()).unwrap();
+    let h = 10.0;
+    let sized = super::tessellate_sized(&m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(h));
+    let s = &sized.surface;
+    let longest = longest_edge(s);
+    assert!(longest <= 2.0 * h, "longest edge {longest} for size {h}");
+    let sharpest = s.triangles.iter().flat_map(|t| corner_angles(t.map(|i| s.vertices[i as usize]))).fold(180.0, f64::min);
+    assert!(sharpest > 10.0, "a corner of {sharpest}°");
+    let c = certificate::certify(&m, &sized, &certificate::CertifyOptions::default());
+    assert!(c.passed, "{:?}", c.failures);
+    // chord-only, the cut is cut like a straight edge on a curved face
+    let plain = tessellate(&m, &TessellateOptions::default());
+    let s = &plain.surface;
+    let longest = longest_edge(s);
+    assert!(longest < 100.0, "longest edge {longest} of a rod 200 long");
 }
