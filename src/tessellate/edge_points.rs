@@ -19,7 +19,8 @@ pub struct EdgePoints {
 ///
 /// A straight edge is split into pieces no longer than `max_straight` (a straight edge on a
 /// curved face, such as a cone's generator, would otherwise make long thin triangles there:
-/// near an apex they fold over the small ones).
+/// near an apex they fold over the small ones), and so is a curve that lies on
+/// its chord (a line written as a B-spline).
 ///
 /// With a size field, the points are then spaced by it (the integral of `1 / h` along the
 /// edge; see [`super::tessellate_sized`]), never farther apart than the chord and angle
@@ -40,6 +41,19 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
         for k in 0..n0 {
             let (t0, t1) = (a + (b - a) * k as f64 / n0 as f64, a + (b - a) * (k + 1) as f64 / n0 as f64);
             refine(&|t| curve.point(t), &|t| curve.derivative(t), t0, t1, tol, cos_max, 0, &mut ts);
+        }
+        let (p0, p1) = (curve.point(a), curve.point(b));
+        let on_chord = |t: f64| (curve.point(t) - p0).reject_from(p1 - p0).length() <= tol;
+        if max_straight > 0.0 && p0 != p1 && ts.iter().all(|&t| on_chord(t)) {
+            // a curve that is a straight line (a B-spline written for one) gets the pieces
+            // of a straight edge on a curved face
+            let mut split = vec![ts[0]];
+            for w in ts.windows(2) {
+                let len = (curve.point(w[1]) - curve.point(w[0])).length();
+                let n = ((len / max_straight).ceil() as usize).clamp(1, 64);
+                split.extend((1..=n).map(|k| if k == n { w[1] } else { w[0] + (w[1] - w[0]) * k as f64 / n as f64 }));
+            }
+            ts = split;
         }
     } else {
         let len = (curve.point(b) - curve.point(a)).length();

@@ -4,7 +4,9 @@
 //! A new vertex `p` goes at the circumcentre of the bad tet (or, failing that, its centroid, or
 //! above one of its constrained faces at the height of a well-shaped tet on it).
 //! Its cavity starts from the tet containing `p`, found by a walk decided with exact
-//! [`orient3d`](crate::core::predicates::orient3d), and grows over unconstrained faces to the
+//! [`orient3d`](crate::core::predicates::orient3d), and from the bad tet itself (a flat tet on
+//! a curved boundary, all four vertices on it, may hold neither `p` nor `p` in its
+//! circumsphere, whose centre lies beyond the wall), and grows over unconstrained faces to the
 //! tets whose circumsphere contains `p` (exact [`insphere`](crate::core::predicates::insphere));
 //! then, while some cavity face does not see `p` strictly (exact), the tet beyond it joins the
 //! cavity. The cavity never crosses a constrained face, so `p` is interior to one region. The
@@ -73,12 +75,19 @@ impl Inserter {
         None
     }
 
-    /// Grows the cavity of `p` from `start`; false if it gets too large.
-    fn grow(&mut self, w: &mut Work, start: u32, p: DVec3) -> bool {
+    /// Grows the cavity of `p` from `start` and the bad tet `bad` (which may not contain `p`
+    /// nor have it in its circumsphere: a flat tet on the boundary, whose circumcentre lies
+    /// beyond the wall, is taken out by a point below it only so); false if it gets too large
+    /// or cannot be made star-shaped.
+    fn grow(&mut self, w: &mut Work, start: u32, bad: u32, p: DVec3) -> bool {
         self.cavity.clear();
         w.new_visit();
-        w.visit(start);
-        self.cavity.push(start);
+        for t in [start, bad] {
+            if !w.visited(t) {
+                w.visit(t);
+                self.cavity.push(t);
+            }
+        }
         let mut i = 0;
         while i < self.cavity.len() {
             let t = self.cavity[i];
@@ -133,6 +142,25 @@ impl Inserter {
         }
     }
 
+    /// The live tet with the vertices of `tet` (in any order), from the star of its first
+    /// vertex; `NONE` if there is none.
+    fn find(&mut self, w: &mut Work, tet: &[u32; 4]) -> u32 {
+        let mut star = std::mem::take(&mut self.star);
+        let mut key = *tet;
+        key.sort_unstable();
+        let found = if w.star(tet[0], &mut star) {
+            star.iter().copied().find(|&s| {
+                let mut v = w.tets[s as usize];
+                v.sort_unstable();
+                v == key
+            })
+        } else {
+            None
+        };
+        self.star = star;
+        found.unwrap_or(NONE)
+    }
+
     /// Tries to insert a vertex for the bad live tet `t`; true if one was inserted (and kept).
     pub(crate) fn try_insert(&mut self, w: &mut Work, sm: &mut Smoother, t: u32, max_re: f64) -> bool {
         let tet = w.tets[t as usize];
@@ -159,9 +187,9 @@ impl Inserter {
             if p.distance(centroid) > 2.0 * tet_circumradius(&c) {
                 continue;
             }
-            // an undone attempt puts the tets back in other slots: walk from one at a corner
-            let start = if w.alive(t) && w.tets[t as usize] == tet { t } else { w.v2t[tet[0] as usize] };
-            if !w.alive(start) {
+            // an undone attempt puts the tets back in other slots: find the bad tet again
+            let start = if w.alive(t) && w.tets[t as usize] == tet { t } else { self.find(w, &tet) };
+            if start == NONE || !w.alive(start) {
                 return false;
             }
             if self.insert_at(w, sm, start, p, max_re) {
@@ -171,11 +199,11 @@ impl Inserter {
         false
     }
 
-    fn insert_at(&mut self, w: &mut Work, sm: &mut Smoother, t: u32, p: DVec3, max_re: f64) -> bool {
-        let Some(start) = self.locate(w, t, p) else {
+    fn insert_at(&mut self, w: &mut Work, sm: &mut Smoother, bad: u32, p: DVec3, max_re: f64) -> bool {
+        let Some(start) = self.locate(w, bad, p) else {
             return false;
         };
-        if !self.grow(w, start, p) {
+        if !self.grow(w, start, bad, p) {
             return false;
         }
         let region = w.region[start as usize];
