@@ -9,7 +9,8 @@
 //! circumsphere, whose centre lies beyond the wall), and grows over unconstrained faces to the
 //! tets whose circumsphere contains `p` (exact [`insphere`](crate::core::predicates::insphere));
 //! then, while some cavity face does not see `p` strictly (exact), the tet beyond it joins the
-//! cavity. The cavity never crosses a constrained face, so `p` is interior to one region. The
+//! cavity. Where that cavity fails (too large, or judged worse), `p` is tried once more with
+//! the least cavity: the two seeds grown only until star-shaped. The cavity never crosses a constrained face, so `p` is interior to one region. The
 //! cavity is replaced by the tets joining its faces to `p`, `p` is smoothed in its new star, and
 //! the insertion is kept only if the least score of the new tets beats that of the cavity and
 //! the radius-edge bound holds; otherwise the old tets are put back and `p` is dropped.
@@ -79,7 +80,7 @@ impl Inserter {
     /// nor have it in its circumsphere: a flat tet on the boundary, whose circumcentre lies
     /// beyond the wall, is taken out by a point below it only so); false if it gets too large
     /// or cannot be made star-shaped.
-    fn grow(&mut self, w: &mut Work, start: u32, bad: u32, p: DVec3) -> bool {
+    fn grow(&mut self, w: &mut Work, start: u32, bad: u32, p: DVec3, delaunay: bool) -> bool {
         self.cavity.clear();
         w.new_visit();
         for t in [start, bad] {
@@ -88,7 +89,7 @@ impl Inserter {
                 self.cavity.push(t);
             }
         }
-        let mut i = 0;
+        let mut i = if delaunay { 0 } else { self.cavity.len() };
         while i < self.cavity.len() {
             let t = self.cavity[i];
             i += 1;
@@ -187,23 +188,28 @@ impl Inserter {
             if p.distance(centroid) > 2.0 * tet_circumradius(&c) {
                 continue;
             }
-            // an undone attempt puts the tets back in other slots: find the bad tet again
-            let start = if w.alive(t) && w.tets[t as usize] == tet { t } else { self.find(w, &tet) };
-            if start == NONE || !w.alive(start) {
-                return false;
-            }
-            if self.insert_at(w, sm, start, p, max_re) {
-                return true;
+            // the Delaunay cavity of p, else the least one (the bad tet and the tet holding p,
+            // grown only until it is star-shaped): a flat tet's neighbours whose spheres hold
+            // p make large cavities, and in them a new tet that fails the judgement
+            for delaunay in [true, false] {
+                // an undone attempt puts the tets back in other slots: find the bad tet again
+                let start = if w.alive(t) && w.tets[t as usize] == tet { t } else { self.find(w, &tet) };
+                if start == NONE || !w.alive(start) {
+                    return false;
+                }
+                if self.insert_at(w, sm, start, p, max_re, delaunay) {
+                    return true;
+                }
             }
         }
         false
     }
 
-    fn insert_at(&mut self, w: &mut Work, sm: &mut Smoother, bad: u32, p: DVec3, max_re: f64) -> bool {
+    fn insert_at(&mut self, w: &mut Work, sm: &mut Smoother, bad: u32, p: DVec3, max_re: f64, delaunay: bool) -> bool {
         let Some(start) = self.locate(w, bad, p) else {
             return false;
         };
-        if !self.grow(w, start, bad, p) {
+        if !self.grow(w, start, bad, p, delaunay) {
             return false;
         }
         let region = w.region[start as usize];
