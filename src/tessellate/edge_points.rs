@@ -47,18 +47,13 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
         if max_straight > 0.0 && p0 != p1 && ts.iter().all(|&t| on_chord(t)) {
             // a curve that is a straight line (a B-spline written for one) gets the pieces
             // of a straight edge on a curved face
-            let mut split = vec![ts[0]];
-            for w in ts.windows(2) {
-                let len = (curve.point(w[1]) - curve.point(w[0])).length();
-                let n = ((len / max_straight).ceil() as usize).clamp(1, 64);
-                split.extend((1..=n).map(|k| if k == n { w[1] } else { w[0] + (w[1] - w[0]) * k as f64 / n as f64 }));
-            }
-            ts = split;
+            ts = split_long(&|t| curve.point(t), &ts, max_straight);
         }
     } else {
-        let len = (curve.point(b) - curve.point(a)).length();
-        let n = if max_straight > 0.0 { ((len / max_straight).ceil() as usize).clamp(1, 64) } else { 1 };
-        ts.extend((1..=n).map(|k| if k == n { b } else { a + (b - a) * k as f64 / n as f64 }));
+        ts.push(b);
+        if max_straight > 0.0 {
+            ts = split_long(&|t| curve.point(t), &ts, max_straight);
+        }
     }
     if let Some(size) = size {
         ts = super::sizing::edge_params(&|t| curve.point(t), &ts, size);
@@ -80,6 +75,17 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
         }
     }
     EdgePoints { ids, params: ts }
+}
+
+/// The parameters `ts` with each piece longer than `max_len` (its chord) cut into equal
+/// parameter steps no longer than that, at most 64.
+fn split_long(p: &dyn Fn(f64) -> DVec3, ts: &[f64], max_len: f64) -> Vec<f64> {
+    let mut out = vec![ts[0]];
+    for w in ts.windows(2) {
+        let n = ((p(w[1]).distance(p(w[0])) / max_len).ceil() as usize).clamp(1, 64);
+        out.extend((1..=n).map(|k| if k == n { w[1] } else { w[0] + (w[1] - w[0]) * k as f64 / n as f64 }));
+    }
+    out
 }
 
 /// Appends the parameters after `t0` up to and including `t1`, splitting where the midpoint

@@ -10,10 +10,11 @@
 //! tets whose circumsphere contains `p` (exact [`insphere`](crate::core::predicates::insphere));
 //! then, while some cavity face does not see `p` strictly (exact), the tet beyond it joins the
 //! cavity. Where that cavity fails (too large, or judged worse), `p` is tried once more with
-//! the least cavity: the two seeds grown only until star-shaped. The cavity never crosses a constrained face, so `p` is interior to one region. The
-//! cavity is replaced by the tets joining its faces to `p`, `p` is smoothed in its new star, and
-//! the insertion is kept only if the least score of the new tets beats that of the cavity and
-//! the radius-edge bound holds; otherwise the old tets are put back and `p` is dropped.
+//! the least cavity: the two seeds grown only until star-shaped. The cavity never crosses a
+//! constrained face, so `p` is interior to one region. The cavity is replaced by the tets
+//! joining its faces to `p`, `p` is smoothed in its new star, and the insertion is kept only if
+//! the least score of the new tets beats that of the cavity and the radius-edge bound holds;
+//! otherwise the old tets are put back and `p` is dropped.
 
 use crate::core::Sign;
 use crate::core::ids::NONE;
@@ -194,7 +195,7 @@ impl Inserter {
             for delaunay in [true, false] {
                 // an undone attempt puts the tets back in other slots: find the bad tet again
                 let start = if w.alive(t) && w.tets[t as usize] == tet { t } else { self.find(w, &tet) };
-                if start == NONE || !w.alive(start) {
+                if start == NONE {
                     return false;
                 }
                 if self.insert_at(w, sm, start, p, max_re, delaunay) {
