@@ -101,6 +101,15 @@ pub enum IoError {
         /// What it cannot hold.
         what: String,
     },
+    /// The data handed to a writer is inconsistent (an array whose length does not match its
+    /// entities, a node index out of range); the message names the array or the element.
+    #[error("{}: cannot write: {message}", path.display())]
+    InvalidData {
+        /// The output file.
+        path: PathBuf,
+        /// What is inconsistent, naming the array or element.
+        message: String,
+    },
     /// Writing failed.
     #[error("{}: cannot write: {source}", path.display())]
     Write {
@@ -138,6 +147,7 @@ impl IoError {
             | IoError::Unsupported { path, .. }
             | IoError::Invalid { path, .. }
             | IoError::NotRepresentable { path, .. }
+            | IoError::InvalidData { path, .. }
             | IoError::Write { path, .. } => path,
         }
     }

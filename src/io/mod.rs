@@ -17,6 +17,10 @@
 //! | VTK XML unstructured grid (`.vtu`) | no | yes | cell data |
 //! | points (`.xyz`) | yes | no | none |
 //!
+//! Results: [`frd`] reads CalculiX's ASCII `.frd` result file into plain arrays (nodes, steps,
+//! fields); [`vtu::write_grid_with_data`] writes FE results (linear or quadratic tets with
+//! point and cell arrays) for ParaView.
+//!
 //! Tags follow [`crate::core::ids`] (0 untagged, made-up tags from 1). Writers that write tag
 //! names (MSH physical names, OBJ groups, ASCII STL solids) make them unique first
 //! ([`crate::core::TagNames::unique`]): the first keeps its name, later ones get `.2`, `.3`.
@@ -24,6 +28,7 @@
 pub mod atomic;
 pub mod common;
 pub mod error;
+pub mod frd;
 pub mod gltf;
 pub mod medit;
 pub mod msh;

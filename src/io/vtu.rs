@@ -11,6 +11,10 @@
 //!   threshold one or the other away in ParaView.
 //!
 //! Tag names have no standard place in VTU and are not written.
+//!
+//! FE results go through [`write_grid_with_data`]: a [`Grid`] of linear (VTK type 10) or
+//! quadratic (type 24) tets and optional triangles, with any number of named `Float64` point
+//! and cell arrays and `Int32` cell arrays, checked for length before anything is written.
 
 use crate::core::{FaceId, RegionId};
 use crate::io::atomic::{write_atomic, write_err};
@@ -25,6 +29,7 @@ use std::path::Path;
 
 const VTK_TRIANGLE: u8 = 5;
 const VTK_TETRA: u8 = 10;
+const VTK_QUADRATIC_TETRA: u8 = 24;
 
 /// Writes a surface: triangles with a `tag` cell array.
 ///
@@ -42,6 +47,182 @@ pub fn write_surface(path: &Path, s: &TriSurface, options: &WriteOptions) -> Res
 pub fn write_volume(path: &Path, m: &TetMesh, options: &WriteOptions) -> Result<(), IoError> {
     let cells = Cells { tets: &m.tets, tet_tags: &m.region_tags, tris: &m.boundary, tri_tags: &m.face_tags, kind: true };
     write_grid(path, &m.vertices, &cells, options)
+}
+
+/// A named array of `Float64` values on the points or the cells of a [`Grid`]: `components`
+/// values per point (or cell), point by point; `values.len()` is the count of points (or
+/// cells) times `components`. One component is a scalar, three a vector, six a symmetric
+/// tensor as CalculiX orders it.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FieldArray<'a> {
+    /// The array's name as ParaView shows it.
+    pub name: &'a str,
+    /// Values per point or cell, at least 1.
+    pub components: usize,
+    /// The values, entity by entity.
+    pub values: &'a [f64],
+}
+
+/// A grid of FE results for [`write_grid_with_data`]: points, linear or quadratic tets, optional
+/// triangles, and named arrays on the points and the cells.
+///
+/// Cells are the tets, then the triangles; cell arrays run over them in that order. A
+/// quadratic tet lists its corners 0–3 and then the nodes on its edges (0,1), (1,2), (0,2),
+/// (0,3), (1,3), (2,3): the Abaqus/CalculiX C3D10 order, which is VTK's `VTK_QUADRATIC_TETRA`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Grid<'a> {
+    /// The points (nodes), written as `Float64`.
+    pub points: &'a [DVec3],
+    /// #T × `nodes_per_tet` point indices, tet by tet.
+    pub tets: &'a [u32],
+    /// 4 (linear tets, VTK type 10) or 10 (quadratic tets, VTK type 24).
+    pub nodes_per_tet: usize,
+    /// Triangles (VTK type 5) written after the tets, e.g. the boundary faces.
+    pub triangles: &'a [[u32; 3]],
+    /// `Float64` arrays with `components` values per point.
+    pub point_data: Vec<FieldArray<'a>>,
+    /// `Float64` arrays with `components` values per cell.
+    pub cell_data: Vec<FieldArray<'a>>,
+    /// `Int32` arrays with one value per cell (region tags, element numbers).
+    pub cell_ints: Vec<(&'a str, &'a [i32])>,
+}
+
+impl<'a> Grid<'a> {
+    /// A grid of `points` and tets of `nodes_per_tet` (4 or 10) nodes each, with no triangles
+    /// and no data.
+    pub fn new(points: &'a [DVec3], tets: &'a [u32], nodes_per_tet: usize) -> Self {
+        Grid { points, tets, nodes_per_tet, triangles: &[], point_data: Vec::new(), cell_data: Vec::new(), cell_ints: Vec::new() }
+    }
+
+    /// Sets [`Grid::triangles`].
+    pub fn with_triangles(mut self, triangles: &'a [[u32; 3]]) -> Self {
+        self.triangles = triangles;
+        self
+    }
+
+    /// Adds a point array of `components` values per point.
+    pub fn with_point_data(mut self, name: &'a str, components: usize, values: &'a [f64]) -> Self {
+        self.point_data.push(FieldArray { name, components, values });
+        self
+    }
+
+    /// Adds a `Float64` cell array of `components` values per cell.
+    pub fn with_cell_data(mut self, name: &'a str, components: usize, values: &'a [f64]) -> Self {
+        self.cell_data.push(FieldArray { name, components, values });
+        self
+    }
+
+    /// Adds an `Int32` cell array of one value per cell.
+    pub fn with_cell_ints(mut self, name: &'a str, values: &'a [i32]) -> Self {
+        self.cell_ints.push((name, values));
+        self
+    }
+
+    /// The number of cells: tets and triangles.
+    pub fn cell_count(&self) -> usize {
+        self.tets.len() / self.nodes_per_tet.max(1) + self.triangles.len()
+    }
+
+    /// Checks the shapes: `nodes_per_tet` is 4 or 10 and divides `tets.len()`, every index
+    /// names a point, every array has entities × components values, names are non-empty and
+    /// unique among the point arrays and among the cell arrays.
+    ///
+    /// # Errors
+    /// [`IoError::InvalidData`] naming the array or the cell, with `path` as the file.
+    pub fn check(&self, path: &Path) -> Result<(), IoError> {
+        let bad = |message: String| IoError::InvalidData { path: path.to_path_buf(), message };
+        let npt = self.nodes_per_tet;
+        if npt != 4 && npt != 10 {
+            return Err(bad(format!("tets of {npt} nodes (VTU results take 4 for linear tets, 10 for quadratic ones)")));
+        }
+        if self.tets.len() % npt != 0 {
+            return Err(bad(format!("{} tet indices are not a whole number of {npt}-node tets", self.tets.len())));
+        }
+        let np = self.points.len();
+        let out_of_range = |cell: &str, i: usize, node: usize, v: u32| bad(format!("{cell} {i} node {node} is point {v}, but there are {np} points"));
+        for (i, t) in self.tets.chunks(npt).enumerate() {
+            if let Some((k, &v)) = t.iter().enumerate().find(|(_, v)| **v as usize >= np) {
+                return Err(out_of_range("tet", i, k, v));
+            }
+        }
+        for (i, t) in self.triangles.iter().enumerate() {
+            if let Some((k, &v)) = t.iter().enumerate().find(|(_, v)| **v as usize >= np) {
+                return Err(out_of_range("triangle", i, k, v));
+            }
+        }
+        let nc = self.cell_count();
+        let shape = |kind: &str, a: &FieldArray, n: usize, what: &str| -> Result<(), IoError> {
+            if a.components == 0 {
+                return Err(bad(format!("{kind} array '{}' has 0 components", a.name)));
+            }
+            let want = n.checked_mul(a.components).unwrap_or(usize::MAX);
+            if a.values.len() != want {
+                return Err(bad(format!(
+                    "{kind} array '{}' has {} values; {n} {what} × {} components need {want}",
+                    a.name,
+                    a.values.len(),
+                    a.components
+                )));
+            }
+            Ok(())
+        };
+        for a in &self.point_data {
+            shape("point", a, np, "points")?;
+        }
+        for a in &self.cell_data {
+            shape("cell", a, nc, "cells")?;
+        }
+        for (name, v) in &self.cell_ints {
+            if v.len() != nc {
+                return Err(bad(format!("cell array '{name}' has {} values for {nc} cells", v.len())));
+            }
+        }
+        let unique = |kind: &str, names: Vec<&str>| -> Result<(), IoError> {
+            for (i, n) in names.iter().enumerate() {
+                if n.is_empty() {
+                    return Err(bad(format!("{kind} array {i} has no name")));
+                }
+                if names[..i].contains(n) {
+                    return Err(bad(format!("two {kind} arrays are named '{n}'")));
+                }
+            }
+            Ok(())
+        };
+        unique("point", self.point_data.iter().map(|a| a.name).collect())?;
+        unique("cell", self.cell_data.iter().map(|a| a.name).chain(self.cell_ints.iter().map(|(n, _)| *n)).collect())
+    }
+}
+
+/// Writes FE results: the grid's points, its tets (VTK type 10, or 24 for 10-node tets) then
+/// its triangles (type 5), its point arrays and its cell arrays. Binary unless
+/// [`WriteOptions::ascii`].
+///
+/// # Errors
+/// [`IoError::InvalidData`] from [`Grid::check`] (nothing is written), [`IoError::Write`].
+pub fn write_grid_with_data(path: &Path, g: &Grid, options: &WriteOptions) -> Result<(), IoError> {
+    g.check(path)?;
+    let npt = g.nodes_per_tet;
+    let ntets = g.tets.len() / npt;
+    let mut conn: Vec<i64> = Vec::with_capacity(g.tets.len() + 3 * g.triangles.len());
+    conn.extend(g.tets.iter().map(|&v| v as i64));
+    conn.extend(g.triangles.iter().flatten().map(|&v| v as i64));
+    let offsets: Vec<i64> = (1..=ntets).map(|i| (i * npt) as i64).chain((1..=g.triangles.len()).map(|i| (ntets * npt + 3 * i) as i64)).collect();
+    let tet_type = if npt == 10 { VTK_QUADRATIC_TETRA } else { VTK_TETRA };
+    let types: Vec<u8> = std::iter::repeat_n(tet_type, ntets).chain(std::iter::repeat_n(VTK_TRIANGLE, g.triangles.len())).collect();
+    let coords: Vec<f64> = g.points.iter().flat_map(|p| p.to_array()).collect();
+    fn float<'b>(a: &FieldArray<'b>) -> Array<'b> {
+        Array { name: a.name, components: a.components, values: Values::F64(a.values) }
+    }
+    let piece = Piece {
+        coords: &coords,
+        conn: &conn,
+        offsets: &offsets,
+        types: &types,
+        point_arrays: g.point_data.iter().map(float).collect(),
+        cell_arrays: g.cell_data.iter().map(float).chain(g.cell_ints.iter().map(|(name, v)| Array { name, components: 1, values: Values::I32(v) })).collect(),
+        cell_scalars: None,
+    };
+    write_piece(path, &piece, options.ascii)
 }
 
 struct Cells<'a> {
@@ -108,6 +289,7 @@ impl Values<'_> {
 }
 
 fn data_array(w: &mut BufWriter<File>, name: &str, components: usize, values: &Values, ascii: bool) -> std::io::Result<()> {
+    let name = xml_escape(name);
     let comps = if components > 1 { format!(" NumberOfComponents=\"{components}\"") } else { String::new() };
     let format = if ascii { "ascii" } else { "binary" };
     writeln!(w, "        <DataArray type=\"{}\" Name=\"{name}\"{comps} format=\"{format}\">", values.vtk_type())?;
@@ -117,6 +299,14 @@ fn data_array(w: &mut BufWriter<File>, name: &str, components: usize, values: &V
         writeln!(w, "          {}", base64::engine::general_purpose::STANDARD.encode(values.block()))?;
     }
     writeln!(w, "        </DataArray>")
+}
+
+/// `text` with the characters that XML attributes may not hold as entities.
+fn xml_escape(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.contains(['&', '<', '>', '"']) {
+        return text.into();
+    }
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;").into()
 }
 
 fn tag_i32(path: &Path, t: u32) -> Result<i32, IoError> {
@@ -147,28 +337,67 @@ fn write_grid(path: &Path, vertices: &[DVec3], c: &Cells, options: &WriteOptions
     }
     let kind: Vec<u8> = types.iter().map(|&t| if t == VTK_TETRA { 3 } else { 2 }).collect();
     let coords: Vec<f64> = vertices.iter().flat_map(|p| p.to_array()).collect();
-    let ascii = options.ascii;
+    let mut cell_arrays = vec![Array { name: "tag", components: 1, values: Values::I32(&tags) }];
+    if c.kind {
+        cell_arrays.push(Array { name: "cell_kind", components: 1, values: Values::U8(&kind) });
+    }
+    let piece = Piece { coords: &coords, conn: &conn, offsets: &offsets, types: &types, point_arrays: Vec::new(), cell_arrays, cell_scalars: Some("tag") };
+    write_piece(path, &piece, options.ascii)
+}
+
+/// A named data array as written.
+struct Array<'a> {
+    name: &'a str,
+    components: usize,
+    values: Values<'a>,
+}
+
+/// One unstructured-grid piece, ready to write.
+struct Piece<'a> {
+    /// Point coordinates, three per point.
+    coords: &'a [f64],
+    conn: &'a [i64],
+    offsets: &'a [i64],
+    types: &'a [u8],
+    point_arrays: Vec<Array<'a>>,
+    cell_arrays: Vec<Array<'a>>,
+    /// The cell array named as the active scalars, if any.
+    cell_scalars: Option<&'a str>,
+}
+
+fn write_piece(path: &Path, p: &Piece, ascii: bool) -> Result<(), IoError> {
     write_atomic(path, |w| {
         let e = write_err(path);
         let body = |w: &mut BufWriter<File>| -> std::io::Result<()> {
             writeln!(w, "<?xml version=\"1.0\"?>")?;
             writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
             writeln!(w, "  <UnstructuredGrid>")?;
-            writeln!(w, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{ncells}\">", vertices.len())?;
+            writeln!(w, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", p.coords.len() / 3, p.types.len())?;
+            if !p.point_arrays.is_empty() {
+                writeln!(w, "      <PointData>")?;
+                for a in &p.point_arrays {
+                    data_array(w, a.name, a.components, &a.values, ascii)?;
+                }
+                writeln!(w, "      </PointData>")?;
+            }
             writeln!(w, "      <Points>")?;
-            data_array(w, "Points", 3, &Values::F64(&coords), ascii)?;
+            data_array(w, "Points", 3, &Values::F64(p.coords), ascii)?;
             writeln!(w, "      </Points>")?;
             writeln!(w, "      <Cells>")?;
-            data_array(w, "connectivity", 1, &Values::I64(&conn), ascii)?;
-            data_array(w, "offsets", 1, &Values::I64(&offsets), ascii)?;
-            data_array(w, "types", 1, &Values::U8(&types), ascii)?;
+            data_array(w, "connectivity", 1, &Values::I64(p.conn), ascii)?;
+            data_array(w, "offsets", 1, &Values::I64(p.offsets), ascii)?;
+            data_array(w, "types", 1, &Values::U8(p.types), ascii)?;
             writeln!(w, "      </Cells>")?;
-            writeln!(w, "      <CellData Scalars=\"tag\">")?;
-            data_array(w, "tag", 1, &Values::I32(&tags), ascii)?;
-            if c.kind {
-                data_array(w, "cell_kind", 1, &Values::U8(&kind), ascii)?;
+            if !p.cell_arrays.is_empty() {
+                match p.cell_scalars {
+                    Some(s) => writeln!(w, "      <CellData Scalars=\"{}\">", xml_escape(s))?,
+                    None => writeln!(w, "      <CellData>")?,
+                }
+                for a in &p.cell_arrays {
+                    data_array(w, a.name, a.components, &a.values, ascii)?;
+                }
+                writeln!(w, "      </CellData>")?;
             }
-            writeln!(w, "      </CellData>")?;
             writeln!(w, "    </Piece>")?;
             writeln!(w, "  </UnstructuredGrid>")?;
             writeln!(w, "</VTKFile>")
@@ -228,5 +457,100 @@ mod tests {
         let e = write_surface(&p, &s2, &WriteOptions::default()).unwrap_err();
         assert!(matches!(e, IoError::NotRepresentable { .. }), "{e}");
         assert_eq!(std::fs::read_to_string(&p).unwrap(), xml, "a failed write leaves the old file");
+    }
+
+    /// The unit tet with its six mid-edge nodes in C3D10 order.
+    fn quadratic_tet() -> (Vec<DVec3>, Vec<u32>) {
+        let c = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        let mut p = c.to_vec();
+        for (a, b) in [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)] {
+            p.push((c[a] + c[b]) / 2.0);
+        }
+        (p, (0..10).collect())
+    }
+
+    fn decode(xml: &str, name: &str) -> Vec<u8> {
+        let b = base64::engine::general_purpose::STANDARD.decode(array(xml, name)).unwrap();
+        assert_eq!(u64::from_le_bytes(b[..8].try_into().unwrap()) as usize, b.len() - 8, "{name}: byte count");
+        b[8..].to_vec()
+    }
+
+    fn f64s(b: &[u8]) -> Vec<f64> {
+        b.chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
+    }
+
+    #[test]
+    fn quadratic_tet_with_point_and_cell_arrays() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("r.vtu");
+        let (pts, tet) = quadratic_tet();
+        let disp: Vec<f64> = pts.iter().flat_map(|q| [q.x, 2.0 * q.y, -q.z]).collect();
+        let temp: Vec<f64> = pts.iter().map(|q| q.x + 10.0).collect();
+        let tris = [[0u32, 2, 1]];
+        let vm = [150.0, 0.0];
+        let region = [7, -1];
+        let g = Grid::new(&pts, &tet, 10)
+            .with_triangles(&tris)
+            .with_point_data("DISP", 3, &disp)
+            .with_point_data("NT \"C\"", 1, &temp)
+            .with_cell_data("von Mises", 1, &vm)
+            .with_cell_ints("region", &region);
+        write_grid_with_data(&p, &g, &WriteOptions::default()).unwrap();
+        let xml = std::fs::read_to_string(&p).unwrap();
+        assert!(xml.contains("NumberOfPoints=\"10\" NumberOfCells=\"2\""), "{xml}");
+        assert!(xml.contains("<DataArray type=\"Float64\" Name=\"DISP\" NumberOfComponents=\"3\" format=\"binary\">"), "{xml}");
+        assert!(xml.contains("Name=\"NT &quot;C&quot;\""), "names are escaped: {xml}");
+        assert_eq!(decode(&xml, "types"), [24, 5]);
+        let offsets: Vec<i64> = decode(&xml, "offsets").chunks(8).map(|c| i64::from_le_bytes(c.try_into().unwrap())).collect();
+        assert_eq!(offsets, [10, 13]);
+        assert_eq!(f64s(&decode(&xml, "DISP")), disp);
+        assert_eq!(f64s(&decode(&xml, "von Mises")), vm);
+        let r: Vec<i32> = decode(&xml, "region").chunks(4).map(|c| i32::from_le_bytes(c.try_into().unwrap())).collect();
+        assert_eq!(r, region);
+        assert!(xml.find("<PointData>").unwrap() < xml.find("<Points>").unwrap());
+
+        // ASCII: one point per line for a vector, 12 scalars per line
+        let a = dir.path().join("a.vtu");
+        write_grid_with_data(&a, &g, &WriteOptions::default().with_ascii(true)).unwrap();
+        let xml = std::fs::read_to_string(&a).unwrap();
+        assert_eq!(array(&xml, "DISP").lines().nth(1).map(str::trim), Some("1 0 -0"));
+        assert_eq!(array(&xml, "connectivity").split_whitespace().count(), 13);
+        assert_eq!(array(&xml, "types"), "24 5");
+        assert_eq!(array(&xml, "region"), "7 -1");
+    }
+
+    #[test]
+    fn inconsistent_grids_are_refused_naming_the_array() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("bad.vtu");
+        let (pts, tet) = quadratic_tet();
+        let short = vec![0.0; 29];
+        let ok = vec![0.0; 30];
+        let err = |g: &Grid| {
+            let e = write_grid_with_data(&p, g, &WriteOptions::default()).unwrap_err();
+            assert!(matches!(e, IoError::InvalidData { .. }), "{e}");
+            assert!(!p.exists(), "nothing written");
+            e.to_string()
+        };
+        let e = err(&Grid::new(&pts, &tet, 10).with_point_data("DISP", 3, &ok).with_point_data("S", 3, &short));
+        assert!(e.ends_with("cannot write: point array 'S' has 29 values; 10 points × 3 components need 30"), "{e}");
+        let e = err(&Grid::new(&pts, &tet, 10).with_cell_data("E", 2, &ok));
+        assert!(e.contains("cell array 'E' has 30 values; 1 cells × 2 components need 2"), "{e}");
+        let e = err(&Grid::new(&pts, &tet, 10).with_cell_ints("tag", &[1, 2]));
+        assert!(e.contains("cell array 'tag' has 2 values for 1 cells"), "{e}");
+        let e = err(&Grid::new(&pts, &tet, 8));
+        assert!(e.contains("tets of 8 nodes"), "{e}");
+        let e = err(&Grid::new(&pts, &[0, 1, 2, 12], 4));
+        assert!(e.contains("tet 0 node 3 is point 12, but there are 10 points"), "{e}");
+        let e = err(&Grid::new(&pts[..4], &tet[..4], 4).with_triangles(&[[0, 1, 9]]));
+        assert!(e.contains("triangle 0 node 2 is point 9, but there are 4 points"), "{e}");
+        let e = err(&Grid::new(&pts, &tet[..9], 4));
+        assert!(e.contains("9 tet indices are not a whole number of 4-node tets"), "{e}");
+        let e = err(&Grid::new(&pts, &tet, 10).with_point_data("T", 1, &ok[..10]).with_point_data("T", 1, &ok[..10]));
+        assert!(e.contains("two point arrays are named 'T'"), "{e}");
+        let e = err(&Grid::new(&pts, &tet, 10).with_cell_data("id", 1, &[1.0]).with_cell_ints("id", &[1]));
+        assert!(e.contains("two cell arrays are named 'id'"), "{e}");
+        let e = err(&Grid::new(&pts, &tet, 10).with_point_data("X", 0, &[]));
+        assert!(e.contains("point array 'X' has 0 components"), "{e}");
     }
 }

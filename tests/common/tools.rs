@@ -1,5 +1,5 @@
 //! Finding the external tools that integration tests check fepre's files with: `gmsh`,
-//! `tetgen` and a Python interpreter with meshio.
+//! `tetgen`, CalculiX's `ccx` and a Python interpreter with meshio.
 //!
 //! A missing tool makes a check print a skip message and return, except under `CI=true`,
 //! where it fails: CI images must have the tools.
@@ -36,6 +36,11 @@ pub fn gmsh() -> Option<PathBuf> {
 /// `tetgen`, if installed.
 pub fn tetgen() -> Option<PathBuf> {
     on_path("tetgen")
+}
+
+/// CalculiX's solver `ccx`, if installed.
+pub fn ccx() -> Option<PathBuf> {
+    on_path("ccx")
 }
 
 /// A Python interpreter that imports every module of `modules`: `$FEPRE_PYTHON` if set,
