@@ -10,6 +10,7 @@ pub mod inspect;
 pub mod mesh;
 pub mod progress;
 pub mod run;
+pub mod solve;
 pub mod tessellate;
 
 use clap::{Parser, Subcommand};
@@ -28,6 +29,8 @@ Examples:
   fepre tessellate part.step -o part.stl   certified watertight surface of a STEP file, face tags kept
   fepre mesh part.step -o part.mesh        STEP straight to quality tets (tessellated and certified first)
   fepre run job.toml                       a job file: selectors on CAD faces, sizes per face, outputs
+                                           (materials, BCs and loads on selectors: a CalculiX .inp deck)
+  fepre solve job.toml                     the job's deck solved by CalculiX; results as VTU and JSON
 
 Exit codes: 0 ok, 1 the input could not be processed, 2 bad usage.";
 
@@ -73,6 +76,11 @@ pub enum Command {
     /// face, by distance, by curvature, in boxes), mesh options and outputs.
     #[command(after_help = run::EXAMPLES)]
     Run(run::Args),
+    /// Run a job file, write its CalculiX deck, solve it with ccx and write the results
+    /// (VTU for ParaView, a JSON summary: largest displacement and stress, reactions,
+    /// frequencies).
+    #[command(after_help = solve::EXAMPLES)]
+    Solve(solve::Args),
 }
 
 /// Parses the arguments, runs the command and returns the process exit code.
@@ -93,6 +101,7 @@ pub fn main() -> ExitCode {
         Command::CadInfo(a) => cad_info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
         Command::Run(a) => run::run(&a),
+        Command::Solve(a) => solve::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -157,6 +166,27 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
         println!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);
     } else {
         println!("optimisation     ended after {} attempts, within its budget", m.optimize_attempts);
+    }
+}
+
+/// Prints what the FE model holds: element kind, counts, second order, each selector's sets,
+/// each solid's material, each step's forces. Shared by `fepre run` and `fepre solve`.
+pub(crate) fn print_fe_summary(fe: &crate::pipeline::fe_model::FeSummary) {
+    println!("FE model         {} nodes, {} {} elements", fe.nodes, fe.elements, fe.element);
+    if let Some(c) = &fe.curving {
+        println!("second order     {} mid nodes on CAD faces, {} on CAD edges, {} left on the chord; {} moved back to the chord in {} elements that curving would distort; smallest Jacobian ratio {:.3}", c.on_faces, c.on_edges, c.left_straight, c.straightened, c.straightened_elements, c.min_jacobian_ratio);
+    }
+    for (name, g) in &fe.selectors {
+        println!("sets             {name}: node set {}, surface {} ({} element faces{})", g.node_set, g.surface, g.boundary_faces, if g.interface_faces > 0 { format!(", {} on interfaces", g.interface_faces) } else { String::new() });
+    }
+    for s in &fe.solids {
+        println!("solid            {} ({} elements): material {}", s.element_set, s.elements, s.material.as_deref().unwrap_or("none"));
+    }
+    for s in &fe.steps {
+        println!("step             {} ({})", s.name, s.analysis);
+        for (sel, f) in &s.forces {
+            println!("  force          {sel}: {:.6e} {:.6e} {:.6e} in consistent nodal loads", f[0], f[1], f[2]);
+        }
     }
 }
 

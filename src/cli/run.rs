@@ -25,7 +25,8 @@ A job file (every key in docs/job-file.md):
   [mesh]
   method = \"delaunay\"                          # max_radius_edge, min_dihedral, keep_surface
   [[output]]
-  file = \"bracket.msh\"                         # .msh .vtu .mesh .ele (tets), .stl .obj (surface), .json (report)
+  file = \"bracket.msh\"                         # .msh .vtu .mesh .ele (tets), .stl .obj (surface), .json (report),
+                                               # .inp (CalculiX/Abaqus deck: needs [materials], [[section]], [[step]])
 
 Errors in the job name the key with its line and column; nothing is written then.";
 
@@ -86,6 +87,9 @@ fn print(r: &RunReport, check: bool) {
         crate::cli::print_mesh_summary(m);
     }
     crate::cli::contacts::print(&r.contacts);
+    if let Some(fe) = &r.fe {
+        crate::cli::print_fe_summary(fe);
+    }
     for o in &r.outputs {
         println!("wrote            {o}");
     }

@@ -10,6 +10,7 @@ pub mod jacobian;
 pub mod loads;
 pub mod model;
 pub mod quadratic;
+pub mod restraint;
 pub mod step;
 
 pub use build::{Built, GroupSets, build_model};

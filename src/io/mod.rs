@@ -28,6 +28,7 @@
 pub mod atomic;
 pub mod common;
 pub mod error;
+pub mod ccx_dat;
 pub mod frd;
 pub mod gltf;
 pub mod medit;

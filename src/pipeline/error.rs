@@ -96,4 +96,13 @@ pub enum PipelineError {
         /// The STEP `#id`s of the two faces.
         step_faces: String,
     },
+    /// The solver is missing or failed; the message says how to install it or quotes its
+    /// errors.
+    #[error("{}: {message}", path.display())]
+    Solver {
+        /// The deck (or the solver binary where it cannot be run).
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
 }

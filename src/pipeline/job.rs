@@ -20,6 +20,7 @@
 //! column ([`PipelineError::Job`]); paths are relative to the job file's folder.
 
 use super::PipelineError;
+use super::job_fe::{MaterialSpec, ModelSection, SectionSpec, SolveSection, StepSpec};
 use crate::attributes::values::Positive;
 use crate::attributes::{Density, SelectError, Selector};
 use crate::mesh3d::mesher::MeshOptions;
@@ -52,6 +53,21 @@ pub struct Job {
     /// What to write.
     #[serde(default)]
     pub output: Vec<Output>,
+    /// The FE model's elements.
+    #[serde(default)]
+    pub model: ModelSection,
+    /// Materials by name.
+    #[serde(default)]
+    pub materials: BTreeMap<String, Spanned<MaterialSpec>>,
+    /// Materials on solids.
+    #[serde(default)]
+    pub section: Vec<SectionSpec>,
+    /// Analysis steps.
+    #[serde(default)]
+    pub step: Vec<Spanned<StepSpec>>,
+    /// What `fepre solve` writes.
+    #[serde(default)]
+    pub solve: SolveSection,
 }
 
 /// A length unit.
@@ -141,6 +157,8 @@ pub enum OutputKind {
     Surface,
     /// The JSON report of the run.
     Report,
+    /// A solver deck: CalculiX/Abaqus (`.inp`).
+    Deck,
 }
 
 /// `[[output]]`.
@@ -161,6 +179,7 @@ impl Output {
             let ext = self.file.get_ref().extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
             match ext.as_str() {
                 "json" => OutputKind::Report,
+                "inp" => OutputKind::Deck,
                 "stl" | "obj" | "off" => OutputKind::Surface,
                 _ => OutputKind::Mesh,
             }
@@ -240,9 +259,10 @@ impl JobFile {
                 OutputKind::Report => o.file.get_ref().extension().is_some_and(|e| e.eq_ignore_ascii_case("json")),
                 OutputKind::Mesh => matches!(ext, Some(F::Medit | F::TetGen | F::Vtu | F::Msh)),
                 OutputKind::Surface => matches!(ext, Some(F::Stl | F::Obj | F::Off | F::Vtu | F::Msh)),
+                OutputKind::Deck => o.file.get_ref().extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")),
             };
             if !ok {
-                return Err(self.error_at(o.file.span().start, format!("key `file`: {} cannot hold a {kind:?} (mesh: .msh .vtu .mesh .ele; surface: .stl .obj .off .msh .vtu; report: .json)", o.file.get_ref().display()).to_lowercase()));
+                return Err(self.error_at(o.file.span().start, format!("key `file`: {} cannot hold a {kind:?} (mesh: .msh .vtu .mesh .ele; surface: .stl .obj .off .msh .vtu; report: .json; deck: .inp)", o.file.get_ref().display()).to_lowercase()));
             }
         }
         Ok(())

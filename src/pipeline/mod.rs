@@ -17,9 +17,12 @@
 
 pub mod assembly;
 mod error;
+pub mod fe_model;
 pub mod job;
+pub mod job_fe;
 pub mod part;
 pub mod run;
+pub mod solve;
 mod summary;
 
 pub use error::PipelineError;

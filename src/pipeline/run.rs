@@ -68,6 +68,8 @@ pub struct RunReport {
     pub seconds: super::part::StageSeconds,
     /// Faces of different solids that touch (a part of several solids).
     pub contacts: Vec<super::assembly::ContactReport>,
+    /// The FE model, where the job asks for one (a deck or a step).
+    pub fe: Option<super::fe_model::FeSummary>,
 }
 
 /// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
@@ -113,12 +115,31 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
     Ok(report)
 }
 
+/// A job carried out: its report, the part and the FE model.
+#[derive(Debug)]
+pub struct JobOutcome {
+    /// What the run did.
+    pub report: RunReport,
+    /// The part, meshed.
+    pub part: Part,
+    /// The FE model, where the job asks for one.
+    pub fe: Option<crate::fe::FeModel>,
+}
+
 /// Runs a job file: reads the input, runs its plan and writes its outputs (nothing is written
 /// when anything fails before).
 ///
 /// # Errors
 /// Job errors name the key and line; the others name the file and the face or entity.
 pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineError> {
+    carry_out(jf, check_only).map(|o| o.report)
+}
+
+/// [`run_job`], keeping the part and the FE model (for `fepre solve`).
+///
+/// # Errors
+/// As [`run_job`].
+pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineError> {
     let job = &jf.job;
     let input = jf.resolve(job.input.file.get_ref());
     let mut part = Part::open(&input)?;
@@ -137,8 +158,15 @@ pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineErro
         Err(e) => return Err(e),
     };
     if check_only {
-        return Ok(report);
+        return Ok(JobOutcome { report, part, fe: None });
     }
+    let fe = if super::fe_model::wants_fe(jf) {
+        let (model, summary) = super::fe_model::build_fe(jf, &part, &report.selectors, unit)?;
+        report.fe = Some(summary);
+        Some(model)
+    } else {
+        None
+    };
     let mut reports: Vec<PathBuf> = Vec::new();
     for o in &job.output {
         let path = jf.resolve(o.file.get_ref());
@@ -148,6 +176,10 @@ pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineErro
             OutputKind::Surface => {
                 let s = part.surface.clone().unwrap_or_default();
                 crate::io::write(&path, &crate::io::MeshData::Surface(s), &crate::io::WriteOptions::default())?;
+            }
+            OutputKind::Deck => {
+                let Some(m) = fe.as_ref() else { continue };
+                crate::deck::inp::write_inp(&path, m, &format!("{} (fepre job {})", input.display(), jf.path.display()))?;
             }
         }
         report.outputs.push(path.display().to_string());
@@ -159,5 +191,5 @@ pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineErro
             w.write_all(text.as_bytes()).map_err(crate::io::atomic::write_err(&path))
         })?;
     }
-    Ok(report)
+    Ok(JobOutcome { report, part, fe })
 }

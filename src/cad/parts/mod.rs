@@ -1,6 +1,8 @@
 //! Parametric parts built in code with truck-modeling and converted into our [`Model`]: an
 //! L-shaped bracket with a filleted inner corner and holes ([`bracket`]), a flange with a bore
-//! and bolt holes ([`flange`]) and a 90° pipe elbow ([`elbow`]).
+//! and bolt holes ([`flange`]), a 90° pipe elbow ([`elbow`]), a block with an optional hole
+//! ([`block`]) and a tube or a sector of one ([`tube`]); the last two are the analytic checks'
+//! parts (cantilever, plate with a hole, slab, thick-walled cylinder).
 //!
 //! Each part has a parameter struct in millimetres with sensible defaults, a `build` that
 //! sweeps its profile with truck (`tsweep`, `rsweep`; no booleans) and converts the solid
@@ -10,17 +12,21 @@
 //! attached to named faces; a name may cover several faces (truck builds a full hole from two
 //! half cylinders, and both are `hole_1`).
 
+pub mod block;
 pub mod bracket;
 pub mod elbow;
 pub mod flange;
 mod sketch;
 mod truck_geometry;
 pub mod truck_topology;
+pub mod tube;
 
+pub use block::Block;
 pub use bracket::Bracket;
 pub use elbow::Elbow;
 pub use flange::Flange;
 pub use truck_topology::solid_to_model;
+pub use tube::Tube;
 
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
