@@ -98,7 +98,11 @@ pub fn solve_job(jf: &JobFile) -> Result<SolveReport, PipelineError> {
     };
     let frd_path = run_ccx(&ccx, &deck)?;
     let frd = crate::io::frd::read(&frd_path)?;
-    let totals = crate::io::ccx_dat::read_force_totals(&frd_path.with_extension("dat"))?;
+    // a heat or frequency step prints nothing: an empty `.dat`
+    let totals = match crate::io::ccx_dat::read_force_totals(&frd_path.with_extension("dat")) {
+        Err(crate::io::IoError::Empty { .. }) => Vec::new(),
+        other => other?,
+    };
     let steps = step_results(&model, &frd, totals);
     let stem = deck.file_stem().and_then(|s| s.to_str()).unwrap_or("results").to_string();
     let folder = deck.parent().map(Path::to_path_buf).unwrap_or_default();
