@@ -7,8 +7,11 @@
 //! - layer 0 [`core`]: ids, exact predicates, bounding boxes, tolerances, the size-field trait;
 //! - layer 1 [`mesh`]: containers with `validate()` and the surface topology report;
 //! - layer 2 [`quality`]: element quality measures (VTK/Verdict definitions);
-//! - layer 3 [`io`]: mesh file formats; [`cad`]: B-rep import (STEP);
-//! - layer 6 [`cli`]: the command line, one file per subcommand.
+//! - layer 3 [`io`]: mesh file formats and CalculiX results; [`cad`]: B-rep import (STEP);
+//! - layer 4 [`tessellate`], [`mesh3d`]: surfaces of B-reps, tet meshes;
+//! - layer 5 [`attributes`] (selectors, sizes), [`fe`] (the FE model);
+//! - layer 6 [`pipeline`] (jobs, `fepre solve`), [`deck`] (solver decks);
+//! - layer 7 [`cli`]: the command line, one file per subcommand.
 
 pub mod cad;
 pub mod attributes;

@@ -275,3 +275,31 @@ fn meshio_reads_the_deck() {
     assert_eq!((got[0], got[1]), (nodes, elements), "meshio read {got:?}");
     assert!(got[2] > 0, "meshio found no CLAMP node set: {got:?}");
 }
+
+#[test]
+fn solving_the_bracket_job_writes_results_that_meshio_reads_and_reactions_that_balance_the_load() {
+    if tools::require(tools::ccx(), "ccx (CalculiX)", "fepre solve on the bracket job").is_none() {
+        return;
+    }
+    let Some(python) = tools::require(tools::meshio_python(), "python with meshio", "reading the results VTU") else { return };
+    // the README's job, with its outputs in a temporary folder
+    let dir = tempfile::tempdir().unwrap();
+    let job = std::fs::read_to_string("cad_fixtures/bracket.toml").unwrap().replace("../target/", "");
+    std::fs::copy("cad_fixtures/bracket.step", dir.path().join("bracket.step")).unwrap();
+    std::fs::write(dir.path().join("bracket.toml"), &job).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_fepre")).args(["solve", "--json"]).arg(dir.path().join("bracket.toml")).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("bracket_results.json")).unwrap()).unwrap();
+    let step = &summary["steps"][0];
+    let reaction: Vec<f64> = step["reactions"]["FIXED"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    // the job pulls end_x down with 500 N; the fixed end holds it
+    assert!((reaction[2] - 500.0).abs() < 1e-6 * 500.0 && reaction[0].abs() < 1e-6 * 500.0 && reaction[1].abs() < 1e-6 * 500.0, "{reaction:?}");
+    assert!(step["max_displacement"]["value"].as_f64().unwrap() > 0.0 && step["max_von_mises"]["value"].as_f64().unwrap() > 0.0);
+    let script = "import meshio, sys\nm = meshio.read(sys.argv[1])\nd = m.point_data\nprint(d['displacement'].shape[1], d['von_mises'].ndim, len(m.points), m.cells[0].type)";
+    let out = Command::new(python).args(["-c", script]).arg(dir.path().join("bracket_results.vtu")).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let got = String::from_utf8_lossy(&out.stdout);
+    let v: Vec<&str> = got.split_whitespace().collect();
+    assert_eq!((v[0], v[1], v[3]), ("3", "1", "tetra10"), "{got}");
+    assert_eq!(v[2].parse::<u64>().unwrap(), summary["run"]["fe"]["nodes"].as_u64().unwrap());
+}
