@@ -14,6 +14,7 @@ pub mod cad;
 pub mod attributes;
 pub mod cli;
 pub mod core;
+pub mod deck;
 pub mod fe;
 pub mod io;
 pub mod mesh;
