@@ -236,3 +236,31 @@ fn bracket_decks_read_back_with_pynastran() {
         write_and_check(&python, dir.path(), &m, &fixed, &loaded, &format!("bracket-{}", kind.name()));
     }
 }
+
+#[test]
+fn two_static_subcases_and_a_prescribed_displacement_read_back_with_pynastran() {
+    let Some(python) = pynastran() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let groups = BTreeMap::from([("x0".to_string(), vec![FaceId(1)]), ("x1".to_string(), vec![FaceId(2)])]);
+    let built = build_model(&cube(), &groups, ElementKind::C3D4, None, 1.0);
+    let (fixed, pulled, loaded) = (built.groups["x0"].node_set.clone(), built.groups["x1"].node_set.clone(), built.groups["x1"].surface.clone());
+    let mut m = with_step(built.model, &fixed, &loaded);
+    m.steps.push(Step {
+        name: "stretch".into(),
+        analysis: Analysis::Static,
+        bcs: vec![Bc::Fixed { nodes: fixed.clone(), dofs: vec![1, 2, 3] }, Bc::Displacement { nodes: pulled.clone(), dof: 1, value: 0.01 }],
+        loads: vec![],
+    });
+    let path = dir.path().join("two.bdf");
+    let s = write_nastran(&path, &m, &NastranOptions::default()).unwrap();
+    let r = &read_back(&python, &[path])[0];
+    // step 2 of 2: SPC set 2 and no loads; step 1's sets: FORCE/PLOAD4 1, GRAV 3, LOAD 5
+    assert_eq!(s.subcases, 2);
+    assert_eq!(r["subcases"]["1"], serde_json::json!({"SPC": 1, "LOAD": 5}));
+    assert_eq!(r["subcases"]["2"], serde_json::json!({"SPC": 2}));
+    assert_eq!(r["load_combinations"]["5"], serde_json::json!([[1.0, 1], [1.0, 3]]));
+    let (nf, np) = (m.node_sets[&fixed].len(), m.node_sets[&pulled].len());
+    assert_eq!(r["spc_dofs"].as_u64(), Some((3 * nf + 3 * nf + np) as u64));
+    assert_eq!(s.spc_dofs, 3 * nf + 3 * nf + np);
+    assert_eq!(r["spc_values"]["2"], serde_json::json!([[0.01, np]]));
+}

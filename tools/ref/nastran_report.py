@@ -5,7 +5,7 @@ fepre's `write_nastran` says it wrote (tests/deck_nastran.rs).
 Usage: nastran_report.py DECK...   -> one JSON object per deck, one a line, on stdout:
   sol, subcases {id: {SPC, LOAD, METHOD}}, grids {id: [x, y, z]}, elements {id: [pid, grids]},
   psolids {pid: mid}, materials {mid: [E, nu, rho]}, spc_dofs (grid-dof pairs on SPC1 and SPC
-  cards, all sets), force_cards, force_total (sum of F times N over FORCE cards),
+  cards, all sets), spc_values {sid: [[enforced value, SPC pairs with it]]}, force_cards, force_total (sum of F times N over FORCE cards),
   pload4_cards, pload4_total (sum of pressure x area x pyNastran's face normal, the face found
   from G1 and G4), grav {sid: [A N1, A N2, A N3]}, load_combinations {sid: [[scale, sid]]},
   eigrl {sid: ND}.
@@ -36,12 +36,16 @@ def report(path):
         assert elem.type == "CTETRA", elem.type
         elements[eid] = [elem.Pid(), [int(n) for n in elem.node_ids]]
     spc_dofs = 0
-    for cards in model.spcs.values():
+    spc_values = {}
+    for sid, cards in model.spcs.items():
         for c in cards:
             if c.type == "SPC1":
                 spc_dofs += len(c.nodes) * len(str(c.components))
             elif c.type == "SPC":
                 spc_dofs += sum(len(str(comp)) for comp in c.components)
+                for value in c.enforced:
+                    counts = spc_values.setdefault(sid, {})
+                    counts[float(value)] = counts.get(float(value), 0) + 1
             else:
                 raise ValueError(c.type)
     force_cards, force_total = 0, np.zeros(3)
@@ -73,6 +77,7 @@ def report(path):
         "psolids": {pid: p.Mid() for pid, p in model.properties.items()},
         "materials": {mid: [m.e, m.nu, m.rho] for mid, m in model.materials.items()},
         "spc_dofs": spc_dofs,
+        "spc_values": {sid: sorted([v, n] for v, n in counts.items()) for sid, counts in spc_values.items()},
         "force_cards": force_cards,
         "force_total": force_total.tolist(),
         "pload4_cards": pload4_cards,
