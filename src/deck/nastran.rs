@@ -7,12 +7,14 @@
 //! - Case control: `TITLE`, one `SUBCASE` per step (step `k` is subcase `k`) with its
 //!   `LABEL`, `SPC`, `LOAD` or `METHOD`, and `DISPLACEMENT`, `STRESS`, `SPCFORCES = ALL`.
 //! - Bulk data: `GRID` (node `i` is grid `i + 1`), `CTETRA` with 4 or 10 grids (element `e`
-//!   is `e + 1`; the C3D10 node order is CTETRA's), `PSOLID` per section (PID = section index
-//!   + 1), `MAT1` (E, ν, ρ, α; MID = the material's index in name order + 1), then per step
-//!   `SPC1` (fixed dofs, grouped by component string), `SPC` (prescribed displacements),
-//!   `FORCE` (one card per node: magnitude and unit direction), `PLOAD4` (one card per element
-//!   face), `GRAV`, `LOAD` (when `GRAV` and other loads meet in one step: a `GRAV` set may not
-//!   share its id with other loads) and `EIGRL`.
+//!   is `e + 1`; the C3D10 node order is CTETRA's), `PSOLID` per section (its PID the
+//!   section's index plus one), `MAT1` (E, ν, ρ, α; its MID the material's index in name order
+//!   plus one), then per step `SPC1` (fixed dofs, grouped by component string), `SPC`
+//!   (prescribed displacements), `FORCE` (one card per node: magnitude and unit direction),
+//!   `PLOAD4` (one card per element face: G1 a corner of the face, G4 the corner off it; the
+//!   pressure written as given, positive into the element for both Abaqus and Nastran), `GRAV`,
+//!   `LOAD` (when `GRAV` and other loads meet in one step: a `GRAV` set may not share its id
+//!   with other loads) and `EIGRL`.
 //! - Ids per step `k` of `n`: `SPC` set `k`; `FORCE`/`PLOAD4` set `k`, `GRAV` set `n + k`, the
 //!   combining `LOAD` `2n + k`; `EIGRL` set `k`.
 //! - Nastran has no named sets in bulk data: node sets, element sets and surfaces are written
@@ -21,8 +23,8 @@
 //! Within a step, forces on one node add up into one `FORCE`, pressures on one element face
 //! into one `PLOAD4`, gravity loads into one `GRAV`. Forces under 1e-12 of the step's largest
 //! are the round-off of a zero (the corners of a flat 6-node face, [`crate::fe::loads`]) and
-//! are not written. Fixed dofs (and displacements of 0) merge;
-//! a dof both held at 0 and displaced, or displaced by two values, is an error.
+//! are not written. Fixed dofs (and displacements of 0) merge; a dof both held at 0 and
+//! displaced, or displaced by two values, is an error.
 
 pub mod field;
 
@@ -36,7 +38,7 @@ use crate::io::IoError;
 use crate::io::atomic::{write_atomic, write_err};
 use glam::DVec3;
 use serde::Serialize;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 use std::path::Path;
 
@@ -324,7 +326,7 @@ fn step_cards(out: &mut Out<'_>, m: &FeModel, sp: &StepPlan<'_>, summary: &mut N
     }
     if let Some(sid) = sp.spc_sid {
         // fixed dofs grouped by component string, grids increasing
-        let mut groups: std::collections::BTreeMap<u8, Vec<u32>> = std::collections::BTreeMap::new();
+        let mut groups: BTreeMap<u8, Vec<u32>> = BTreeMap::new();
         for (&v, &mask) in &sp.fixed {
             groups.entry(mask).or_default().push(v);
         }
@@ -345,11 +347,9 @@ fn step_cards(out: &mut Out<'_>, m: &FeModel, sp: &StepPlan<'_>, summary: &mut N
     }
     if let Some(sid) = sp.simple_sid {
         let w = out.width();
+        // (the plan keeps forces of positive length, pressures not zero)
         for (&v, &f) in &sp.forces {
             let mag = f.length();
-            if !(mag > 0.0) {
-                continue;
-            }
             let n = f / mag;
             // FORCE SID G CID F N1 N2 N3: the force is F times N
             out.card("FORCE", &[Field::Int(sid), Field::Int(u64::from(v) + 1), Field::Blank, Field::Real(mag), Field::Real(n.x), Field::Real(n.y), Field::Real(n.z)])?;
@@ -357,9 +357,6 @@ fn step_cards(out: &mut Out<'_>, m: &FeModel, sp: &StepPlan<'_>, summary: &mut N
             summary.force_total += written(mag, w) * DVec3::new(written(n.x, w), written(n.y, w), written(n.z, w));
         }
         for (face, &p) in &sp.pressures {
-            if p == 0.0 {
-                continue;
-            }
             let el = m.element(face.element as usize);
             let g1 = u64::from(el[ABAQUS_FACES[face.face as usize][0]]) + 1;
             let g4 = u64::from(el[corner_off(face.face)]) + 1;
@@ -401,7 +398,6 @@ mod tests {
     use crate::core::FaceId;
     use crate::fe::{ElementKind, Material, Section, Step, build_model, loads::consistent_forces};
     use crate::io::test_meshes::two_tets;
-    use std::collections::BTreeMap;
 
     /// The two tets with a fixed face group, a loaded face group, steel on every element and
     /// a static step: fixed, a nodal load of (0, 0, -100), a pressure of 2 and gravity.
