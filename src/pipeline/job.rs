@@ -168,8 +168,11 @@ pub struct Output {
     /// The file (relative to the job file's folder); its extension picks the format.
     pub file: Spanned<PathBuf>,
     /// What to write (default: a report for `.json`, the surface for `.stl`/`.obj`/`.off`,
-    /// the tet mesh otherwise).
+    /// a deck for `.inp`/`.bdf`/`.nas`, the tet mesh otherwise).
     pub kind: Option<OutputKind>,
+    /// Nastran decks: large (16-character) fields instead of small (8).
+    #[serde(default)]
+    pub large_fields: bool,
 }
 
 impl Output {
@@ -179,11 +182,36 @@ impl Output {
             let ext = self.file.get_ref().extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
             match ext.as_str() {
                 "json" => OutputKind::Report,
-                "inp" => OutputKind::Deck,
+                "inp" | "bdf" | "nas" => OutputKind::Deck,
                 "stl" | "obj" | "off" => OutputKind::Surface,
                 _ => OutputKind::Mesh,
             }
         })
+    }
+}
+
+/// The formats a deck output is written in.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum DeckFormat {
+    /// CalculiX/Abaqus `.inp`.
+    Inp,
+    /// Nastran bulk data `.bdf`, `.nas`.
+    Nastran,
+    /// Gmsh MSH 4.1 with the sets as named physical groups.
+    Msh,
+    /// VTK XML with the sets as point and cell data.
+    Vtu,
+}
+
+/// The deck format of a path, by its extension.
+pub fn deck_format(path: &Path) -> Option<DeckFormat> {
+    let ext = path.extension().and_then(|e| e.to_str())?.to_ascii_lowercase();
+    match ext.as_str() {
+        "inp" => Some(DeckFormat::Inp),
+        "bdf" | "nas" => Some(DeckFormat::Nastran),
+        "msh" => Some(DeckFormat::Msh),
+        "vtu" => Some(DeckFormat::Vtu),
+        _ => None,
     }
 }
 
@@ -259,10 +287,13 @@ impl JobFile {
                 OutputKind::Report => o.file.get_ref().extension().is_some_and(|e| e.eq_ignore_ascii_case("json")),
                 OutputKind::Mesh => matches!(ext, Some(F::Medit | F::TetGen | F::Vtu | F::Msh)),
                 OutputKind::Surface => matches!(ext, Some(F::Stl | F::Obj | F::Off | F::Vtu | F::Msh)),
-                OutputKind::Deck => o.file.get_ref().extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")),
+                OutputKind::Deck => deck_format(o.file.get_ref()).is_some(),
             };
+            if o.large_fields && !(kind == OutputKind::Deck && deck_format(o.file.get_ref()) == Some(DeckFormat::Nastran)) {
+                return Err(self.error_at(o.file.span().start, format!("key `large_fields`: only a Nastran deck (.bdf, .nas) has large fields, not {}", o.file.get_ref().display())));
+            }
             if !ok {
-                return Err(self.error_at(o.file.span().start, format!("key `file`: {} cannot hold a {kind:?} (mesh: .msh .vtu .mesh .ele; surface: .stl .obj .off .msh .vtu; report: .json; deck: .inp)", o.file.get_ref().display()).to_lowercase()));
+                return Err(self.error_at(o.file.span().start, format!("key `file`: {} cannot hold a {kind:?} (mesh: .msh .vtu .mesh .ele; surface: .stl .obj .off .msh .vtu; report: .json; deck: .inp .bdf .nas .msh .vtu)", o.file.get_ref().display()).to_lowercase()));
             }
         }
         Ok(())

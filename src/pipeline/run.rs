@@ -2,7 +2,7 @@
 //! part tessellated to it and certified, the volume meshed, the requirements checked, the
 //! outputs written. `fepre run job.toml` and `fepre mesh` both come here.
 
-use super::job::{JobFile, OutputKind};
+use super::job::{DeckFormat, JobFile, OutputKind};
 use super::part::{MESH_MAX_ANGLE_DEG, Part};
 use super::PipelineError;
 use super::summary::summarise;
@@ -179,7 +179,15 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
             }
             OutputKind::Deck => {
                 let Some(m) = fe.as_ref() else { continue };
-                crate::deck::inp::write_inp(&path, m, &format!("{} (fepre job {})", input.display(), jf.path.display()))?;
+                let title = format!("{} (fepre job {})", input.display(), jf.path.display());
+                match super::job::deck_format(&path) {
+                    Some(DeckFormat::Nastran) => {
+                        crate::deck::nastran::write_nastran(&path, m, &crate::deck::nastran::NastranOptions::default().with_large(o.large_fields).with_title(title))?;
+                    }
+                    Some(DeckFormat::Msh) => crate::deck::msh::write_msh(&path, m)?,
+                    Some(DeckFormat::Vtu) => crate::deck::vtu::write_vtu(&path, m)?,
+                    _ => crate::deck::inp::write_inp(&path, m, &title)?,
+                }
             }
         }
         report.outputs.push(path.display().to_string());

@@ -82,7 +82,7 @@ pub fn solve_job(jf: &JobFile) -> Result<SolveReport, PipelineError> {
     }
     let ccx = std::env::var_os(CCX_ENV).map_or_else(|| PathBuf::from("ccx"), PathBuf::from);
     ccx_version(&ccx)?;
-    let deck = jf.job.output.iter().find(|o| o.kind() == OutputKind::Deck).map(|o| jf.resolve(o.file.get_ref()));
+    let deck = jf.job.output.iter().find(|o| o.kind() == OutputKind::Deck && super::job::deck_format(o.file.get_ref()) == Some(super::job::DeckFormat::Inp)).map(|o| jf.resolve(o.file.get_ref()));
     let JobOutcome { mut report, fe, .. } = carry_out(jf, false)?;
     let Some(model) = fe else {
         return Err(PipelineError::Usage { path: jf.path.clone(), message: "the job made no FE model".into() });
