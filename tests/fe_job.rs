@@ -302,4 +302,22 @@ fn solving_the_bracket_job_writes_results_that_meshio_reads_and_reactions_that_b
     let v: Vec<&str> = got.split_whitespace().collect();
     assert_eq!((v[0], v[1], v[3]), ("3", "1", "tetra10"), "{got}");
     assert_eq!(v[2].parse::<u64>().unwrap(), summary["run"]["fe"]["nodes"].as_u64().unwrap());
+    // VTK itself reads the results with their names
+    let Some(vtk_python) = tools::require(tools::python_with(&["vtk"]), "python with vtk", "VTK reading the results VTU") else { return };
+    let script = "import sys, vtk\nr = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update(); g = r.GetOutput(); p = g.GetPointData()\nprint(g.GetCellType(0), ' '.join(sorted(p.GetArrayName(i) for i in range(p.GetNumberOfArrays()))))";
+    let out = Command::new(vtk_python).args(["-c", script]).arg(dir.path().join("bracket_results.vtu")).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "24 displacement reaction stress von_mises");
+}
+
+#[test]
+fn solve_without_calculix_says_how_to_install_it() {
+    let dir = tempfile::tempdir().unwrap();
+    write_part(dir.path(), "part", &Block::new(20.0, 10.0, 10.0).build().unwrap());
+    std::fs::write(dir.path().join("job.toml"), format!("[input]\nfile = \"part.step\"\n[selectors]\nclamp = {{ name = \"xmin\" }}\n[density]\nsize = 4\n{STEEL}[[step]]\nfixed = [{{ faces = \"clamp\" }}]\n")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_fepre")).arg("solve").arg(dir.path().join("job.toml")).env("FEPRE_CCX", dir.path().join("no-ccx-here")).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("apt install calculix-ccx") && err.contains("FEPRE_CCX"), "{err}");
+    assert!(!dir.path().join("job.inp").exists());
 }
