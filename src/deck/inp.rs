@@ -1,5 +1,6 @@
 //! CalculiX/Abaqus input decks (`.inp`): `*NODE`, `*ELEMENT`, `*NSET`, `*ELSET`,
-//! `*SURFACE, TYPE=ELEMENT`, `*MATERIAL` (`*ELASTIC`, `*DENSITY`, `*EXPANSION`,
+//! `*SURFACE, TYPE=ELEMENT`, `*TIE` (slave surface, master surface; a `*SURFACE, TYPE=NODE`
+//! slave where the tie names slave nodes), `*MATERIAL` (`*ELASTIC`, `*DENSITY`, `*EXPANSION`,
 //! `*CONDUCTIVITY`, `*SPECIFIC HEAT`), `*SOLID SECTION`, and per step `*STATIC`,
 //! `*FREQUENCY` or `*HEAT TRANSFER, STEADY STATE` with `*BOUNDARY`, `*CLOAD`, `*DSLOAD`,
 //! `*DLOAD` (gravity), `*DFLUX`, `*FILM` and output requests (`*NODE FILE`, `*EL FILE`,
@@ -86,6 +87,17 @@ pub fn deck_text(m: &FeModel, title: &str) -> String {
         for f in faces {
             let _ = writeln!(s, "{}, S{}", f.element + 1, f.face + 1);
         }
+    }
+    // ties: after the surfaces they name, before every step (ccx refuses a *TIE in a step)
+    for t in &m.ties {
+        let slave = match &t.slave_nodes {
+            Some(n) => {
+                let _ = writeln!(s, "*SURFACE, NAME={n}, TYPE=NODE\n{n}");
+                n
+            }
+            None => &t.slave,
+        };
+        let _ = writeln!(s, "*TIE, NAME={}, POSITION TOLERANCE={}\n{slave}, {}", t.name, num(t.tolerance), t.master);
     }
     for (name, mat) in &m.materials {
         let _ = writeln!(s, "*MATERIAL, NAME={name}");
@@ -229,6 +241,25 @@ mod tests {
             assert!(s.len() <= 20, "{s}");
             assert!((s.parse::<f64>().unwrap() - x).abs() <= 1e-12 * x.abs(), "{s}");
         }
+    }
+
+    #[test]
+    fn ties_come_after_the_surfaces_and_before_the_steps() {
+        let mesh = crate::io::test_meshes::touching_tets();
+        let mut b = crate::fe::build_model(&mesh, &std::collections::BTreeMap::new(), crate::fe::ElementKind::C3D4, None, 1.0);
+        b.add_face_surface(crate::core::FaceId(10), "A").unwrap();
+        b.add_face_surface(crate::core::FaceId(20), "B").unwrap();
+        let mut m = b.model;
+        m.ties.push(crate::fe::Tie { name: "TIE1".into(), slave: "B".into(), master: "A".into(), tolerance: 0.015, slave_nodes: None });
+        m.steps.push(Step { name: "s".into(), analysis: Analysis::Static, bcs: Vec::new(), loads: Vec::new() });
+        let text = deck_text(&m, "t");
+        let tie = text.find("*TIE, NAME=TIE1, POSITION TOLERANCE=0.015\nB, A\n").unwrap();
+        assert!(text.rfind("*SURFACE").unwrap() < tie && tie < text.find("*STEP").unwrap(), "{text}");
+        // slave nodes: a node-based slave surface
+        m.node_sets.insert("BN".into(), vec![4, 5]);
+        m.ties[0].slave_nodes = Some("BN".into());
+        let text = deck_text(&m, "t");
+        assert!(text.contains("*SURFACE, NAME=BN, TYPE=NODE\nBN\n*TIE, NAME=TIE1, POSITION TOLERANCE=0.015\nBN, A\n"), "{text}");
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! An [`FeModel`] from a tagged tet mesh: C3D4 or C3D10 elements, an element set per region,
 //! and for each named group of CAD faces (a selector) a node set and an element-face surface
-//! made of exactly the tet faces whose boundary triangles carry the group's tags.
+//! made of exactly the tet faces whose boundary triangles carry the group's tags; on demand,
+//! a surface of one CAD face's element faces on the outer boundary (a side of a tie).
 
 use super::element::{ElementKind, abaqus_face_opposite};
 use super::geometry::BoundaryGeometry;
@@ -42,10 +43,36 @@ pub struct Built {
     pub groups: BTreeMap<String, GroupSets>,
     /// Region → its element set.
     pub regions: BTreeMap<RegionId, String>,
+    /// CAD face tag → its element faces on the outer boundary of the mesh (tet faces of one
+    /// element only, not an interface between solids), sorted.
+    pub outer_faces: BTreeMap<FaceId, Vec<ElementFace>>,
+    /// The names taken so far.
+    names: Names,
+}
+
+impl Built {
+    /// Adds to the model an element-face surface of CAD face `face`: its element faces on
+    /// the outer boundary ([`Built::outer_faces`]), named after `base` (upper case, valid in a
+    /// deck, at most [`MAX_NAME`] characters, made unique without regard to case). Returns the
+    /// name and the number of element faces, or `None` (and adds nothing) where the face has
+    /// no element face on the outer boundary.
+    pub fn add_face_surface(&mut self, face: FaceId, base: &str) -> Option<(String, usize)> {
+        let faces = self.outer_faces.get(&face).filter(|f| !f.is_empty())?.clone();
+        let name = self.names.take(base, "");
+        let n = faces.len();
+        self.model.surfaces.insert(name.clone(), faces);
+        Some((name, n))
+    }
+
+    /// A name after `base` that no set, surface or other name of the model takes (upper
+    /// case, valid in a deck, unique without regard to case), for a tie for example.
+    pub fn take_name(&mut self, base: &str) -> String {
+        self.names.take(base, "")
+    }
 }
 
 /// Names unique without regard to case (CalculiX reads names in upper case).
-#[derive(Default)]
+#[derive(Clone, Debug, Default)]
 struct Names(BTreeSet<String>);
 
 impl Names {
@@ -102,6 +129,7 @@ pub fn build_model(mesh: &TetMesh, groups: &BTreeMap<String, Vec<FaceId>>, kind:
         element_sets,
         surfaces: BTreeMap::new(),
         materials: BTreeMap::new(),
+        ties: Vec::new(),
         sections: Vec::new(),
         steps: Vec::new(),
         curving,
@@ -120,6 +148,13 @@ pub fn build_model(mesh: &TetMesh, groups: &BTreeMap<String, Vec<FaceId>>, kind:
             }
         }
     }
+    let mut outer_faces: BTreeMap<FaceId, Vec<ElementFace>> = BTreeMap::new();
+    for (tri, tag) in mesh.boundary.iter().zip(&mesh.face_tags) {
+        if let Some([only]) = faces_of.get(&sorted(*tri)).map(Vec::as_slice) {
+            outer_faces.entry(*tag).or_default().push(*only);
+        }
+    }
+    outer_faces.values_mut().for_each(|f| f.sort_unstable());
     let mut out = BTreeMap::new();
     for (group, tags) in groups {
         let tags: BTreeSet<FaceId> = tags.iter().copied().collect();
@@ -146,7 +181,7 @@ pub fn build_model(mesh: &TetMesh, groups: &BTreeMap<String, Vec<FaceId>>, kind:
         model.surfaces.insert(sets.surface.clone(), surface);
         out.insert(group.clone(), sets);
     }
-    Built { model, groups: out, regions }
+    Built { model, groups: out, regions, outer_faces, names }
 }
 
 fn sorted(mut t: [u32; 3]) -> [u32; 3] {
@@ -181,6 +216,32 @@ mod tests {
                 assert!(m.boundary.iter().zip(&m.face_tags).any(|(t, &ft)| ft == tag && sorted(*t).to_vec() == c));
             }
         }
+    }
+
+    #[test]
+    fn a_face_surface_holds_the_outer_element_faces_of_one_cad_face() {
+        // the touching faces of two separate tets are outer faces of one element each
+        let m = crate::io::test_meshes::touching_tets();
+        m.validate().unwrap();
+        for kind in [ElementKind::C3D4, ElementKind::C3D10] {
+            let mut b = build_model(&m, &BTreeMap::new(), kind, None, 1.0);
+            let (a, na) = b.add_face_surface(FaceId(10), "tie1_a").unwrap();
+            let (bb, nb) = b.add_face_surface(FaceId(20), "TIE1_A").unwrap();
+            assert_eq!((a.as_str(), bb.as_str(), na, nb), ("TIE1_A", "TIE1_A_2", 1, 1));
+            // face 10 is tet 0's face opposite vertex 0: S3 (corners 1, 3, 2)
+            assert_eq!(b.model.surfaces[&a], vec![ElementFace { element: 0, face: abaqus_face_opposite(0) }]);
+            assert_eq!(b.model.surfaces[&bb][0].element, 1);
+            assert!(b.add_face_surface(FaceId(99), "none").is_none());
+            b.model.validate().unwrap();
+        }
+        // where two solids share the face (an interface) it has no outer element face
+        let m = two_tets();
+        let shared: Vec<[u32; 3]> = vec![[1, 2, 3]];
+        let mut with_interface = m.clone();
+        with_interface.boundary.extend(shared);
+        with_interface.face_tags.push(FaceId(7));
+        let mut b = build_model(&with_interface, &BTreeMap::new(), ElementKind::C3D4, None, 1.0);
+        assert!(b.add_face_surface(FaceId(7), "x").is_none());
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! Layer 5: the FE model. A tagged tet mesh becomes nodes and C3D4 or C3D10 elements (boundary
 //! mid nodes on the CAD geometry), node sets, element sets and element-face surfaces per named
-//! group of CAD faces, materials, sections and steps with boundary conditions and loads. The
+//! group of CAD faces, ties between surfaces of solids that touch without sharing nodes,
+//! materials, sections and steps with boundary conditions and loads. The
 //! deck writers (`deck/`) write it; nothing here knows a file format.
 
 pub mod build;
@@ -16,5 +17,5 @@ pub mod step;
 pub use build::{Built, GroupSets, build_model};
 pub use element::ElementKind;
 pub use geometry::{BoundaryGeometry, BrepGeometry};
-pub use model::{CurvingReport, ElementFace, FeModel, FeModelError, Material, Section};
+pub use model::{CurvingReport, ElementFace, FeModel, FeModelError, Material, Section, Tie};
 pub use step::{Analysis, Bc, Load, Step};

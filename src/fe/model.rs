@@ -1,5 +1,5 @@
-//! The FE model: nodes, one block of elements, sets, element-face surfaces, materials,
-//! sections and steps. Indices are 0-based; deck writers add one.
+//! The FE model: nodes, one block of elements, sets, element-face surfaces, ties between
+//! surfaces, materials, sections and steps. Indices are 0-based; deck writers add one.
 
 use super::element::ElementKind;
 use super::step::Step;
@@ -44,6 +44,26 @@ pub struct Section {
     pub material: String,
 }
 
+/// Two element-face surfaces held together (`*TIE`): each node of the slave surface within
+/// `tolerance` of the master surface follows the master surface's displacement there. Ties
+/// join solids whose meshes do not share nodes where they touch.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Tie {
+    /// The tie's name.
+    pub name: String,
+    /// The slave (dependent) surface: by convention the finer mesh of the two.
+    pub slave: String,
+    /// The master (independent) surface: the coarser mesh.
+    pub master: String,
+    /// Where the two surfaces share nodes (a contact conforming in part), the node set of the
+    /// slave surface's nodes less those: the deck ties it, as a node-based slave surface, in
+    /// place of `slave` (a node cannot be tied to a face it is a node of).
+    pub slave_nodes: Option<String>,
+    /// How far, in the deck's length unit, a slave node may lie from the master surface and
+    /// still be tied (`POSITION TOLERANCE`).
+    pub tolerance: f64,
+}
+
 /// What second order did to the mesh.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct CurvingReport {
@@ -80,6 +100,8 @@ pub struct FeModel {
     pub element_sets: BTreeMap<String, Vec<u32>>,
     /// Element-face surfaces by name.
     pub surfaces: BTreeMap<String, Vec<ElementFace>>,
+    /// Ties between surfaces.
+    pub ties: Vec<Tie>,
     /// Materials by name.
     pub materials: BTreeMap<String, Material>,
     /// Solid sections.
@@ -143,8 +165,9 @@ impl FeModel {
 
     /// Checks the model: lengths, indices, every element's Jacobian positive at its check
     /// points ([`super::jacobian`]), sets and surfaces in range, sections naming defined
-    /// materials and sets, step items naming defined sets and surfaces, names valid in
-    /// Abaqus and Nastran decks.
+    /// materials and sets, ties between two different, defined, non-empty surfaces with a
+    /// positive tolerance and unique names, step items naming defined sets and surfaces, names
+    /// valid in Abaqus and Nastran decks.
     ///
     /// # Errors
     /// The first violation found.
@@ -200,8 +223,40 @@ impl FeModel {
                 return Err(FeModelError::Name(format!("a section names material {}, which is not defined", s.material)));
             }
         }
+        self.check_ties()?;
         for step in &self.steps {
             step.check_names(self)?;
+        }
+        Ok(())
+    }
+
+    fn check_ties(&self) -> Result<(), FeModelError> {
+        let mut names = std::collections::BTreeSet::new();
+        for t in &self.ties {
+            check_name(&t.name)?;
+            if !names.insert(t.name.to_ascii_uppercase()) {
+                return Err(FeModelError::Name(format!("tie {} is defined twice", t.name)));
+            }
+            for (role, s) in [("slave", &t.slave), ("master", &t.master)] {
+                match self.surfaces.get(s) {
+                    None => return Err(FeModelError::Name(format!("tie {} names {role} surface {s}, which is not defined", t.name))),
+                    Some(f) if f.is_empty() => return Err(FeModelError::Name(format!("tie {} names {role} surface {s}, which is empty", t.name))),
+                    Some(_) => {}
+                }
+            }
+            if let Some(n) = &t.slave_nodes {
+                match self.node_sets.get(n) {
+                    None => return Err(FeModelError::Name(format!("tie {} names slave node set {n}, which is not defined", t.name))),
+                    Some(v) if v.is_empty() => return Err(FeModelError::Name(format!("tie {} names slave node set {n}, which is empty", t.name))),
+                    Some(_) => {}
+                }
+            }
+            if t.slave == t.master {
+                return Err(FeModelError::Name(format!("tie {} ties surface {} to itself", t.name, t.slave)));
+            }
+            if !(t.tolerance.is_finite() && t.tolerance > 0.0) {
+                return Err(FeModelError::Name(format!("tie {} has position tolerance {}, not a positive number", t.name, t.tolerance)));
+            }
         }
         Ok(())
     }
@@ -230,4 +285,48 @@ pub fn deck_name(name: &str) -> String {
     }
     s.truncate(MAX_NAME);
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::FaceId;
+    use crate::fe::build_model;
+
+    /// Two touching tets with a surface on each touching face, `A` and `B`.
+    fn tied() -> FeModel {
+        let mesh = crate::io::test_meshes::touching_tets();
+        let mut b = build_model(&mesh, &BTreeMap::new(), ElementKind::C3D4, None, 1.0);
+        b.add_face_surface(FaceId(10), "A").unwrap();
+        b.add_face_surface(FaceId(20), "B").unwrap();
+        let mut m = b.model;
+        m.ties.push(Tie { name: "TIE1".into(), slave: "B".into(), master: "A".into(), tolerance: 0.01, slave_nodes: None });
+        m
+    }
+
+    #[test]
+    fn validate_checks_ties() {
+        tied().validate().unwrap();
+        let bad = |f: &dyn Fn(&mut FeModel), word: &str| {
+            let mut m = tied();
+            f(&mut m);
+            let e = m.validate().unwrap_err().to_string();
+            assert!(e.contains(word), "{word} expected in: {e}");
+        };
+        bad(&|m| m.ties[0].master = "NOPE".into(), "master surface NOPE, which is not defined");
+        bad(&|m| m.ties[0].slave = "NOPE".into(), "slave surface NOPE, which is not defined");
+        bad(&|m| m.ties[0].slave = "A".into(), "to itself");
+        bad(&|m| m.ties[0].tolerance = 0.0, "not a positive number");
+        bad(&|m| m.ties[0].tolerance = f64::NAN, "not a positive number");
+        bad(&|m| m.ties[0].name = "1st".into(), "not a valid set name");
+        bad(
+            &|m| {
+                let t = m.ties[0].clone();
+                m.ties.push(Tie { name: "tie1".into(), ..t });
+            },
+            "defined twice",
+        );
+        bad(&|m| m.surfaces.get_mut("A").unwrap().clear(), "which is empty");
+        bad(&|m| m.ties[0].slave_nodes = Some("NOPE".into()), "slave node set NOPE, which is not defined");
+    }
 }

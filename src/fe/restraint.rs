@@ -1,4 +1,5 @@
-//! Is a step singular? Each connected piece of the mesh must have its rigid-body motions held
+//! Is a step singular? Each connected piece of the mesh (elements joined by shared nodes or by
+//! a tie between two surfaces, [`FeModel::ties`]) must have its rigid-body motions held
 //! (a static step: six, by fixed or prescribed degrees of freedom) or its temperature tied
 //! down (a heat step: a prescribed temperature or a film somewhere on it). A frequency step
 //! may be free.
@@ -30,6 +31,15 @@ pub fn free_pieces(m: &FeModel, step: &Step) -> Vec<FreePiece> {
         let el = m.element(e);
         for &v in &el[1..] {
             uf.union(el[0], v);
+        }
+    }
+    // a tie joins the pieces of its two surfaces
+    for t in &m.ties {
+        let mut nodes = [&t.slave, &t.master].into_iter().filter_map(|s| m.surfaces.get(s.as_str())).flatten().map(|f| m.element(f.element as usize)[0]);
+        if let Some(first) = nodes.next() {
+            for v in nodes {
+                uf.union(first, v);
+            }
         }
     }
     let mut piece_of = vec![u32::MAX; nn];
@@ -157,6 +167,28 @@ fn rigid_rank(points: &[DVec3], held: &[(u32, u8)]) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::FaceId;
+    use crate::fe::model::Tie;
+    use crate::fe::{ElementKind, build_model};
+    use std::collections::BTreeMap;
+
+    #[test]
+    fn a_tie_joins_two_pieces() {
+        // two tets touching without shared nodes; the first held at its three base nodes
+        let mesh = crate::io::test_meshes::touching_tets();
+        let mut b = build_model(&mesh, &BTreeMap::new(), ElementKind::C3D4, None, 1.0);
+        let (a, _) = b.add_face_surface(FaceId(10), "a").unwrap();
+        let (c, _) = b.add_face_surface(FaceId(20), "b").unwrap();
+        let mut m = b.model;
+        m.node_sets.insert("HELD".into(), vec![0, 1, 2]);
+        let step = Step { name: "s".into(), analysis: Analysis::Static, bcs: vec![Bc::Fixed { nodes: "HELD".into(), dofs: vec![1, 2, 3] }], loads: Vec::new() };
+        let free = free_pieces(&m, &step);
+        assert_eq!(free.len(), 1, "{free:?}");
+        assert_eq!((free[0].elements, free[0].free_modes), (1, 6));
+        m.ties.push(Tie { name: "T".into(), slave: c, master: a, tolerance: 1e-6, slave_nodes: None });
+        m.validate().unwrap();
+        assert_eq!(free_pieces(&m, &step), Vec::new());
+    }
 
     #[test]
     fn rigid_rank_counts_the_motions_held() {

@@ -1,11 +1,14 @@
 //! The FE model of a job: the part's tet mesh as C3D4 or C3D10 elements (boundary mid nodes
-//! on the CAD geometry), a node set and an element-face surface per selector, the materials
-//! and sections, and the steps with their boundary conditions and loads. Everything a solver
+//! on the CAD geometry), a node set and an element-face surface per selector, a tie for each
+//! contact of an assembly's solids without shared nodes ([`super::fe_ties`], unless
+//! `[model] tie = false`), the materials and sections, and the steps with their boundary conditions and loads. Everything a solver
 //! would refuse, or solve into nonsense, is an error naming the job's key and line: a
 //! selector that is not defined, faces between two solids used as a boundary, a solid
 //! without a material, a material without what a step needs, a step that leaves a piece
 //! free to move.
 
+use super::assembly::gap_of;
+use super::fe_ties::{TIE_TOLERANCE_GAPS, TieSummary, tie_contacts};
 use super::job::JobFile;
 use super::job_fe::{ElementChoice, SolidRef, StepKind, StepSpec};
 use super::part::Part;
@@ -37,6 +40,8 @@ pub struct FeSummary {
     pub solids: Vec<SolidSummary>,
     /// Steps.
     pub steps: Vec<StepSummary>,
+    /// Ties between solids that touch without sharing nodes.
+    pub ties: Vec<TieSummary>,
 }
 
 /// A solid of the FE model.
@@ -83,7 +88,8 @@ pub fn build_fe(jf: &JobFile, part: &Part, selected: &BTreeMap<String, Vec<FaceI
         ElementChoice::C3D10 => ElementKind::C3D10,
     };
     let geometry = part.model.as_ref().map(BrepGeometry::new);
-    let built = build_model(mesh, selected, kind, geometry.as_ref().map(|g| g as &dyn crate::fe::BoundaryGeometry), 1.0 / unit);
+    let mut built = build_model(mesh, selected, kind, geometry.as_ref().map(|g| g as &dyn crate::fe::BoundaryGeometry), 1.0 / unit);
+    let ties = if job.model.tie { tie_contacts(&mut built, &part.contacts, TIE_TOLERANCE_GAPS * gap_of(part) / unit) } else { Vec::new() };
     let mut m = built.model;
     // materials, under deck names unique without regard to case
     let mut material_name: BTreeMap<&str, String> = BTreeMap::new();
@@ -159,7 +165,7 @@ pub fn build_fe(jf: &JobFile, part: &Part, selected: &BTreeMap<String, Vec<FaceI
         m.steps.push(step);
     }
     m.validate().map_err(|e| PipelineError::Usage { path: part.path.clone(), message: format!("the FE model is inconsistent (a bug): {e}") })?;
-    let summary = FeSummary { element: kind.name().into(), nodes: m.nodes.len(), elements: m.element_count(), curving: m.curving.clone(), selectors: built.groups, solids, steps };
+    let summary = FeSummary { element: kind.name().into(), nodes: m.nodes.len(), elements: m.element_count(), curving: m.curving.clone(), selectors: built.groups, solids, steps, ties };
     Ok((m, summary))
 }
 

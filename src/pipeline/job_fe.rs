@@ -1,4 +1,4 @@
-//! The FE keys of a job file: `[model]` (element type), `[materials.NAME]`, `[[section]]`
+//! The FE keys of a job file: `[model]` (element type, ties), `[materials.NAME]`, `[[section]]`
 //! (a material on a solid), `[[step]]` (procedure, boundary conditions and loads on
 //! selectors) and `[solve]` (what `fepre solve` writes). Values are checked while they are
 //! read, so errors name the key, its line and column; cross-references (a selector or
@@ -22,12 +22,26 @@ pub enum ElementChoice {
 }
 
 /// `[model]`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSection {
     /// `"C3D10"` (default) or `"C3D4"`.
     #[serde(default)]
     pub element: ElementChoice,
+    /// Tie the solids of an assembly where they touch without sharing nodes (`*TIE`; default
+    /// true).
+    #[serde(default = "yes")]
+    pub tie: bool,
+}
+
+impl Default for ModelSection {
+    fn default() -> Self {
+        ModelSection { element: ElementChoice::default(), tie: true }
+    }
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// A Poisson's ratio: finite, in (-1, 0.5).

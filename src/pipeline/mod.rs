@@ -18,6 +18,7 @@
 pub mod assembly;
 mod error;
 pub mod fe_model;
+pub mod fe_ties;
 pub mod job;
 pub mod job_fe;
 pub mod part;

@@ -1,0 +1,138 @@
+//! Ties between the solids of an assembly: for each contact ([`ContactReport`]) whose faces
+//! touch over more than a tiny fraction of their area without sharing nodes, an element-face
+//! surface on each of the two CAD faces (their element faces on the outer boundary of the
+//! mesh; where the mesh is conforming the faces are inside it and need no tie) and a `*TIE`
+//! holding them together: the finer side (more element faces) is the slave, the coarser the
+//! master, as CalculiX and Abaqus recommend. Where the contact is conforming in part, the two
+//! surfaces share the nodes along the border of the conforming part: the slave is then the
+//! slave surface's nodes less those ([`Tie::slave_nodes`]), since CalculiX cannot tie a node to
+//! a face it belongs to ("zero coefficient" in its MPC cascade).
+//!
+//! The position tolerance is [`TIE_TOLERANCE_GAPS`] times the part's assembly gap
+//! ([`super::assembly::gap_of`]): the mesher calls two faces in contact where their
+//! triangles come within the gap, three chord deviations of the certified tessellation for a
+//! STEP part (each tessellation lies within one chord of the B-rep, so two tessellations of one
+//! curved contact are at most two chords apart; C3D10 mid nodes on the CAD face only bring
+//! them closer). A slave node within the gap of the master surface is therefore one the mesher
+//! found touching, and one farther away, beside a master face that is smaller than the slave
+//! face, is not tied. A multiple of the element size would reach that far past the edge of a
+//! contact and tie nodes that only face the other solid across a clearance.
+
+use super::assembly::ContactReport;
+use crate::core::FaceId;
+use crate::fe::loads::face_nodes;
+use crate::fe::{Built, FeModel, Tie};
+use serde::Serialize;
+use std::collections::BTreeSet;
+
+/// A contact is tied where its area without shared nodes (`area - shared_area`) is more than
+/// this fraction of its area; below it the difference is the rounding of the two areas.
+pub const TIE_MIN_FRACTION: f64 = 1e-3;
+
+/// The tie's position tolerance, in assembly gaps (see the module docs).
+pub const TIE_TOLERANCE_GAPS: f64 = 1.0;
+
+/// A tie the FE model holds, for reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TieSummary {
+    /// The tie's name.
+    pub name: String,
+    /// The slave surface (the finer side).
+    pub slave: String,
+    /// The master surface (the coarser side).
+    pub master: String,
+    /// The slave surface's element faces.
+    pub slave_faces: usize,
+    /// The master surface's element faces.
+    pub master_faces: usize,
+    /// The slave side: its solid and CAD face.
+    pub slave_side: (u32, FaceId),
+    /// The master side: its solid and CAD face.
+    pub master_side: (u32, FaceId),
+    /// The slave node set that replaces the slave surface where the two surfaces share nodes.
+    pub slave_nodes: Option<String>,
+    /// Nodes the two surfaces share (left out of the slave side).
+    pub shared_nodes: usize,
+    /// The contact's area without shared nodes (part units squared).
+    pub tied_area: f64,
+    /// The position tolerance (deck length unit).
+    pub tolerance: f64,
+}
+
+/// Adds to `built`'s model a tie for each of `contacts` that needs one (module docs), with
+/// position tolerance `tolerance` (deck length unit). Surfaces are named `TIEk_A` (the face of
+/// the contact's solid `a`) and `TIEk_B`, the tie `TIEk`, k from 1 (made unique against the
+/// model's other names). A contact either of whose faces has no element face on the outer
+/// boundary gets no tie (its mesh is conforming there).
+pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f64) -> Vec<TieSummary> {
+    let mut out = Vec::new();
+    for c in contacts {
+        let open = c.area - c.shared_area;
+        if !(open > TIE_MIN_FRACTION * c.area) {
+            continue;
+        }
+        let count = |f: FaceId| built.outer_faces.get(&f).map_or(0, Vec::len);
+        if count(c.a.face) == 0 || count(c.b.face) == 0 {
+            continue;
+        }
+        let k = out.len() + 1;
+        let name = built.take_name(&format!("TIE{k}"));
+        let Some((sa, na)) = built.add_face_surface(c.a.face, &format!("{name}_A")) else { continue };
+        let Some((sb, nb)) = built.add_face_surface(c.b.face, &format!("{name}_B")) else { continue };
+        let a = ((c.a.solid, c.a.face), sa, na);
+        let b = ((c.b.solid, c.b.face), sb, nb);
+        // the finer mesh is the slave; on equal counts, side b
+        let (slave, master) = if na > nb { (a, b) } else { (b, a) };
+        let (mut dependent, independent) = (surface_nodes(&built.model, &slave.1), surface_nodes(&built.model, &master.1));
+        let before = dependent.len();
+        dependent.retain(|v| !independent.contains(v));
+        let shared_nodes = before - dependent.len();
+        if dependent.is_empty() {
+            continue;
+        }
+        let slave_nodes = (shared_nodes > 0).then(|| {
+            let n = built.take_name(&format!("{}_N", slave.1));
+            built.model.node_sets.insert(n.clone(), dependent.into_iter().collect());
+            n
+        });
+        built.model.ties.push(Tie { name: name.clone(), slave: slave.1.clone(), master: master.1.clone(), tolerance, slave_nodes: slave_nodes.clone() });
+        out.push(TieSummary { name, slave: slave.1, master: master.1, slave_faces: slave.2, master_faces: master.2, slave_side: slave.0, master_side: master.0, slave_nodes, shared_nodes, tied_area: open, tolerance });
+    }
+    out
+}
+
+/// The nodes of surface `name`'s element faces (mid nodes included).
+fn surface_nodes(m: &FeModel, name: &str) -> BTreeSet<u32> {
+    m.surfaces[name].iter().flat_map(|f| face_nodes(m.kind, f.face).into_iter().map(move |k| m.element(f.element as usize)[k])).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::{ElementKind, build_model};
+    use crate::pipeline::assembly::ContactSide;
+    use std::collections::BTreeMap;
+
+    fn side(solid: u32, face: u32) -> ContactSide {
+        ContactSide { solid, solid_name: None, face: FaceId(face), face_name: None, step_id: None }
+    }
+
+    #[test]
+    fn a_non_conforming_contact_gets_a_tie_and_a_conforming_one_none() {
+        let mesh = crate::io::test_meshes::touching_tets();
+        let mut built = build_model(&mesh, &BTreeMap::new(), ElementKind::C3D10, None, 1.0);
+        let contacts = vec![
+            ContactReport { a: side(1, 10), b: side(2, 20), area: 0.5, shared_area: 0.5 },
+            ContactReport { a: side(1, 10), b: side(2, 20), area: 0.5, shared_area: 0.0 },
+        ];
+        let ties = tie_contacts(&mut built, &contacts, 0.25);
+        assert_eq!(ties.len(), 1, "{ties:?}");
+        let t = &ties[0];
+        // one element face each: side b is the slave
+        assert_eq!((t.name.as_str(), t.slave.as_str(), t.master.as_str()), ("TIE1", "TIE1_B", "TIE1_A"));
+        assert_eq!((t.slave_side, t.master_side, t.slave_faces, t.master_faces), ((2, FaceId(20)), (1, FaceId(10)), 1, 1));
+        assert_eq!(built.model.ties, vec![Tie { name: "TIE1".into(), slave: "TIE1_B".into(), master: "TIE1_A".into(), tolerance: 0.25, slave_nodes: None }]);
+        assert_eq!((t.slave_nodes.as_ref(), t.shared_nodes), (None, 0));
+        built.model.validate().unwrap();
+    }
+}
