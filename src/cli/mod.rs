@@ -182,6 +182,9 @@ pub(crate) fn print_fe_summary(fe: &crate::pipeline::fe_model::FeSummary) {
     for s in &fe.solids {
         println!("solid            {} ({} elements): material {}", s.element_set, s.elements, s.material.as_deref().unwrap_or("none"));
     }
+    for t in &fe.ties {
+        println!("tie              {}: {} ({} faces, solid {} face {}) to {} ({} faces, solid {} face {}), area {:.4} not sharing nodes", t.name, t.slave, t.slave_faces, t.slave_side.0, t.slave_side.1.0, t.master, t.master_faces, t.master_side.0, t.master_side.1.0, t.tied_area);
+    }
     for s in &fe.steps {
         println!("step             {} ({})", s.name, s.analysis);
         for (sel, f) in &s.forces {

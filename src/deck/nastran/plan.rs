@@ -83,6 +83,9 @@ pub(super) fn plan(m: &FeModel) -> Result<Plan<'_>, String> {
             return Err(format!("{count} {what}: Nastran ids stop at {MAX_ID}"));
         }
     }
+    if let Some(t) = m.ties.first() {
+        return Err(format!("tie {} (and {} more) joins solids whose meshes do not share nodes; the Nastran writer has no glued contact (BSURFS/BCTABLE) yet: write a CalculiX deck (.inp), or mesh the assembly conforming", t.name, m.ties.len() - 1));
+    }
     let sol = solution(&m.steps)?;
     // a property per element, from the sections
     let mut pids = vec![0u32; ne];
