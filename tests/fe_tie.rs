@@ -302,3 +302,30 @@ fn a_tied_pair_under_a_tip_force_bends_as_one_block() {
         assert!((ratio - 1.0).abs() < 0.03, "{name}: tied pair tip deflection {} against one block's {single}", run.tip);
     }
 }
+
+/// A real assembly (the corpus' `as1-tu-203`: 18 solids, 88 pairs of touching faces, none
+/// conforming) tied and solved under gravity, fixed on its largest face: CalculiX accepts the
+/// ties (a plate face under several bolts, ties that would chain), the solids carry their
+/// weight to the support.
+#[test]
+fn a_corpus_assembly_tied_together_carries_its_weight() {
+    let Some(part) = common::corpus_file("as1-tu-203.stp") else { return };
+    if common::tools::require(common::tools::ccx(), "ccx (CalculiX)", "the tied corpus assembly").is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let job = format!(
+        "[input]\nfile = \"{}\"\n[selectors]\nbase = {{ largest = {{ count = 1 }} }}\n[model]\nelement = \"C3D4\"\n[materials.steel]\nyoung = 210000\npoisson = 0.3\ndensity = 7.85e-9\n[[section]]\nmaterial = \"steel\"\n[[step]]\nfixed = [{{ faces = \"base\" }}]\ngravity = [{{ acceleration = [0, 0, -9810] }}]\n[[output]]\nfile = \"as1.inp\"\n",
+        part.display()
+    );
+    std::fs::write(dir.path().join("as1.toml"), job).unwrap();
+    let jf = fepre::pipeline::job::JobFile::read(&dir.path().join("as1.toml")).unwrap();
+    let report = fepre::pipeline::solve::solve_job(&jf).unwrap_or_else(|e| panic!("{e}"));
+    let fe = report.run.fe.as_ref().unwrap();
+    let open = report.run.contacts.iter().filter(|c| c.area - c.shared_area > 1e-3 * c.area).count();
+    assert!(fe.ties.len() > 0 && fe.ties.len() <= open, "{} ties for {open} non-conforming contacts", fe.ties.len());
+    let weight = report.run.mesh.as_ref().unwrap().volume * 7.85e-9 * 9810.0;
+    let reaction = report.steps[0].reactions["BASE"][2];
+    eprintln!("as1-tu-203: {} ties, reaction {reaction:.4} N of a weight {weight:.4} N (the rest loads the support's own nodes)", fe.ties.len());
+    assert!(reaction > 0.8 * weight && reaction <= weight, "reaction {reaction} against the weight {weight}");
+}

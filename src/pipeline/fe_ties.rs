@@ -6,7 +6,11 @@
 //! master, as CalculiX and Abaqus recommend. Where the contact is conforming in part, the two
 //! surfaces share the nodes along the border of the conforming part: the slave is then the
 //! slave surface's nodes less those ([`Tie::slave_nodes`]), since CalculiX cannot tie a node to
-//! a face it belongs to ("zero coefficient" in its MPC cascade).
+//! a face it belongs to ("zero coefficient" in its MPC cascade). Likewise a node is the slave
+//! of one tie only and of none where it lies on any tie's master surface (ties that chain can
+//! cycle): a face that touches several faces (a plate under several bolts) gives each later tie
+//! the nodes the earlier ties left; slave nodes farther than the tolerance from their master
+//! (which CalculiX would leave free) are not counted as tied.
 //!
 //! The position tolerance is [`TIE_TOLERANCE_GAPS`] times the part's assembly gap
 //! ([`super::assembly::gap_of`]): the mesher calls two faces in contact where their
@@ -23,6 +27,7 @@ use crate::core::FaceId;
 use crate::fe::loads::face_nodes;
 use crate::fe::{Built, FeModel, Tie};
 use serde::Serialize;
+use glam::DVec3;
 use std::collections::BTreeSet;
 
 /// A contact is tied where its area without shared nodes (`area - shared_area`) is more than
@@ -65,7 +70,9 @@ pub struct TieSummary {
 /// model's other names). A contact either of whose faces has no element face on the outer
 /// boundary gets no tie (its mesh is conforming there).
 pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f64) -> Vec<TieSummary> {
-    let mut out = Vec::new();
+    // the pairs of surfaces, slave first
+    type Side = ((u32, FaceId), String, usize);
+    let mut pairs: Vec<(String, f64, Side, Side)> = Vec::new();
     for c in contacts {
         let open = c.area - c.shared_area;
         if !(open > TIE_MIN_FRACTION * c.area) {
@@ -75,22 +82,41 @@ pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f6
         if count(c.a.face) == 0 || count(c.b.face) == 0 {
             continue;
         }
-        let k = out.len() + 1;
-        let name = built.take_name(&format!("TIE{k}"));
+        let name = built.take_name(&format!("TIE{}", pairs.len() + 1));
         let Some((sa, na)) = built.add_face_surface(c.a.face, &format!("{name}_A")) else { continue };
         let Some((sb, nb)) = built.add_face_surface(c.b.face, &format!("{name}_B")) else { continue };
         let a = ((c.a.solid, c.a.face), sa, na);
         let b = ((c.b.solid, c.b.face), sb, nb);
         // the finer mesh is the slave; on equal counts, side b
         let (slave, master) = if na > nb { (a, b) } else { (b, a) };
-        let (mut dependent, independent) = (surface_nodes(&built.model, &slave.1), surface_nodes(&built.model, &master.1));
+        pairs.push((name, open, slave, master));
+    }
+    // A node is the dependent side of one equation at most, and never the independent side of
+    // another: CalculiX stops with "zero coefficient on the dependent side" where a node is
+    // tied twice, or where ties chain into a cycle (a plate's node tied to a bolt whose node
+    // is tied back to the plate). So no node of any master surface is a slave, and a face that
+    // touches several others gives each later tie only the nodes the earlier ones left.
+    let masters: BTreeSet<u32> = pairs.iter().flat_map(|p| surface_nodes(&built.model, &p.3.1)).collect();
+    let mut tied: BTreeSet<u32> = BTreeSet::new();
+    let mut out = Vec::new();
+    for (name, open, slave, master) in pairs {
+        let mut dependent = surface_nodes(&built.model, &slave.1);
+        let independent = surface_nodes(&built.model, &master.1);
         let before = dependent.len();
         dependent.retain(|v| !independent.contains(v));
         let shared_nodes = before - dependent.len();
+        // only nodes within the tolerance of the master are tied (CalculiX leaves the others
+        // free)
+        let near = master_triangles(&built.model, &master.1);
+        dependent.retain(|v| !masters.contains(v) && !tied.contains(v) && within(built.model.nodes[*v as usize], &near, tolerance));
         if dependent.is_empty() {
+            built.model.surfaces.remove(&slave.1);
+            built.model.surfaces.remove(&master.1);
             continue;
         }
-        let slave_nodes = (shared_nodes > 0).then(|| {
+        let whole = dependent.len() == before;
+        tied.extend(dependent.iter().copied());
+        let slave_nodes = (!whole).then(|| {
             let n = built.take_name(&format!("{}_N", slave.1));
             built.model.node_sets.insert(n.clone(), dependent.into_iter().collect());
             n
@@ -99,6 +125,31 @@ pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f6
         out.push(TieSummary { name, slave: slave.1, master: master.1, slave_faces: slave.2, master_faces: master.2, slave_side: slave.0, master_side: master.0, slave_nodes, shared_nodes, tied_area: open, tolerance });
     }
     out
+}
+
+/// The triangles of surface `name`'s element faces: a 3-node face, or the four corner
+/// triangles of a 6-node face (within a quarter of its curvature's sag of the curved face).
+fn master_triangles(m: &FeModel, name: &str) -> Vec<[DVec3; 3]> {
+    let mut out = Vec::new();
+    for f in &m.surfaces[name] {
+        let el = m.element(f.element as usize);
+        let p: Vec<DVec3> = face_nodes(m.kind, f.face).into_iter().map(|k| m.nodes[el[k] as usize]).collect();
+        if p.len() == 6 {
+            out.extend([[p[0], p[3], p[5]], [p[3], p[1], p[4]], [p[5], p[4], p[2]], [p[3], p[4], p[5]]]);
+        } else {
+            out.push([p[0], p[1], p[2]]);
+        }
+    }
+    out
+}
+
+/// True when `p` lies within `tolerance` of one of `triangles`.
+fn within(p: DVec3, triangles: &[[DVec3; 3]], tolerance: f64) -> bool {
+    triangles.iter().any(|t| {
+        let lo = t[0].min(t[1]).min(t[2]) - DVec3::splat(tolerance);
+        let hi = t[0].max(t[1]).max(t[2]) + DVec3::splat(tolerance);
+        p.cmpge(lo).all() && p.cmple(hi).all() && crate::core::closest::point_triangle_distance(p, *t) <= tolerance
+    })
 }
 
 /// The nodes of surface `name`'s element faces (mid nodes included).
