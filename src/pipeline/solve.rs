@@ -172,6 +172,11 @@ fn per_model_node(field: &FrdField, nodes: usize) -> Vec<f64> {
     out
 }
 
+/// The von Mises stress per model node of a six-component `STRESS` field.
+fn von_mises_per_node(s: &FrdField, nodes: usize) -> Option<Vec<f64>> {
+    (s.width() == 6).then(|| per_model_node(s, nodes).chunks(6).map(|x| crate::io::frd::von_mises([x[0], x[1], x[2], x[3], x[4], x[5]])).collect())
+}
+
 fn largest(values: impl Iterator<Item = f64>, m: &FeModel) -> Option<AtNode> {
     let (i, v) = values.enumerate().filter(|(_, v)| v.is_finite()).max_by(|a, b| a.1.total_cmp(&b.1))?;
     Some(AtNode { value: v, node: i as u32 + 1, at: m.nodes[i].to_array() })
@@ -206,10 +211,7 @@ fn step_results(m: &FeModel, frd: &FrdResults, totals: Vec<ForceTotal>) -> Vec<S
                     let v = per_model_node(d, nn);
                     r.max_displacement = largest(v.chunks(3).map(|u| DVec3::new(u[0], u[1], u[2]).length()), m);
                 }
-                if let Some(vm) = last.and_then(|b| b.field("STRESS")).and_then(|s| {
-                    let v = per_model_node(s, nn);
-                    (s.width() == 6).then(|| v.chunks(6).map(|x| crate::io::frd::von_mises([x[0], x[1], x[2], x[3], x[4], x[5]])).collect::<Vec<f64>>())
-                }) {
+                if let Some(vm) = last.and_then(|b| b.field("STRESS")).and_then(|s| von_mises_per_node(s, nn)) {
                     r.max_von_mises = largest(vm.into_iter(), m);
                 }
                 let forc = last.and_then(|b| b.field("FORC")).map(|f| per_model_node(f, nn));
@@ -243,41 +245,38 @@ fn write_results(path: &Path, m: &FeModel, frd: &FrdResults) -> Result<(), Pipel
     for (k, step) in m.steps.iter().enumerate() {
         let prefix = if several { format!("{}/", step.name) } else { String::new() };
         let blocks = of_step(frd, k as u32 + 1);
-        let mut add = |name: &str, f: &FrdField| arrays.push((format!("{prefix}{name}"), f.width(), per_model_node(f, nn)));
+        let array = |name: &str, f: &FrdField| (format!("{prefix}{name}"), f.width(), per_model_node(f, nn));
         match step.analysis {
             Analysis::Frequency { .. } => {
                 for (j, b) in blocks.iter().filter(|b| b.kind == FrdStepKind::Frequency).enumerate() {
                     if let Some(d) = b.field("DISP") {
-                        add(&format!("mode_{}", j + 1), d);
+                        arrays.push(array(&format!("mode_{}", j + 1), d));
                     }
                 }
             }
             Analysis::Heat => {
                 if let Some(b) = blocks.last() {
                     if let Some(t) = b.field("NDTEMP") {
-                        add("temperature", t);
+                        arrays.push(array("temperature", t));
                     }
                     if let Some(q) = b.field("FLUX") {
-                        add("heat_flux", q);
+                        arrays.push(array("heat_flux", q));
                     }
                 }
             }
             Analysis::Static => {
                 if let Some(b) = blocks.last() {
                     if let Some(d) = b.field("DISP") {
-                        add("displacement", d);
+                        arrays.push(array("displacement", d));
                     }
                     if let Some(s) = b.field("STRESS") {
-                        add("stress", s);
-                        if s.width() == 6 {
-                            let v = per_model_node(s, nn);
-                            let vm: Vec<f64> = v.chunks(6).map(|x| crate::io::frd::von_mises([x[0], x[1], x[2], x[3], x[4], x[5]])).collect();
-                            let f = FrdField { name: "von_mises".into(), components: vec!["VM".into()], nodes: (1..=nn as u32).collect(), values: vm };
-                            add("von_mises", &f);
+                        arrays.push(array("stress", s));
+                        if let Some(vm) = von_mises_per_node(s, nn) {
+                            arrays.push((format!("{prefix}von_mises"), 1, vm));
                         }
                     }
                     if let Some(f) = b.field("FORC") {
-                        add("reaction", f);
+                        arrays.push(array("reaction", f));
                     }
                 }
             }
