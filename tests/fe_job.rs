@@ -321,3 +321,19 @@ fn solve_without_calculix_says_how_to_install_it() {
     assert!(err.contains("apt install calculix-ccx") && err.contains("FEPRE_CCX"), "{err}");
     assert!(!dir.path().join("job.inp").exists());
 }
+
+#[test]
+fn decks_are_the_same_bytes_for_any_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy("cad_fixtures/bracket.step", dir.path().join("part.step")).unwrap();
+    let job = format!("[selectors]\nholes = {{ name = \"hole_*\" }}\nfixed = {{ name = \"end_y\" }}\nloaded = {{ name = \"end_x\" }}\n[density]\nsize = 6\n{STEEL}[[step]]\nfixed = [{{ faces = \"fixed\" }}]\nforce = [{{ faces = \"loaded\", total = [0, 0, -500] }}]\npressure = [{{ faces = \"holes\", value = 1 }}]\n[[output]]\nfile = \"out.inp\"\n[[output]]\nfile = \"out.bdf\"\n");
+    let mut decks = Vec::new();
+    for threads in ["1", "2", "1"] {
+        let path = dir.path().join("job.toml");
+        std::fs::write(&path, format!("[input]\nfile = \"part.step\"\n{job}")).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_fepre")).arg("run").arg(&path).env("RAYON_NUM_THREADS", threads).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        decks.push((std::fs::read(dir.path().join("out.inp")).unwrap(), std::fs::read(dir.path().join("out.bdf")).unwrap()));
+    }
+    assert!(decks.windows(2).all(|w| w[0] == w[1]), "the decks differ between thread counts");
+}
