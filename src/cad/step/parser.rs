@@ -475,11 +475,16 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// A string after its opening quote, `''` turned into `'`.
+    /// A string after its opening quote, `''` turned into `'` and the control directives of
+    /// ISO 10303-21 (section 6.4.3) decoded into UTF-8: `\\` a backslash; `\S\c` the
+    /// character `c` + 128 of the current ISO 8859 page (`\PA\` to `\PI\` choose it; the
+    /// character after `\S\` is taken as it is, even an apostrophe, as exporters write it);
+    /// `\X\hh` a byte of ISO 8859-1; `\X2\hhhh…\X0\` UCS-2 and `\X4\hhhhhhhh…\X0\` UCS-4
+    /// characters; `\N\` and `\F\` nothing. Pages other than A (ISO 8859-1) are read as
+    /// Latin-1, which names may misspell but never fail on.
     fn string(&mut self) -> R<String> {
         let start_line = self.line;
-        let mut out: Vec<u8> = Vec::new();
-        let mut start = self.pos;
+        let mut out = String::new();
         loop {
             match self.s.get(self.pos) {
                 None => {
@@ -488,22 +493,83 @@ impl<'a> Parser<'a> {
                     return Err(Fail::Eof);
                 }
                 Some(b'\'') => {
-                    out.extend_from_slice(&self.s[start..self.pos]);
                     if self.s.get(self.pos + 1) == Some(&b'\'') {
-                        out.push(b'\'');
+                        out.push('\'');
                         self.pos += 2;
-                        start = self.pos;
-                    } else {
+                    } else if self.closes_string(self.pos + 1) {
                         self.pos += 1;
-                        return Ok(String::from_utf8_lossy(&out).into_owned());
+                        return Ok(out);
+                    } else {
+                        // a single apostrophe not followed by `,` or `)`: part of the text, as
+                        // OpenCASCADE reads it (exporters that write `\S\'` or a bare `'`)
+                        out.push('\'');
+                        self.pos += 1;
                     }
                 }
-                Some(b'\n') => {
-                    self.line += 1;
-                    self.pos += 1;
+                Some(b'\\') => {
+                    let (text, used) = directive(&self.s[self.pos..]);
+                    out.push_str(&text);
+                    self.pos += used;
                 }
-                Some(_) => self.pos += 1,
+                Some(&b) => {
+                    if b == b'\n' {
+                        self.line += 1;
+                    }
+                    // a run of plain bytes, read as UTF-8 (or Latin-1 where it is not)
+                    let start = self.pos;
+                    self.pos += 1;
+                    while let Some(&c) = self.s.get(self.pos) {
+                        if c == b'\'' || c == b'\\' || c == b'\n' {
+                            break;
+                        }
+                        self.pos += 1;
+                    }
+                    let run = &self.s[start..self.pos];
+                    match std::str::from_utf8(run) {
+                        Ok(t) => out.push_str(t),
+                        Err(_) => out.extend(run.iter().map(|&c| c as char)),
+                    }
+                }
             }
         }
+    }
+}
+
+impl Parser<'_> {
+    /// True when the bytes from `at` on, after spaces, tabs and line ends, start with `,` or
+    /// `)` (or end): an apostrophe just before `at` closes its string.
+    fn closes_string(&self, at: usize) -> bool {
+        let rest = &self.s[at.min(self.s.len())..];
+        match rest.iter().find(|c| !matches!(c, b' ' | b'\t' | b'\r' | b'\n')) {
+            Some(b',' | b')') | None => true,
+            Some(_) => false,
+        }
+    }
+}
+
+/// One control directive at the start of `s` (which starts with a backslash): its text and
+/// the bytes it takes. A backslash that starts no directive is kept as it is.
+fn directive(s: &[u8]) -> (String, usize) {
+    let hex = |t: &[u8]| std::str::from_utf8(t).ok().and_then(|t| u32::from_str_radix(t, 16).ok());
+    match s {
+        [b'\\', b'\\', ..] => ("\\".into(), 2),
+        // an apostrophe after \S\ may be doubled, as elsewhere in a string, or not
+        [b'\\', b'S', b'\\', b'\'', b'\'', ..] => (char::from(b'\'' + 128).to_string(), 5),
+        [b'\\', b'S', b'\\', c, ..] => (char::from(c.wrapping_add(128)).to_string(), 4),
+        [b'\\', b'P', p, b'\\', ..] if p.is_ascii_uppercase() => (String::new(), 4),
+        [b'\\', b'N', b'\\', ..] | [b'\\', b'F', b'\\', ..] => (String::new(), 3),
+        [b'\\', b'X', b'\\', a, b, ..] if hex(&[*a, *b]).is_some() => (char::from(hex(&[*a, *b]).unwrap_or(0) as u8).to_string(), 5),
+        [b'\\', b'X', w @ (b'2' | b'4'), b'\\', rest @ ..] => {
+            let width = if *w == b'2' { 4 } else { 8 };
+            let mut text = String::new();
+            let mut k = 0;
+            while k + width <= rest.len() && rest[k..k + width].iter().all(u8::is_ascii_hexdigit) {
+                text.push(hex(&rest[k..k + width]).and_then(char::from_u32).unwrap_or(char::REPLACEMENT_CHARACTER));
+                k += width;
+            }
+            let end = if rest[k..].starts_with(b"\\X0\\") { k + 4 } else { k };
+            (text, 4 + end)
+        }
+        _ => ("\\".into(), 1),
     }
 }

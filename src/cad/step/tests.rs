@@ -108,3 +108,29 @@ fn cycle_is_an_error_naming_the_id() {
     assert!(matches!(e, StepError::Cycle { id: 5, .. }), "{e}");
     assert!(e.to_string().contains("#5 -> #5"), "{e}");
 }
+
+#[test]
+fn strings_decode_the_control_directives() {
+    // ISO 10303-21 6.4.3: \S\ (the next character + 128, an apostrophe after it doubled or
+    // not), \X\hh, \X2\…\X0\, \X4\…\X0\, \\, page switches; as CAD systems write names
+    let names = [
+        (r"'M\S\dller'", "Mäller".to_string()),
+        (r"'Gr\X\F6\X\DFe'", "Größe".to_string()),
+        (r"'h\X2\00E4\X0\t\X2\00FC00DF\X0\'", "hätüß".to_string()),
+        (r"'\X4\0001F600\X0\ ok'", "\u{1F600} ok".to_string()),
+        (r"'a\\b'", "a\\b".to_string()),
+        (r"'\PA\caf\S\i'", "café".to_string()),
+        (r"'x\S\'y'", "x\u{a7}y".to_string()),
+        (r"'x\S\''y'", "x\u{a7}y".to_string()),
+        (r"'plain ''quoted'' name'", "plain 'quoted' name".to_string()),
+        // a bare apostrophe inside, a malformed \X2\ (three digits): kept as text
+        (r"'it's'", "it's".to_string()),
+        (r"'A\X2\0C4\X0\'h'", "A0C4\\X0\\'h".to_string()),
+        (r"''", String::new()),
+    ];
+    for (raw, want) in names {
+        let text = format!("{HEAD}#1 = PRODUCT({raw},'b','c',());\nENDSEC;\nEND-ISO-10303-21;\n");
+        let f = parse(&text).unwrap_or_else(|e| panic!("{raw}: {e}"));
+        assert_eq!(f.get(1).unwrap().records[0].params[0], Param::Str(want.clone().into()), "{raw}");
+    }
+}
