@@ -214,3 +214,53 @@ fn a_cut_around_a_cylinder_is_sized_like_an_edge() {
     let longest = longest_edge(s);
     assert!(longest < 100.0, "longest edge {longest} of a rod 200 long");
 }
+
+/// A planar face bounded by a conic arc from `A` = `curve(-1)` to `B` = `curve(1)` and the
+/// segment back, as STEP text: `conic` is the `PARABOLA(...)` or `HYPERBOLA(...)` entity on
+/// placement `#4` (vertex or centre at the origin, axis `x`).
+fn conic_face(conic: &str, a: DVec3, b: DVec3) -> String {
+    let p = |v: DVec3| format!("({:?},{:?},0.)", v.x, v.y);
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);#6={conic};\
+#11=CARTESIAN_POINT('',{});#12=CARTESIAN_POINT('',{});#21=VERTEX_POINT('',#11);#22=VERTEX_POINT('',#12);\
+#30=DIRECTION('',(0.,1.,0.));#31=VECTOR('',#30,1.);#32=LINE('',#11,#31);\
+#41=EDGE_CURVE('',#21,#22,#32,.T.);#42=EDGE_CURVE('',#21,#22,#6,.T.);\
+#51=ORIENTED_EDGE('',*,*,#41,.T.);#52=ORIENTED_EDGE('',*,*,#42,.F.);\
+#60=EDGE_LOOP('',(#51,#52));#61=FACE_OUTER_BOUND('',#60,.T.);#62=ADVANCED_FACE('conic',(#61),#5,.T.);\
+#70=OPEN_SHELL('',(#62));#71=SHELL_BASED_SURFACE_MODEL('',(#70));\
+#80=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\
+#81=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#80)) REPRESENTATION_CONTEXT('','') );\
+#90=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#4,#71),#81);\nENDSEC;\nEND-ISO-10303-21;\n",
+        p(a),
+        p(b)
+    )
+}
+
+#[test]
+fn faces_bounded_by_a_parabola_or_a_hyperbola_have_their_area() {
+    let (f, ha, hb) = (2.0f64, 3.0f64, 2.0f64);
+    let u = 1.0f64;
+    let cases = [
+        // the segment of a parabola cut by its latus rectum: 8 f² / 3
+        (format!("PARABOLA('',#4,{f:?})"), DVec3::new(f, -2.0 * f, 0.0), DVec3::new(f, 2.0 * f, 0.0), 8.0 * f * f / 3.0),
+        // a hyperbola's segment cut at x = a cosh u: a b (sinh 2u / 2 − u)
+        (format!("HYPERBOLA('',#4,{ha:?},{hb:?})"), DVec3::new(ha * u.cosh(), -hb * u.sinh(), 0.0), DVec3::new(ha * u.cosh(), hb * u.sinh(), 0.0), ha * hb * ((2.0 * u).sinh() / 2.0 - u)),
+    ];
+    for (conic, a, b, want) in cases {
+        let m = crate::cad::step::read_bytes(std::path::Path::new("conic.stp"), conic_face(&conic, a, b).as_bytes()).unwrap_or_else(|e| panic!("{conic}: {e}"));
+        assert!(m.dropped.is_empty(), "{conic}: {:?}", m.dropped);
+        let t = tessellate(&m, &TessellateOptions::default());
+        assert!(t.failed.is_empty(), "{conic}: {:?}", t.failed);
+        let s = &t.surface;
+        let area: f64 = s.triangles.iter().map(|tr| 0.5 * (s.vertices[tr[1] as usize] - s.vertices[tr[0] as usize]).cross(s.vertices[tr[2] as usize] - s.vertices[tr[0] as usize]).length()).sum();
+        assert!((area / want - 1.0).abs() < 1e-3, "{conic}: area {area} against {want}");
+        // the face is read back the same from fepre's own STEP writer
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("conic.step");
+        crate::cad::step::write(&path, &m, "conic").unwrap();
+        let again = crate::cad::step::read(&path).unwrap();
+        assert_eq!(again.curves.iter().map(|c| c.kind()).collect::<Vec<_>>(), m.curves.iter().map(|c| c.kind()).collect::<Vec<_>>());
+    }
+}

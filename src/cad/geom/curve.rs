@@ -3,6 +3,7 @@
 
 use super::bspline_curve::BSplineCurve;
 use super::circle::Circle;
+use super::conic::{Hyperbola, Parabola};
 use super::derivs::CurveDerivs;
 use super::domain::{CurveDomain, Interval, unwrap_near, wrap_into};
 use super::ellipse::Ellipse;
@@ -22,6 +23,10 @@ pub enum Curve {
     Circle(Circle),
     /// `ELLIPSE`.
     Ellipse(Ellipse),
+    /// `PARABOLA`.
+    Parabola(Parabola),
+    /// `HYPERBOLA`.
+    Hyperbola(Hyperbola),
     /// `B_SPLINE_CURVE_WITH_KNOTS` (rational or not) and its special forms.
     BSpline(BSplineCurve),
     /// `POLYLINE`.
@@ -40,6 +45,10 @@ pub enum CurveKind {
     Circle,
     /// An ellipse.
     Ellipse,
+    /// A parabola.
+    Parabola,
+    /// A hyperbola.
+    Hyperbola,
     /// A B-spline.
     BSpline,
     /// A polyline.
@@ -49,12 +58,14 @@ pub enum CurveKind {
 }
 
 impl CurveKind {
-    /// The name used in reports (`line`, `circle`, `ellipse`, `bspline`, `polyline`, `trimmed`).
+    /// The name used in reports (`line`, `circle`, `ellipse`, `parabola`, `hyperbola`, `bspline`, `polyline`, `trimmed`).
     pub fn name(self) -> &'static str {
         match self {
             CurveKind::Line => "line",
             CurveKind::Circle => "circle",
             CurveKind::Ellipse => "ellipse",
+            CurveKind::Parabola => "parabola",
+            CurveKind::Hyperbola => "hyperbola",
             CurveKind::BSpline => "bspline",
             CurveKind::Polyline => "polyline",
             CurveKind::Trimmed => "trimmed",
@@ -75,6 +86,8 @@ impl Curve {
             Curve::Line(_) => CurveKind::Line,
             Curve::Circle(_) => CurveKind::Circle,
             Curve::Ellipse(_) => CurveKind::Ellipse,
+            Curve::Parabola(_) => CurveKind::Parabola,
+            Curve::Hyperbola(_) => CurveKind::Hyperbola,
             Curve::BSpline(_) => CurveKind::BSpline,
             Curve::Polyline(_) => CurveKind::Polyline,
             Curve::Trimmed(..) => CurveKind::Trimmed,
@@ -87,6 +100,8 @@ impl Curve {
             Curve::Line(c) => c.derivs(t),
             Curve::Circle(c) => c.derivs(t),
             Curve::Ellipse(c) => c.derivs(t),
+            Curve::Parabola(c) => c.derivs(t),
+            Curve::Hyperbola(c) => c.derivs(t),
             Curve::BSpline(c) => c.derivs(t),
             Curve::Polyline(c) => c.derivs(t),
             Curve::Trimmed(c, _) => c.derivs(t),
@@ -99,6 +114,8 @@ impl Curve {
             Curve::Line(c) => c.point(t),
             Curve::Circle(c) => c.point(t),
             Curve::Ellipse(c) => c.point(t),
+            Curve::Parabola(c) => c.point(t),
+            Curve::Hyperbola(c) => c.point(t),
             Curve::BSpline(c) => c.point(t),
             Curve::Polyline(c) => c.point(t),
             Curve::Trimmed(c, _) => c.point(t),
@@ -117,6 +134,8 @@ impl Curve {
             Curve::Line(c) => c.domain(),
             Curve::Circle(c) => c.domain(),
             Curve::Ellipse(c) => c.domain(),
+            Curve::Parabola(c) => c.domain(),
+            Curve::Hyperbola(c) => c.domain(),
             Curve::BSpline(c) => c.domain(),
             Curve::Polyline(c) => c.domain(),
             Curve::Trimmed(c, range) => {
@@ -136,6 +155,8 @@ impl Curve {
             Curve::Line(c) => c.project(p),
             Curve::Circle(c) => c.project(p),
             Curve::Ellipse(c) => c.project(p),
+            Curve::Parabola(c) => c.project(p),
+            Curve::Hyperbola(c) => c.project(p),
             Curve::BSpline(c) => c.project(p),
             Curve::Polyline(c) => c.project(p),
             Curve::Trimmed(c, range) => {
@@ -183,6 +204,8 @@ impl Curve {
             Curve::Line(c) => Curve::Line(c.transformed(t)),
             Curve::Circle(c) => Curve::Circle(c.transformed(t)),
             Curve::Ellipse(c) => Curve::Ellipse(c.transformed(t)),
+            Curve::Parabola(c) => Curve::Parabola(c.transformed(t)),
+            Curve::Hyperbola(c) => Curve::Hyperbola(c.transformed(t)),
             Curve::BSpline(c) => Curve::BSpline(c.transformed(t)),
             Curve::Polyline(c) => Curve::Polyline(c.transformed(t)),
             Curve::Trimmed(c, r) => Curve::Trimmed(Box::new(c.transformed(t)), *r),

@@ -5,7 +5,7 @@ use super::convert::{Args, Converter, Fail, R, drop_entity};
 use super::param::Param;
 use crate::cad::geom::basis::expand_knots;
 use crate::cad::geom::{
-    BSplineCurve, BSplineSurface, Circle, Cone, Curve, Cylinder, Ellipse, Extrusion, Frame, Interval, Line, Offset, Plane, Polyline,
+    BSplineCurve, BSplineSurface, Circle, Cone, Curve, Cylinder, Ellipse, Extrusion, Frame, Hyperbola, Interval, Line, Offset, Parabola, Plane, Polyline,
     Revolution, Sphere, Surface, Torus, TorusPart, wrap_into,
 };
 use glam::DVec3;
@@ -129,6 +129,24 @@ impl Converter<'_> {
                     return Err(drop_entity(e, "semi-axes must be positive"));
                 }
                 Ok((Curve::Ellipse(Ellipse { frame, a: sa, b: sb }), false))
+            }
+            "PARABOLA" => {
+                let a = Args::of(e, "PARABOLA")?;
+                let frame = self.placement(a.id(1)?)?;
+                let focal = a.f64(2)? * s;
+                if !(focal.is_finite() && focal != 0.0) {
+                    return Err(drop_entity(e, "the focal distance must be finite and not zero"));
+                }
+                Ok((Curve::Parabola(Parabola { frame, focal }), false))
+            }
+            "HYPERBOLA" => {
+                let a = Args::of(e, "HYPERBOLA")?;
+                let frame = self.placement(a.id(1)?)?;
+                let (sa, sb) = (a.f64(2)? * s, a.f64(3)? * s);
+                if !(sa > 0.0 && sb > 0.0) {
+                    return Err(drop_entity(e, "semi-axes must be positive"));
+                }
+                Ok((Curve::Hyperbola(Hyperbola { frame, a: sa, b: sb }), false))
             }
             "POLYLINE" => {
                 let a = Args::of(e, "POLYLINE")?;

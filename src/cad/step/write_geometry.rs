@@ -93,6 +93,14 @@ impl Writer {
                 let p = self.placement(&e.frame)?;
                 self.add(format!("ELLIPSE('',#{p},{},{})", real(e.a), real(e.b)))
             }
+            Curve::Parabola(c) => {
+                let p = self.placement(&c.frame)?;
+                self.add(format!("PARABOLA('',#{p},{})", real(c.focal)))
+            }
+            Curve::Hyperbola(c) => {
+                let p = self.placement(&c.frame)?;
+                self.add(format!("HYPERBOLA('',#{p},{},{})", real(c.a), real(c.b)))
+            }
             Curve::BSpline(b) => self.bspline_curve(b)?,
             Curve::Polyline(p) => {
                 let ids = p.points.iter().map(|&q| self.point(q)).collect::<Result<Vec<_>, _>>()?;
