@@ -181,3 +181,31 @@ fn a_refinement_that_ends_says_so_in_the_text() {
     let stdout = text(&o.stdout);
     assert!(stdout.lines().any(|l| l.starts_with("refinement       ended")), "{stdout}");
 }
+
+/// A slender tube meshed at its default size (a twenty-fifth of its length, ten times its
+/// outer radius): eight chords round its circles cut off several percent of its volume. The
+/// summary says how far the mesh's volume is from the CAD solid's, a warning says it on
+/// standard error, and `--require-volume-error` makes it a failure that writes nothing.
+#[test]
+fn a_volume_far_from_the_cad_solids_is_reported_and_can_be_required() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut tube = fepre::cad::parts::Tube::default();
+    (tube.inner_radius, tube.outer_radius, tube.length, tube.angle_deg) = (1.0, 2.0, 500.0, 360.0);
+    let step = dir.path().join("rod.step");
+    fepre::cad::step::write(&step, &tube.build().unwrap(), "rod").unwrap();
+    let out = dir.path().join("rod.mesh");
+    let o = fepre(&["mesh", step.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let stdout = text(&o.stdout);
+    let line = stdout.lines().find(|l| l.starts_with("volume")).unwrap();
+    let pct: f64 = line.rsplit(':').next().unwrap().trim().trim_end_matches("%)").parse().unwrap();
+    assert!(pct < -1.0, "{line}");
+    assert!(text(&o.stderr).contains("WARNING: the mesh's volume is"), "{}", text(&o.stderr));
+    std::fs::remove_file(&out).unwrap();
+    let o = fepre(&["mesh", step.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-volume-error", "0.01"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    assert!(text(&o.stderr).contains("off the CAD solids'") && !out.exists(), "{}", text(&o.stderr));
+    // a size that follows the circles meets it
+    let o = fepre(&["mesh", step.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "0.5", "--require-volume-error", "0.01"]);
+    assert!(o.status.success() && out.exists(), "{}", text(&o.stderr));
+}

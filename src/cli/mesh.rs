@@ -63,6 +63,10 @@ pub struct Args {
     /// Fail (exit 1, nothing written) when a tet's radius-edge ratio is above R.
     #[arg(long, value_name = "R", value_parser = positive)]
     pub require_max_radius_edge: Option<f64>,
+    /// Fail (exit 1, nothing written) when the mesh's volume differs from the CAD solids' by
+    /// more than the fraction F (a STEP part: the tessellation's chords cut curved faces).
+    #[arg(long, value_name = "F", value_parser = positive)]
+    pub require_volume_error: Option<f64>,
     /// Keep the input surface exactly: no Steiner point on the boundary.
     #[arg(long)]
     pub keep_surface: bool,
@@ -123,6 +127,7 @@ pub fn run(args: &Args) -> Result<()> {
         mesh: crate::mesh3d::mesher::MeshOptions::default().with_max_radius_edge(args.max_radius_edge).with_min_dihedral(args.min_dihedral).with_keep_surface(args.keep_surface),
         require_min_dihedral: args.require_min_dihedral,
         require_max_radius_edge: args.require_max_radius_edge,
+        require_volume_error: args.require_volume_error,
         ..Plan::default()
     };
     progress.stage("meshing");

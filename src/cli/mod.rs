@@ -145,7 +145,10 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
     println!("nodes            {}", m.nodes);
     println!("tets             {}", m.tets);
     println!("regions          {}", m.regions);
-    println!("volume           {:.9}", m.volume);
+    match (m.cad_volume, m.volume_error) {
+        (Some(v), Some(e)) => println!("volume           {:.9} (CAD solids {v:.9}: {:+.3}%)", m.volume, 100.0 * e),
+        _ => println!("volume           {:.9}", m.volume),
+    }
     println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°, {} near-degenerate)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg, m.near_degenerate);
     if m.tets_under_5_deg > 0 {
         println!("                 of those under 5°, {} touch no input angle under 5°; of those under 1°, {} touch none under 1°", m.tets_under_5_deg_unexplained, m.tets_under_1_deg_unexplained);
@@ -209,9 +212,19 @@ fn fmt_radius_edge_allowed(r: f64) -> String {
     crate::quality::worst_tet::fmt_num(r.max(2.0))
 }
 
-/// Warns on standard error about a tet under 1° (`require`: the option that makes it an
-/// error), with where the worst one sits.
+/// A mesh whose volume is farther than this fraction from the CAD solids' gets a warning.
+const VOLUME_WARNING: f64 = 0.01;
+
+/// Warns on standard error about a volume more than 1 % off the CAD solids' and about a tet
+/// under 1° (`require`: the option that makes the latter an error), with where the worst one
+/// sits.
 pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: &str) {
+    if let Some(e) = m.volume_error.filter(|e| e.abs() > VOLUME_WARNING) {
+        eprintln!(
+            "WARNING: the mesh's volume is {:+.2}% off the CAD solids' (the tessellation's chords cut the curved faces: give a smaller size, a curvature size or a smaller deviation); --require-volume-error F makes this an error",
+            100.0 * e
+        );
+    }
     if m.tets_under_1_deg == 0 {
         return;
     }

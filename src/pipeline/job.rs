@@ -145,6 +145,8 @@ pub struct Require {
     pub min_dihedral: Option<Spanned<f64>>,
     /// Largest radius-edge ratio of every tet.
     pub max_radius_edge: Option<Positive>,
+    /// Largest relative difference between the mesh's volume and the CAD solids'.
+    pub volume_error: Option<Positive>,
 }
 
 /// What an `[[output]]` writes.

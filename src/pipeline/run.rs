@@ -30,6 +30,9 @@ pub struct Plan {
     pub require_min_dihedral: Option<f64>,
     /// Largest radius-edge ratio every tet must have, or the run fails.
     pub require_max_radius_edge: Option<f64>,
+    /// Largest relative difference between the mesh's volume and the CAD solids' (a CAD part),
+    /// or the run fails.
+    pub require_volume_error: Option<f64>,
 }
 
 impl Plan {
@@ -106,7 +109,8 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
         return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh was made".into() });
     };
     let r = part.mesh_report.clone().unwrap_or_default();
-    let summarised = summarise(mesh, part.surface.as_ref(), &r, plan, &report.face_table);
+    let cad_volume = part.certified.as_ref().map(|c| c.certificate.volume[1]);
+    let summarised = summarise(mesh, part.surface.as_ref(), &r, plan, &report.face_table, cad_volume);
     report.mesh = Some(summarised.summary.clone());
     report.mesher = Some(r);
     report.contacts = part.contacts.clone();
@@ -151,6 +155,7 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         mesh: jf.mesh_options(),
         require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
+        require_volume_error: job.require.volume_error.map(|r| r.get()),
     };
     let mut report = match run_plan(&mut part, &plan, check_only) {
         Ok(r) => r,

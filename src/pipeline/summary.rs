@@ -30,6 +30,11 @@ pub struct MeshSummary {
     pub regions: usize,
     /// Volume.
     pub volume: f64,
+    /// The CAD solids' own volume (the B-rep's, by quadrature), for a CAD part.
+    pub cad_volume: Option<f64>,
+    /// `volume / cad_volume − 1`: what the tessellation's chords cut off curved faces (negative)
+    /// or add.
+    pub volume_error: Option<f64>,
     /// Smallest dihedral angle, degrees.
     pub min_dihedral_deg: f64,
     /// Largest dihedral angle, degrees.
@@ -86,7 +91,7 @@ pub(crate) struct Summarised {
 
 /// Summarises a meshed part. `face_table` names the faces (unique names, as the writers give
 /// them); a tag not in it keeps the mesh's own name.
-pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry]) -> Summarised {
+pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry], cad_volume: Option<f64>) -> Summarised {
     let q = tet_mesh_quality(mesh);
     let bound = plan.require_min_dihedral.unwrap_or(plan.mesh.min_dihedral);
     // the angles of the surface the mesher took: where it repaired caps, repaired the same
@@ -113,6 +118,8 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         tets: mesh.tets.len(),
         regions: report.regions,
         volume: mesh.volume(),
+        cad_volume,
+        volume_error: cad_volume.filter(|v| *v > 0.0).map(|v| mesh.volume() / v - 1.0),
         min_dihedral_deg: q.min_dihedral_deg,
         max_dihedral_deg: q.max_dihedral_deg,
         max_radius_edge: q.max_radius_edge,
@@ -182,6 +189,18 @@ impl Summarised {
                     s.tets_under_1_deg
                 );
                 return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, s.worst_tet.as_ref()) });
+            }
+        }
+        if let (Some(r), Some(e), Some(v)) = (plan.require_volume_error, s.volume_error, s.cad_volume) {
+            if !(e.abs() <= r) {
+                let head = format!(
+                    "the mesh's volume {} is {:+.3}% off the CAD solids' {} (more than the {} required): the tessellation's chords cut the curved faces; give a smaller size, a curvature size or a smaller deviation; nothing written",
+                    fmt_num(s.volume),
+                    100.0 * e,
+                    fmt_num(v),
+                    fmt_num(r)
+                );
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), message: head });
             }
         }
         if let Some(r) = plan.require_max_radius_edge {
