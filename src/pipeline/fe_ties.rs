@@ -23,7 +23,8 @@
 //! contact and tie nodes that only face the other solid across a clearance.
 
 use super::assembly::ContactReport;
-use crate::core::FaceId;
+use crate::core::bvh::Bvh;
+use crate::core::{Aabb, FaceId};
 use crate::fe::loads::face_nodes;
 use crate::fe::{Built, FeModel, Tie};
 use serde::Serialize;
@@ -107,8 +108,8 @@ pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f6
         let shared_nodes = before - dependent.len();
         // only nodes within the tolerance of the master are tied (CalculiX leaves the others
         // free)
-        let near = master_triangles(&built.model, &master.1);
-        dependent.retain(|v| !masters.contains(v) && !tied.contains(v) && within(built.model.nodes[*v as usize], &near, tolerance));
+        let near = Near::new(master_triangles(&built.model, &master.1), tolerance);
+        dependent.retain(|v| !masters.contains(v) && !tied.contains(v) && near.holds(built.model.nodes[*v as usize]));
         if dependent.is_empty() {
             built.model.surfaces.remove(&slave.1);
             built.model.surfaces.remove(&master.1);
@@ -143,13 +144,35 @@ fn master_triangles(m: &FeModel, name: &str) -> Vec<[DVec3; 3]> {
     out
 }
 
-/// True when `p` lies within `tolerance` of one of `triangles`.
-fn within(p: DVec3, triangles: &[[DVec3; 3]], tolerance: f64) -> bool {
-    triangles.iter().any(|t| {
-        let lo = t[0].min(t[1]).min(t[2]) - DVec3::splat(tolerance);
-        let hi = t[0].max(t[1]).max(t[2]) + DVec3::splat(tolerance);
-        p.cmpge(lo).all() && p.cmple(hi).all() && crate::core::closest::point_triangle_distance(p, *t) <= tolerance
-    })
+/// Triangles and a distance: which points lie within it of one of them (a bounding-volume
+/// hierarchy of the triangles' boxes grown by the distance).
+struct Near {
+    triangles: Vec<[DVec3; 3]>,
+    bvh: Bvh,
+    tolerance: f64,
+}
+
+impl Near {
+    fn new(triangles: Vec<[DVec3; 3]>, tolerance: f64) -> Near {
+        let grow = DVec3::splat(tolerance);
+        let boxes: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| {
+                let b = Aabb::from_points(t);
+                Aabb { min: b.min - grow, max: b.max + grow }
+            })
+            .collect();
+        Near { bvh: Bvh::from_boxes(&boxes), triangles, tolerance }
+    }
+
+    /// True when `p` lies within the distance of one of the triangles.
+    fn holds(&self, p: DVec3) -> bool {
+        let mut hit = false;
+        self.bvh.for_each_overlapping(&Aabb { min: p, max: p }, |k| {
+            hit = hit || crate::core::closest::point_triangle_distance(p, self.triangles[k as usize]) <= self.tolerance;
+        });
+        hit
+    }
 }
 
 /// The nodes of surface `name`'s element faces (mid nodes included).

@@ -172,9 +172,10 @@ fn per_model_node(field: &FrdField, nodes: usize) -> Vec<f64> {
     out
 }
 
-/// The von Mises stress per model node of a six-component `STRESS` field.
-fn von_mises_per_node(s: &FrdField, nodes: usize) -> Option<Vec<f64>> {
-    (s.width() == 6).then(|| per_model_node(s, nodes).chunks(6).map(|x| crate::io::frd::von_mises([x[0], x[1], x[2], x[3], x[4], x[5]])).collect())
+/// The von Mises stress per node of stresses given `width` values per node (six: SXX SYY
+/// SZZ SXY SYZ SZX; other widths have none).
+fn von_mises_of(values: &[f64], width: usize) -> Option<Vec<f64>> {
+    (width == 6).then(|| values.chunks(6).map(|x| crate::io::frd::von_mises([x[0], x[1], x[2], x[3], x[4], x[5]])).collect())
 }
 
 fn largest(values: impl Iterator<Item = f64>, m: &FeModel) -> Option<AtNode> {
@@ -211,7 +212,7 @@ fn step_results(m: &FeModel, frd: &FrdResults, totals: Vec<ForceTotal>) -> Vec<S
                     let v = per_model_node(d, nn);
                     r.max_displacement = largest(v.chunks(3).map(|u| DVec3::new(u[0], u[1], u[2]).length()), m);
                 }
-                if let Some(vm) = last.and_then(|b| b.field("STRESS")).and_then(|s| von_mises_per_node(s, nn)) {
+                if let Some(vm) = last.and_then(|b| b.field("STRESS")).and_then(|s| von_mises_of(&per_model_node(s, nn), s.width())) {
                     r.max_von_mises = largest(vm.into_iter(), m);
                 }
                 let forc = last.and_then(|b| b.field("FORC")).map(|f| per_model_node(f, nn));
@@ -270,8 +271,10 @@ fn write_results(path: &Path, m: &FeModel, frd: &FrdResults) -> Result<(), Pipel
                         arrays.push(array("displacement", d));
                     }
                     if let Some(s) = b.field("STRESS") {
-                        arrays.push(array("stress", s));
-                        if let Some(vm) = von_mises_per_node(s, nn) {
+                        let stress = array("stress", s);
+                        let vm = von_mises_of(&stress.2, stress.1);
+                        arrays.push(stress);
+                        if let Some(vm) = vm {
                             arrays.push((format!("{prefix}von_mises"), 1, vm));
                         }
                     }

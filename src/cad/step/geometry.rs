@@ -121,14 +121,15 @@ impl Converter<'_> {
                 }
                 Ok((Curve::Circle(Circle { frame, radius }), false))
             }
-            "ELLIPSE" => {
-                let a = Args::of(e, "ELLIPSE")?;
+            "ELLIPSE" | "HYPERBOLA" => {
+                let a = Args::of(e, name)?;
                 let frame = self.placement(a.id(1)?)?;
                 let (sa, sb) = (a.f64(2)? * s, a.f64(3)? * s);
                 if !(sa > 0.0 && sb > 0.0) {
                     return Err(drop_entity(e, "semi-axes must be positive"));
                 }
-                Ok((Curve::Ellipse(Ellipse { frame, a: sa, b: sb }), false))
+                let c = if name == "ELLIPSE" { Curve::Ellipse(Ellipse { frame, a: sa, b: sb }) } else { Curve::Hyperbola(Hyperbola { frame, a: sa, b: sb }) };
+                Ok((c, false))
             }
             "PARABOLA" => {
                 let a = Args::of(e, "PARABOLA")?;
@@ -138,15 +139,6 @@ impl Converter<'_> {
                     return Err(drop_entity(e, "the focal distance must be finite and not zero"));
                 }
                 Ok((Curve::Parabola(Parabola { frame, focal }), false))
-            }
-            "HYPERBOLA" => {
-                let a = Args::of(e, "HYPERBOLA")?;
-                let frame = self.placement(a.id(1)?)?;
-                let (sa, sb) = (a.f64(2)? * s, a.f64(3)? * s);
-                if !(sa > 0.0 && sb > 0.0) {
-                    return Err(drop_entity(e, "semi-axes must be positive"));
-                }
-                Ok((Curve::Hyperbola(Hyperbola { frame, a: sa, b: sb }), false))
             }
             "POLYLINE" => {
                 let a = Args::of(e, "POLYLINE")?;
