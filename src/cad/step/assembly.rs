@@ -239,12 +239,13 @@ impl Converter<'_> {
                     self.surface_model(item)
                 }
                 "MAPPED_ITEM" => self.mapped_item(g, item),
+                k if super::tessellated::is_tessellated(k) => self.tessellated_item(item, units),
                 "AXIS2_PLACEMENT_3D" | "AXIS2_PLACEMENT_2D" | "AXIS1_PLACEMENT" | "CARTESIAN_POINT" | "DIRECTION" => Ok(()),
                 _ => {
                     self.report(Dropped {
                         kind: e.display_type(),
                         id: EntityRef(item),
-                        why: "a representation item that is not a solid or shell model (fepre reads B-reps only)".into(),
+                        why: "a representation item that is not a solid, shell model or tessellated geometry".into(),
                     });
                     Ok(())
                 }

@@ -60,6 +60,8 @@ pub(super) struct Converter<'f> {
     /// Dropped items already reported, by id (an item used by several faces or instances is
     /// reported once).
     pub reported: FxHashMap<u64, ()>,
+    /// Tessellated geometry (AP242), read beside the B-rep.
+    pub tess: super::tessellated::TessBuilder,
 }
 
 impl<'f> Converter<'f> {
@@ -76,6 +78,7 @@ impl<'f> Converter<'f> {
             surfaces: FxHashMap::default(),
             solid_instances: FxHashMap::default(),
             reported: FxHashMap::default(),
+            tess: Default::default(),
         }
     }
 

@@ -83,6 +83,19 @@ pub enum StepError {
         /// The cycle, `#a -> #b -> #a`.
         chain: String,
     },
+    /// Tessellated geometry that cannot be read: an index outside its list, a malformed
+    /// coordinate list.
+    #[error("{}:{line}: #{id}: {message}", path.display())]
+    Tessellation {
+        /// The file.
+        path: PathBuf,
+        /// The instance.
+        id: u64,
+        /// Its line.
+        line: u32,
+        /// What is wrong.
+        message: String,
+    },
     /// The file parsed, but holds no solid, shell or surface model fepre can use.
     #[error("{}: no B-rep shape found (no MANIFOLD_SOLID_BREP, BREP_WITH_VOIDS or SHELL_BASED_SURFACE_MODEL){dropped}", path.display())]
     NoShape {

@@ -27,6 +27,7 @@ mod geometry;
 pub mod param;
 pub mod parser;
 pub mod table;
+pub mod tessellated;
 mod topology;
 pub mod units;
 mod write_geometry;
@@ -38,9 +39,10 @@ mod tests;
 pub use error::StepError;
 pub use param::Param;
 pub use table::{Entity, Record, StepFile};
+pub use tessellated::{Tessellated, TessellatedFace, TessellatedSolid};
 pub use writer::{StepWriteError, write};
 
-use crate::cad::brep::Model;
+use crate::cad::brep::{Dropped, Model};
 use std::path::Path;
 
 /// Reads a STEP file into a B-rep model in millimetres, assembly instances expanded.
@@ -62,27 +64,74 @@ pub fn read_bytes(path: &Path, bytes: &[u8]) -> Result<Model, StepError> {
     to_model(&file)
 }
 
-/// Converts a parsed file into a model.
+/// What a STEP file's geometry is: a B-rep, or (an AP242 file without one) tessellated faces.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Shape {
+    /// Solids, shells and faces with their exact geometry.
+    Brep(Model),
+    /// Triangulated faces only (`TESSELLATED_SOLID`, `TRIANGULATED_FACE`, ...).
+    Tessellated(Tessellated),
+}
+
+/// Reads a STEP file's B-rep or, where it has none, its tessellated geometry. A file with both
+/// gives the B-rep, the tessellated items listed in [`Model::dropped`].
 ///
 /// # Errors
-/// [`StepError::Cycle`] for a reference cycle among geometry or placements,
-/// [`StepError::NoShape`] when no solid, shell or surface model could be read.
-pub fn to_model(file: &StepFile) -> Result<Model, StepError> {
+/// As [`read`]; [`StepError::Tessellation`] for an index out of range in a tessellated face.
+pub fn read_shape(path: &Path) -> Result<Shape, StepError> {
+    let bytes = std::fs::read(path).map_err(|source| StepError::Read { path: path.to_path_buf(), source })?;
+    to_shape(&parser::parse(path, &bytes)?)
+}
+
+/// Converts a parsed file into a B-rep or, where it has none, its tessellated geometry.
+///
+/// # Errors
+/// As [`to_model`]; [`StepError::Tessellation`].
+pub fn to_shape(file: &StepFile) -> Result<Shape, StepError> {
     let mut c = convert::Converter::new(file);
     c.convert_all()?;
+    let tess = std::mem::take(&mut c.tess).finish();
     let mut model = c.model;
     if model.faces.is_empty() {
-        let dropped = if model.dropped.is_empty() {
+        if !tess.surface.triangles.is_empty() {
+            let mut tess = tess;
+            tess.dropped = model.dropped;
+            return Ok(Shape::Tessellated(tess));
+        }
+        let mut dropped = if model.dropped.is_empty() {
             String::new()
         } else {
             let first: Vec<String> = model.dropped.iter().take(3).map(|d| format!("{} {}: {}", d.kind, d.id, d.why)).collect();
             format!("; dropped {} item(s), e.g. {}", model.dropped.len(), first.join("; "))
         };
+        if !tess.faces.is_empty() {
+            dropped.push_str(&format!("; {} tessellated face(s) without a triangle", tess.faces.len()));
+        }
         return Err(StepError::NoShape { path: file.path.clone(), dropped });
+    }
+    for (id, kind) in &tess.roots {
+        model.dropped.push(Dropped { kind: kind.clone(), id: *id, why: "tessellated geometry beside the B-rep: fepre reads the B-rep".into() });
     }
     model.mark_edges();
     // surface models: free edges that are the same curve become one edge
     model.sewing = model.sew();
     colour::assign(file, &mut model);
-    Ok(model)
+    Ok(Shape::Brep(model))
+}
+
+/// Converts a parsed file into a model.
+///
+/// # Errors
+/// [`StepError::Cycle`] for a reference cycle among geometry or placements,
+/// [`StepError::NoShape`] when no solid, shell or surface model could be read (a file of
+/// tessellated geometry only included: [`to_shape`] reads it).
+pub fn to_model(file: &StepFile) -> Result<Model, StepError> {
+    match to_shape(file)? {
+        Shape::Brep(m) => Ok(m),
+        Shape::Tessellated(t) => Err(StepError::NoShape {
+            path: file.path.clone(),
+            dropped: format!("; the file holds tessellated geometry only ({} faces, {} triangles), which `fepre mesh`, `fepre tessellate` and `fepre cad-info` read", t.faces.len(), t.surface.triangles.len()),
+        }),
+    }
 }
