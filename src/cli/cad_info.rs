@@ -69,7 +69,10 @@ struct Report {
 /// When the file cannot be read as STEP (the message names the line or `#id`).
 pub fn run(args: &Args) -> Result<()> {
     let t0 = Instant::now();
-    let model = step::read(&args.file)?;
+    let model = match step::read_shape(&args.file)? {
+        step::Shape::Brep(m) => m,
+        step::Shape::Tessellated(t) => return tessellated(args, &t, t0.elapsed().as_secs_f64()),
+    };
     let seconds = t0.elapsed().as_secs_f64();
     let mesh = args.mesh.then(|| {
         let t1 = Instant::now();
@@ -94,6 +97,64 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         print!("{}", text(&report, args.max_listed));
     }
+    Ok(())
+}
+
+/// The JSON object `fepre cad-info --json` prints for a file of tessellated geometry only.
+#[derive(Debug, Serialize)]
+struct TessReport<'a> {
+    file: String,
+    /// Always true here: the file holds no B-rep.
+    tessellated: bool,
+    units: &'a crate::cad::brep::Units,
+    #[serde(flatten)]
+    summary: crate::pipeline::tessellated::TessellatedSummary,
+    faces_table: &'a [step::TessellatedFace],
+    solids_table: &'a [step::TessellatedSolid],
+    certificate: crate::pipeline::tessellated::MeshCertificate,
+    dropped: &'a [Dropped],
+    seconds: f64,
+}
+
+/// `fepre cad-info` of a file of tessellated geometry only: counts, units, and the surface
+/// certified as a mesh.
+fn tessellated(args: &Args, t: &step::Tessellated, seconds: f64) -> Result<()> {
+    use crate::pipeline::tessellated::{TessellatedSummary, certify_surface};
+    let r = TessReport {
+        file: args.file.display().to_string(),
+        tessellated: true,
+        units: &t.units,
+        summary: TessellatedSummary::of(t, &t.surface),
+        faces_table: &t.faces,
+        solids_table: &t.solids,
+        certificate: certify_surface(&t.surface),
+        dropped: &t.dropped,
+        seconds,
+    };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(());
+    }
+    let (s, c) = (&r.summary, &r.certificate);
+    let mut out = String::new();
+    let _ = writeln!(out, "file        {}", r.file);
+    let _ = writeln!(out, "geometry    tessellated only (AP242): no B-rep; meshed as a surface mesh is");
+    let _ = writeln!(out, "units       {} (x{} to mm)", t.units.length, t.units.to_mm);
+    let _ = writeln!(out, "solids      {} TESSELLATED_SOLID, {} TESSELLATED_SHELL", s.solids, s.shells);
+    let _ = writeln!(out, "faces       {} ({} triangles, {} vertices)", s.faces, s.triangles, s.vertices);
+    if let Some(b) = t.surface.bbox().diagonal().is_finite().then(|| t.surface.bbox()) {
+        let e = b.max - b.min;
+        let _ = writeln!(out, "extent mm   {:.6} x {:.6} x {:.6}", e.x, e.y, e.z);
+    }
+    let _ = writeln!(out, "mesh        closed {}, manifold {}, oriented {}, outward {}, {} open edges, {} self-intersections", c.closed, c.manifold, c.oriented, c.outward, c.open_edges, c.self_intersections);
+    let _ = writeln!(out, "volume mm3  {:.6}  area mm2 {:.6}", c.volume, c.area);
+    let _ = writeln!(out, "certificate {}", if c.passed { "passed (as a mesh)" } else { "FAILED" });
+    let _ = writeln!(out, "dropped     {}", t.dropped.len());
+    for d in t.dropped.iter().take(args.max_listed) {
+        let _ = writeln!(out, "  {} {}: {}", d.id, d.kind, d.why);
+    }
+    let _ = writeln!(out, "seconds     {:.3}", seconds);
+    print!("{out}");
     Ok(())
 }
 

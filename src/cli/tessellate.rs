@@ -132,7 +132,12 @@ pub fn run(args: &Args) -> Result<()> {
     let t0 = Instant::now();
     let opts = TessellateOptions::default().with_chord_relative(args.deviation);
     let size = args.max_edge.map(UniformSize);
-    let (model, c, seconds) = pipeline::tessellate_file(&args.cad, &opts, size.as_ref().map(|s| s as &dyn SizeField), &crate::tessellate::certificate::CertifyOptions::default())?;
+    let model = match crate::cad::step::read_shape(&args.cad)? {
+        crate::cad::step::Shape::Brep(m) => m,
+        crate::cad::step::Shape::Tessellated(t) => return run_tessellated(args, &t, t0),
+    };
+    let read = t0.elapsed().as_secs_f64();
+    let (model, c, seconds) = pipeline::tessellate_model(model, read, &opts, size.as_ref().map(|s| s as &dyn SizeField), &crate::tessellate::certificate::CertifyOptions::default());
     let c = Certified { model, tessellation: c.tessellation, certificate: c.certificate, seconds: [seconds.read, seconds.tessellate] };
     let passed = c.certificate.passed;
     if !passed && !args.force {
@@ -165,6 +170,79 @@ pub fn run(args: &Args) -> Result<()> {
         println!("seconds      {:.3}", r.seconds);
         println!("wrote        {}", out.display());
     }
+    Ok(())
+}
+
+/// The JSON object `fepre tessellate --json` prints for a file of tessellated geometry only.
+#[derive(Debug, Serialize)]
+struct TessReport<'a> {
+    input: String,
+    output: Option<String>,
+    /// Always true here: the surface is the file's own triangles, certified as a mesh.
+    tessellated: bool,
+    #[serde(flatten)]
+    summary: pipeline::tessellated::TessellatedSummary,
+    face_table: Vec<FaceEntry>,
+    units: &'a Units,
+    certificate: pipeline::tessellated::MeshCertificate,
+    dropped: &'a [Dropped],
+    seconds: f64,
+}
+
+/// `fepre tessellate` of a file of tessellated geometry only: its triangles, certified as a
+/// mesh (closed, manifold, oriented outward, no self-intersection), written when they pass.
+fn run_tessellated(args: &Args, t: &crate::cad::step::Tessellated, t0: Instant) -> Result<()> {
+    use pipeline::tessellated::{TessellatedSummary, certify_surface, mesh_failure_message};
+    let out = &args.output;
+    let certificate = certify_surface(&t.surface);
+    let mut face_table = crate::cad::brep::face_table_of_names(&t.surface.face_names, t.surface.face_tags.iter().copied());
+    for e in &mut face_table {
+        if let Some(f) = e.face.index().and_then(|k| t.faces.get(k)) {
+            e.step_id = Some(f.step_id);
+            e.solid = f.solid;
+        }
+    }
+    let passed = certificate.passed;
+    let mut r = TessReport {
+        input: args.cad.display().to_string(),
+        output: None,
+        tessellated: true,
+        summary: TessellatedSummary::of(t, &t.surface),
+        face_table,
+        units: &t.units,
+        certificate,
+        dropped: &t.dropped,
+        seconds: 0.0,
+    };
+    if !passed && !args.force {
+        if args.json {
+            r.seconds = t0.elapsed().as_secs_f64();
+            println!("{}", serde_json::to_string_pretty(&r)?);
+        }
+        anyhow::bail!("{}", mesh_failure_message(&args.cad, &r.certificate));
+    }
+    io::write(out, &MeshData::Surface(t.surface.clone()), &WriteOptions::default())?;
+    r.output = Some(out.display().to_string());
+    r.seconds = t0.elapsed().as_secs_f64();
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(());
+    }
+    let (s, c) = (&r.summary, &r.certificate);
+    println!("geometry     tessellated only (AP242): the file's triangles, certified as a mesh (--deviation and --max-edge do not apply)");
+    println!("solids       {} TESSELLATED_SOLID, {} TESSELLATED_SHELL", s.solids, s.shells);
+    println!("faces        {}", s.faces);
+    println!("triangles    {} ({} vertices)", s.triangles, s.vertices);
+    println!("watertight   {}", c.closed && c.manifold && c.oriented && c.outward);
+    println!("volume mm3   {:.9}", c.volume);
+    println!("area mm2     {:.9}", c.area);
+    println!("certificate  {}", if passed { "passed (as a mesh)" } else { "FAILED (written with --force)" });
+    if !passed {
+        println!("{}", mesh_failure_message(&args.cad, c));
+    }
+    println!("dropped      {}", r.dropped.len());
+    println!("seconds      {:.3}", r.seconds);
+    println!("wrote        {}", out.display());
     Ok(())
 }
 

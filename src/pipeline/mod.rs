@@ -25,6 +25,7 @@ pub mod part;
 pub mod run;
 pub mod solve;
 mod summary;
+pub mod tessellated;
 
 pub use error::PipelineError;
-pub use part::{Certified, Part, failure_message, tessellate_file};
+pub use part::{Certified, Part, failure_message, tessellate_file, tessellate_model};

@@ -88,6 +88,9 @@ pub struct Part {
     pub contacts: Vec<ContactReport>,
     /// Seconds per stage.
     pub seconds: StageSeconds,
+    /// A STEP file of tessellated geometry only: its faces and solids (its triangles are
+    /// [`Part::surface`], meshed as a surface mesh's are).
+    pub tessellated: Option<step::Tessellated>,
     catalogue: OnceLock<FaceCatalogue>,
 }
 
@@ -105,7 +108,13 @@ impl Part {
     pub fn open(path: &Path) -> Result<Part, PipelineError> {
         let t0 = Instant::now();
         let mut part = if is_step(path) {
-            Part::from_model(path, step::read(path)?)
+            match step::read_shape(path)? {
+                step::Shape::Brep(model) => Part::from_model(path, model),
+                step::Shape::Tessellated(mut t) => {
+                    let surface = std::mem::take(&mut t.surface);
+                    Part { tessellated: Some(t), ..Part::from_surface(path, surface) }
+                }
+            }
         } else {
             let loaded = io::read(path, &ReadOptions::default())?;
             let surface = match loaded.mesh {
@@ -147,6 +156,7 @@ impl Part {
             mesh_report: None,
             contacts: Vec::new(),
             seconds: StageSeconds::default(),
+            tessellated: None,
             catalogue: OnceLock::new(),
         }
     }
@@ -199,9 +209,25 @@ impl Part {
     pub fn face_table(&self) -> Vec<FaceEntry> {
         match (&self.model, &self.surface) {
             (Some(m), _) => m.face_table(),
-            (None, Some(s)) => face_table_of_names(&s.face_names, s.face_tags.iter().copied()),
+            (None, Some(s)) => {
+                let mut table = face_table_of_names(&s.face_names, s.face_tags.iter().copied());
+                if let Some(t) = &self.tessellated {
+                    for e in &mut table {
+                        if let Some(f) = e.face.index().and_then(|k| t.faces.get(k)) {
+                            e.step_id = Some(f.step_id);
+                            e.solid = f.solid;
+                        }
+                    }
+                }
+                table
+            }
             _ => Vec::new(),
         }
+    }
+
+    /// True for a part in millimetres: a STEP part, B-rep or tessellated.
+    pub fn is_step(&self) -> bool {
+        self.is_cad() || self.tessellated.is_some()
     }
 
     /// The size field of `density` on this part, its lengths times `unit`.
@@ -352,8 +378,13 @@ pub fn tessellate_file(path: &Path, opts: &TessellateOptions, size: Option<&dyn 
     let t0 = Instant::now();
     let model = step::read(path)?;
     let read = t0.elapsed().as_secs_f64();
+    Ok(tessellate_model(model, read, opts, size, checks))
+}
+
+/// [`tessellate_file`] of a model already read (`read` its seconds).
+pub fn tessellate_model(model: Model, read: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Model, Certified, StageSeconds) {
     let (c, [tessellate, certify]) = certified_tessellation(&model, opts, size, checks);
-    Ok((model, c, StageSeconds { read, tessellate, certify, mesh: 0.0 }))
+    (model, c, StageSeconds { read, tessellate, certify, mesh: 0.0 })
 }
 
 /// Tessellates `model` (to `size` where given) and certifies the result; with the seconds of

@@ -147,7 +147,7 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
     let job = &jf.job;
     let input = jf.resolve(job.input.file.get_ref());
     let mut part = Part::open(&input)?;
-    let unit = if part.is_cad() { job.units.to_mm() } else { job.units.to_mm() / job.input.units.unwrap_or(job.units).to_mm() };
+    let unit = if part.is_step() { job.units.to_mm() } else { job.units.to_mm() / job.input.units.unwrap_or(job.units).to_mm() };
     let plan = Plan {
         selectors: jf.selectors(),
         density: job.density.clone(),

@@ -15,6 +15,11 @@
 //! The other way, [`writer`] writes a [`Model`] as an AP214 file (millimetres, named faces,
 //! deterministic bytes) that this reader and OpenCASCADE read back.
 //!
+//! AP242 files may carry tessellated geometry only (`TESSELLATED_SOLID` of
+//! `TRIANGULATED_FACE`s, ...): [`read_shape`] reads it ([`tessellated`]) into a tagged
+//! triangle surface, a face per tag, when the file has no B-rep; a file with both gives the
+//! B-rep and lists the tessellated items as dropped. [`write_tessellated`] writes such a file.
+//!
 //! Errors ([`StepError`]) concern the file as a whole and name the line or `#id`: a
 //! truncated file, a reference to an undefined instance, a reference cycle, bad syntax.
 //! Problems confined to one face or curve drop that item and list it.
@@ -31,15 +36,19 @@ pub mod tessellated;
 mod topology;
 pub mod units;
 mod write_geometry;
+pub mod write_tessellated;
 pub mod writer;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_tessellated;
 
 pub use error::StepError;
 pub use param::Param;
 pub use table::{Entity, Record, StepFile};
 pub use tessellated::{Tessellated, TessellatedFace, TessellatedSolid};
+pub use write_tessellated::{tessellated_to_string, write_tessellated};
 pub use writer::{StepWriteError, write};
 
 use crate::cad::brep::{Dropped, Model};

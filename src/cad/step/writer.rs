@@ -57,7 +57,7 @@ impl Writer {
 
 /// A STEP string literal: quotes doubled, backslashes doubled, characters outside printable
 /// ASCII as `\X2\hhhh\X0\`.
-fn string(s: &str) -> String {
+pub(super) fn string(s: &str) -> String {
     let mut out = String::from("'");
     for ch in s.chars() {
         match ch {
@@ -85,22 +85,35 @@ fn string(s: &str) -> String {
 /// for an index out of range.
 pub fn to_string(model: &Model, name: &str) -> Result<String, StepWriteError> {
     let mut w = Writer { entities: Vec::new() };
-    let items = w.topology(model)?;
-    w.context_and_product(name, &items)?;
-    let mut out = String::new();
-    out.push_str("ISO-10303-21;\nHEADER;\n");
-    out.push_str(&format!("FILE_DESCRIPTION(({}),'2;1');\n", string(&format!("{name}: written by fepre"))));
-    out.push_str(&format!(
-        "FILE_NAME({},'2000-01-01T00:00:00',(''),(''),'fepre {}','fepre','');\n",
-        string(&format!("{name}.step")),
-        env!("CARGO_PKG_VERSION")
-    ));
-    out.push_str("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n");
-    for (k, e) in w.entities.iter().enumerate() {
-        out.push_str(&format!("#{}={e};\n", k + 1));
+    let (items, surface_model) = w.topology(model)?;
+    let kind = if surface_model { "SHAPE_REPRESENTATION" } else { "ADVANCED_BREP_SHAPE_REPRESENTATION" };
+    w.context_and_product(name, &items, kind)?;
+    Ok(w.file_text(name, "AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }"))
+}
+
+impl Writer {
+    /// An empty writer.
+    pub(super) fn new() -> Writer {
+        Writer { entities: Vec::new() }
     }
-    out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
-    Ok(out)
+
+    /// The whole file: header (fixed time stamp, `schema`) and the entities written.
+    pub(super) fn file_text(&self, name: &str, schema: &str) -> String {
+        let mut out = String::new();
+        out.push_str("ISO-10303-21;\nHEADER;\n");
+        out.push_str(&format!("FILE_DESCRIPTION(({}),'2;1');\n", string(&format!("{name}: written by fepre"))));
+        out.push_str(&format!(
+            "FILE_NAME({},'2000-01-01T00:00:00',(''),(''),'fepre {}','fepre','');\n",
+            string(&format!("{name}.step")),
+            env!("CARGO_PKG_VERSION")
+        ));
+        out.push_str(&format!("FILE_SCHEMA(('{schema}'));\nENDSEC;\nDATA;\n"));
+        for (k, e) in self.entities.iter().enumerate() {
+            out.push_str(&format!("#{}={e};\n", k + 1));
+        }
+        out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
+        out
+    }
 }
 
 /// Writes the model to `path` through a temporary file (nothing is left on failure).
@@ -225,8 +238,7 @@ impl Writer {
     }
 
     /// Units, context, the product and its shape representation holding `items`.
-    fn context_and_product(&mut self, name: &str, items: &(Vec<u64>, bool)) -> Result<u64, StepWriteError> {
-        let (items, surface_model) = items;
+    pub(super) fn context_and_product(&mut self, name: &str, items: &[u64], kind: &str) -> Result<u64, StepWriteError> {
         let n = string(name);
         let length = self.add("(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.))".into());
         let angle = self.add("(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.))".into());
@@ -238,7 +250,6 @@ impl Writer {
         ));
         let origin = self.placement(&crate::cad::geom::Frame::WORLD)?;
         let list: Vec<String> = items.iter().chain(std::iter::once(&origin)).map(|i| format!("#{i}")).collect();
-        let kind = if *surface_model { "SHAPE_REPRESENTATION" } else { "ADVANCED_BREP_SHAPE_REPRESENTATION" };
         let rep = self.add(format!("{kind}({n},({}),#{ctx})", list.join(",")));
         let app = self.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')".into());
         self.add(format!("APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"));
