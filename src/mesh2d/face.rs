@@ -10,8 +10,9 @@
 //!   point (so a lifted mesh meets the rest of the surface exactly on the face's boundary).
 //! - Invariants: the frame is right-handed with the face's outward normal (the triangles'
 //!   orientation) as its third axis, so the domain is on the left of its segments (outer
-//!   loops counter-clockwise, holes clockwise); every vertex of the face is within
-//!   `1e-6` of the face's size of the plane, otherwise the face is refused as not planar.
+//!   loops counter-clockwise, holes clockwise); every vertex of the face is within the
+//!   caller's tolerance (at least `1e-6` of the face's size) of the plane, otherwise the
+//!   face is refused as not planar.
 
 use super::quadtree::{Domain, DomainError};
 use crate::core::FaceId;
@@ -54,10 +55,10 @@ impl PlaneFrame {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum FaceError {
     /// The face has no triangles.
-    #[error("face {0} has no triangles")]
+    #[error("{0} has no triangles")]
     NoTriangles(FaceId),
     /// A vertex is off the plane.
-    #[error("face {face} is not planar: a vertex is {distance:e} off its plane (tolerance {tolerance:e})")]
+    #[error("{face} is not planar: a vertex is {distance:e} off its plane (tolerance {tolerance:e})")]
     NotPlanar {
         /// The face.
         face: FaceId,
@@ -67,7 +68,7 @@ pub enum FaceError {
         tolerance: f64,
     },
     /// An edge is used twice in the same direction, or more than twice, by the face.
-    #[error("face {face}: edge {a} - {b} is used by {uses} of its triangles or twice the same way")]
+    #[error("{face}: edge {a} - {b} is used by {uses} of its triangles or twice the same way")]
     NonManifold {
         /// The face.
         face: FaceId,
@@ -79,7 +80,7 @@ pub enum FaceError {
         uses: usize,
     },
     /// The projected boundary is not a valid domain.
-    #[error("face {face}: {source}")]
+    #[error("{face}: {source}")]
     Domain {
         /// The face.
         face: FaceId,
@@ -105,11 +106,13 @@ pub struct PlanarFace {
 /// `triangles`. `frame` is the plane's `(origin, x axis)` where known (a B-rep plane's
 /// frame; `None`: the first vertex and an axis along the first boundary edge); the normal
 /// always comes from the triangles' orientation. `tag(a, b)` tags the boundary edge between
-/// surface vertices `a` and `b`.
+/// surface vertices `a` and `b`. `tolerance` is the distance off the plane a vertex may have
+/// (absolute; at least `1e-6` of the face's size is allowed): for a tessellation, its chord
+/// tolerance, since the CAD edges on a plane are only as planar as the file's curves.
 ///
 /// # Errors
 /// [`FaceError`], naming the face.
-pub fn planar_face(surface: &TriSurface, face: FaceId, triangles: &[u32], frame: Option<(DVec3, DVec3)>, tag: &dyn Fn(u32, u32) -> u32) -> Result<PlanarFace, FaceError> {
+pub fn planar_face(surface: &TriSurface, face: FaceId, triangles: &[u32], frame: Option<(DVec3, DVec3)>, tolerance: f64, tag: &dyn Fn(u32, u32) -> u32) -> Result<PlanarFace, FaceError> {
     if triangles.is_empty() {
         return Err(FaceError::NoTriangles(face));
     }
@@ -157,7 +160,7 @@ pub fn planar_face(surface: &TriSurface, face: FaceId, triangles: &[u32], frame:
             hi = hi.max(v[i as usize]);
         }
     }
-    let tolerance = 1e-6 * (hi - lo).length();
+    let tolerance = (1e-6 * (hi - lo).length()).max(tolerance);
     let mut distance = 0.0f64;
     for &t in triangles {
         for i in tri(t) {

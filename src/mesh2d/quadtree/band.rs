@@ -19,6 +19,9 @@
 //! 3. everything goes into the project's CDT driver (`core::cdt`), segment pieces and
 //!    interface edges as constraints, then spade's 25° refinement, constraint edges kept
 //!    and outer faces excluded;
+//!    then pieces of input segments encroached by the circumcentre of a triangle under
+//!    [`SPLIT_BELOW_DEG`] (or an edge of one) are halved and step 3 repeated, a few rounds
+//!    (spade would split them itself, but also the interface, which must stay whole);
 //! 4. the faces an odd number of constraints away from the convex hull's outside are the
 //!    band (inside the domain, outside the interior leaves).
 
@@ -71,11 +74,13 @@ pub struct BandParams {
     pub keep: f64,
     /// Whether spade's quality refinement (25°, constraint edges kept) runs on the band.
     pub refine: bool,
+    /// Rounds of halving the segment pieces that bad triangles encroach.
+    pub split_rounds: usize,
 }
 
 impl Default for BandParams {
     fn default() -> BandParams {
-        BandParams { keep: 0.35, refine: true }
+        BandParams { keep: 0.35, refine: true, split_rounds: 6 }
     }
 }
 
@@ -126,21 +131,6 @@ fn cuts(tree: &Quadtree, a: DVec2, b: DVec2) -> Vec<f64> {
 /// [`QuadtreeError::Band`] when a point or constraint cannot be placed (coordinates beyond
 /// the driver's guard, or coincident or crossing pieces: an input the checks let through).
 pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interface: &[[u32; 2]], params: BandParams) -> Result<Band, QuadtreeError> {
-    let mut cdt: ConstrainedDelaunayTriangulation<V> = ConstrainedDelaunayTriangulation::new();
-    let mut handles: BTreeMap<u32, spade::handles::FixedVertexHandle> = BTreeMap::new();
-    let mut put = |cdt: &mut ConstrainedDelaunayTriangulation<V>, vertices: &Vertices, id: u32| -> Result<spade::handles::FixedVertexHandle, QuadtreeError> {
-        if let Some(&h) = handles.get(&id) {
-            return Ok(h);
-        }
-        let p = vertices.positions[id as usize];
-        let before = cdt.num_vertices();
-        let h = cdt::insert(cdt, p, |q| V { p: q, id }).map_err(|e| QuadtreeError::Band(format!("point ({}, {}): {e}", p.x, p.y)))?;
-        if cdt.num_vertices() == before {
-            return Err(QuadtreeError::Band(format!("point ({}, {}) coincides with another", p.x, p.y)));
-        }
-        handles.insert(id, h);
-        Ok(h)
-    };
     // 1. polygon vertices and segment pieces
     let point_ids: Vec<u32> = domain.points.iter().map(|&p| vertices.push(p)).collect();
     let mut chains = Vec::with_capacity(domain.segments.len());
@@ -153,17 +143,6 @@ pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interfac
         }
         chain.push(point_ids[ib as usize]);
         chains.push(chain);
-    }
-    for chain in &chains {
-        for &id in chain {
-            put(&mut cdt, vertices, id)?;
-        }
-    }
-    // interface points (already numbered by the templates)
-    for e in interface {
-        for &id in e {
-            put(&mut cdt, vertices, id)?;
-        }
     }
     // 2. lattice points of boundary leaves, kept or removed by their clearance
     let mut keep: BTreeMap<(u32, u32), bool> = BTreeMap::new();
@@ -185,13 +164,55 @@ pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interfac
             *e = *e && clear;
         }
     }
+    let mut lattice_ids = Vec::new();
     for (key, kept) in keep {
         if kept && vertices.lattice_id(key).is_none() {
-            let id = vertices.lattice(tree, key);
-            put(&mut cdt, vertices, id)?;
+            lattice_ids.push(vertices.lattice(tree, key));
         }
     }
-    // 3. constraints
+    // 3. triangulate; pieces of input segments that bad triangles encroach are halved and
+    // the band triangulated again (Ruppert's segment splitting, which spade may not do here
+    // because the interface edges must stay whole)
+    let mut round = 0;
+    loop {
+        let (cdt, refinement_points) = triangulate(vertices, &chains, interface, &lattice_ids, params)?;
+        let parity = parity(&cdt)?;
+        let split = if round < params.split_rounds { encroached_pieces(&cdt, &parity, vertices, &chains) } else { Vec::new() };
+        if split.is_empty() {
+            let triangles = extract(&cdt, &parity, vertices);
+            return Ok(Band { triangles, chains, refinement_points });
+        }
+        for (s, k) in split.into_iter().rev() {
+            let chain = &mut chains[s];
+            let m = 0.5 * (vertices.positions[chain[k] as usize] + vertices.positions[chain[k + 1] as usize]);
+            let id = vertices.push(m);
+            chain.insert(k + 1, id);
+        }
+        round += 1;
+    }
+}
+
+/// The CDT of the band's points with the pieces and the interface as constraints, refined;
+/// with the number of points the refinement added.
+fn triangulate(vertices: &Vertices, chains: &[Vec<u32>], interface: &[[u32; 2]], lattice_ids: &[u32], params: BandParams) -> Result<(ConstrainedDelaunayTriangulation<V>, usize), QuadtreeError> {
+    let mut cdt: ConstrainedDelaunayTriangulation<V> = ConstrainedDelaunayTriangulation::new();
+    let mut handles: BTreeMap<u32, spade::handles::FixedVertexHandle> = BTreeMap::new();
+    let mut put = |cdt: &mut ConstrainedDelaunayTriangulation<V>, id: u32| -> Result<(), QuadtreeError> {
+        if handles.contains_key(&id) {
+            return Ok(());
+        }
+        let p = vertices.positions[id as usize];
+        let before = cdt.num_vertices();
+        let h = cdt::insert(cdt, p, |q| V { p: q, id }).map_err(|e| QuadtreeError::Band(format!("point ({}, {}): {e}", p.x, p.y)))?;
+        if cdt.num_vertices() == before {
+            return Err(QuadtreeError::Band(format!("point ({}, {}) coincides with another", p.x, p.y)));
+        }
+        handles.insert(id, h);
+        Ok(())
+    };
+    for &id in chains.iter().flatten().chain(interface.iter().flatten()).chain(lattice_ids) {
+        put(&mut cdt, id)?;
+    }
     for (s, chain) in chains.iter().enumerate() {
         for w in chain.windows(2) {
             if !cdt::constrain(&mut cdt, handles[&w[0]], handles[&w[1]]) {
@@ -208,18 +229,20 @@ pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interfac
     if params.refine {
         cdt.refine(cdt::quality_refinement(f64::NAN, 4 * before + 1000));
     }
-    let refinement_points = cdt.num_vertices() - before;
-    // 4. the band: faces at odd constraint parity
-    let parity = parity(&cdt)?;
+    let added = cdt.num_vertices() - before;
+    Ok((cdt, added))
+}
+
+/// The band's triangles (faces of odd parity), new points numbered in face order.
+fn extract(cdt: &ConstrainedDelaunayTriangulation<V>, parity: &[Option<bool>], vertices: &mut Vertices) -> Vec<[u32; 3]> {
     let mut ids: Vec<u32> = cdt.vertices().map(|v| v.data().id).collect();
     let mut triangles = Vec::new();
     for f in cdt.inner_faces() {
         if parity[f.fix().index()] != Some(true) {
             continue;
         }
-        let vs = f.vertices();
         let mut tri = [0u32; 3];
-        for (k, v) in vs.iter().enumerate() {
+        for (k, v) in f.vertices().iter().enumerate() {
             let h = v.fix().index();
             if ids[h] == NONE {
                 let p = v.position();
@@ -229,7 +252,49 @@ pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interfac
         }
         triangles.push(tri);
     }
-    Ok(Band { triangles, chains, refinement_points })
+    triangles
+}
+
+/// Pieces `(segment, index in its chain)` to halve: those whose diametral circle holds the
+/// circumcentre of a band triangle with an angle under [`SPLIT_BELOW_DEG`] (Ruppert's
+/// encroachment rule; sorted, deduplicated).
+fn encroached_pieces(cdt: &ConstrainedDelaunayTriangulation<V>, parity: &[Option<bool>], vertices: &Vertices, chains: &[Vec<u32>]) -> Vec<(usize, usize)> {
+    let mut centres = Vec::new();
+    for f in cdt.inner_faces() {
+        if parity[f.fix().index()] != Some(true) {
+            continue;
+        }
+        let p = f.vertices().map(|v| DVec2::new(v.position().x, v.position().y));
+        let a = super::check::triangle_angles(p);
+        if a.iter().cloned().fold(f64::INFINITY, f64::min) < SPLIT_BELOW_DEG {
+            centres.push(circumcentre(p));
+        }
+    }
+    let mut out = Vec::new();
+    if centres.is_empty() {
+        return out;
+    }
+    for (s, chain) in chains.iter().enumerate() {
+        for k in 0..chain.len() - 1 {
+            let (u, w) = (vertices.positions[chain[k] as usize], vertices.positions[chain[k + 1] as usize]);
+            let (m, r2) = (0.5 * (u + w), 0.25 * (w - u).length_squared());
+            if centres.iter().any(|c| (*c - m).length_squared() < r2) {
+                out.push((s, k));
+            }
+        }
+    }
+    out
+}
+
+/// Band triangles with an angle under this many degrees get their encroached pieces split.
+pub const SPLIT_BELOW_DEG: f64 = 20.0;
+
+/// The circumcentre of a triangle.
+fn circumcentre(p: [DVec2; 3]) -> DVec2 {
+    let (b, c) = (p[1] - p[0], p[2] - p[0]);
+    let d = 2.0 * b.perp_dot(c);
+    let (b2, c2) = (b.length_squared(), c.length_squared());
+    p[0] + DVec2::new(c.y * b2 - b.y * c2, b.x * c2 - c.x * b2) / d
 }
 
 /// Per face index: `Some(true)` when an odd number of constraint edges separates it from
