@@ -21,6 +21,14 @@ pub enum DomainError {
     /// Fewer than three segments.
     #[error("the domain has {0} boundary segments (at least 3 are needed)")]
     TooSmall(usize),
+    /// Not one tag per segment.
+    #[error("{tags} tags for {segments} segments")]
+    TagCount {
+        /// Tags given.
+        tags: usize,
+        /// Segments given.
+        segments: usize,
+    },
     /// A point is not finite.
     #[error("point {index} ({x}, {y}) is not finite")]
     NonFinite {
@@ -128,7 +136,7 @@ impl Domain {
             return Err(DomainError::TooSmall(self.segments.len()));
         }
         if self.tags.len() != self.segments.len() {
-            return Err(DomainError::TooSmall(self.tags.len().min(self.segments.len())));
+            return Err(DomainError::TagCount { tags: self.tags.len(), segments: self.segments.len() });
         }
         if let Some(i) = self.points.iter().position(|p| !p.is_finite()) {
             return Err(DomainError::NonFinite { index: i, x: self.points[i].x, y: self.points[i].y });

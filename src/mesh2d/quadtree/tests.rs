@@ -106,6 +106,9 @@ fn bad_input_is_an_error() {
     assert!(matches!(nan, Err(DomainError::NonFinite { .. })));
     let dup = Domain::from_loops(&[vec![d(0.0, 0.0), d(1.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)]], None);
     assert!(matches!(dup, Err(DomainError::DuplicatePoint(..))));
+    let mut sq = square();
+    sq.tags.pop();
+    assert!(matches!(sq.validate(), Err(DomainError::TagCount { tags: 3, segments: 4 })));
     let r = mesh(&square(), &|_| -1.0, &QuadtreeOptions::default());
     assert!(matches!(r, Err(QuadtreeError::Size { .. })));
     let r = mesh(&square(), &|_| 1e-6, &QuadtreeOptions { tree: Params { max_quadrants: 1000, ..Params::default() }, ..QuadtreeOptions::default() });
