@@ -21,6 +21,7 @@ pub mod deck;
 pub mod fe;
 pub mod io;
 pub mod mesh;
+pub mod mesh2d;
 pub mod mesh3d;
 pub mod pipeline;
 pub mod quality;

@@ -8,6 +8,7 @@ pub mod convert;
 pub mod delaunay;
 pub mod inspect;
 pub mod mesh;
+pub mod mesh2d;
 pub mod progress;
 pub mod run;
 pub mod solve;
@@ -25,6 +26,7 @@ Examples:
   fepre convert mesh.mesh boundary.stl     a tet mesh's tagged boundary as a surface
   fepre delaunay points.xyz -o dt.mesh     exact Delaunay tetrahedralization of a point set
   fepre mesh part.stl -o part.mesh         quality tet mesh of a closed surface, boundary tags kept
+  fepre mesh2d part.step -o faces.vtu      the lecture's quadtree 2D mesher on every planar face
   fepre cad-info part.step                 what fepre reads from a STEP file: counts, units, dropped items
   fepre tessellate part.step -o part.stl   certified watertight surface of a STEP file, face tags kept
   fepre mesh part.step -o part.mesh        STEP straight to quality tets (tessellated and certified first)
@@ -59,6 +61,10 @@ pub enum Command {
     /// Delaunay refinement, sliver removal), boundary tags and regions kept.
     #[command(after_help = mesh::EXAMPLES)]
     Mesh(mesh::Args),
+    /// The lecture's quadtree 2D mesher (Yerry and Shephard) on the planar faces of a STEP
+    /// part: balanced quadrants, templates inside, the boundary kept.
+    #[command(name = "mesh2d", after_help = mesh2d::EXAMPLES)]
+    Mesh2d(mesh2d::Args),
     /// Convert a mesh between formats, chosen from the file extensions; tags are kept where the
     /// output format can hold them.
     #[command(after_help = convert::EXAMPLES)]
@@ -98,6 +104,7 @@ pub fn main() -> ExitCode {
         Command::Convert(a) => convert::run(&a),
         Command::Delaunay(a) => delaunay::run(&a),
         Command::Mesh(a) => mesh::run(&a),
+        Command::Mesh2d(a) => mesh2d::run(&a),
         Command::CadInfo(a) => cad_info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
         Command::Run(a) => run::run(&a),

@@ -85,6 +85,15 @@ pub enum PipelineError {
         /// What falls short.
         message: String,
     },
+    /// A face asked for by the 2D mesher is missing, not planar, or could not be meshed; the
+    /// message names the face and its STEP `#id`.
+    #[error("{}: {message}", path.display())]
+    Planar {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong, naming the face.
+        message: String,
+    },
     /// Two solids of an assembly overlap; the message names both solids, their faces (and
     /// those faces' STEP `#id`s), a point and the depth.
     #[error("{}: {source} (STEP faces {step_faces})", path.display())]

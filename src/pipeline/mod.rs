@@ -22,6 +22,7 @@ pub mod fe_ties;
 pub mod job;
 pub mod job_fe;
 pub mod part;
+pub mod planar;
 pub mod run;
 pub mod solve;
 mod summary;
