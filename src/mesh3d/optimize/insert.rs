@@ -13,13 +13,15 @@
 //! the least cavity: the two seeds grown only until star-shaped. The cavity never crosses a
 //! constrained face, so `p` is interior to one region. The cavity is replaced by the tets
 //! joining its faces to `p`, `p` is smoothed in its new star, and the insertion is kept only if
-//! the least score of the new tets beats that of the cavity and the radius-edge bound holds;
+//! the least score of the new tets beats that of the cavity and the radius-edge bound holds
+//! (twice the bound where the cavity's worst tet is far under target);
 //! otherwise the old tets are put back and `p` is dropped.
 
 use crate::core::Sign;
 use crate::core::ids::NONE;
 use crate::core::predicates::{insphere, orient3d};
 use crate::mesh::tet_mesh::TET_FACES;
+use crate::mesh3d::optimize::RESCUE_BELOW;
 use crate::mesh3d::optimize::smooth::{MIN_GAIN, Smoother};
 use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::{tet_circumradius, tet_radius_edge};
@@ -28,8 +30,10 @@ use glam::DVec3;
 /// The most tets a cavity may hold.
 const MAX_CAVITY: usize = 48;
 /// Heights above a tet's constrained face, in mean edges of the face, of the points tried
-/// there (0.82 is a regular tet's height).
-const ABOVE_WALL: [f64; 2] = [0.8, 0.5];
+/// there (0.82 is a regular tet's height). The low ones are for thin walls: a flat tet on a
+/// tube's wall thinner than its edges (`abc-0000`: 3.2 thick, edges 5 to 9) has no room for a
+/// point at the height of a well-shaped tet.
+const ABOVE_WALL: [f64; 4] = [0.8, 0.5, 0.3, 0.15];
 /// The most steps of the point-location walk.
 const MAX_WALK: usize = 64;
 
@@ -254,7 +258,9 @@ impl Inserter {
         let mut star = std::mem::take(&mut self.star);
         let ok = w.star(v, &mut star) && {
             let new_min = star.iter().map(|&s| w.q[s as usize]).fold(f64::INFINITY, f64::min);
-            let bound = max_re.max(old_re);
+            // far under target (a sliver of 1-9°), a new star a little over the radius-edge
+            // bound is better than the sliver: allow twice the bound there
+            let bound = if old_min < RESCUE_BELOW { (2.0 * max_re).max(old_re) } else { max_re.max(old_re) };
             new_min > old_min + MIN_GAIN && star.iter().all(|&s| tet_radius_edge(&w.corners(&w.tets[s as usize])) <= bound)
         };
         if ok {

@@ -92,7 +92,8 @@ use work::Work;
 const INSERT_FROM_PASS: usize = 2;
 
 /// The score under which a tet gets the extra attempts once the budget has run out (half
-/// the targets: 9° for a target of 18°).
+/// the targets: 9° for a target of 18°), and insertion for it may reach twice the
+/// radius-edge bound.
 const RESCUE_BELOW: f64 = 0.5;
 
 /// Options of [`optimize`].
