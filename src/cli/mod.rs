@@ -160,6 +160,9 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
     if m.tets_under_5_deg > 0 {
         println!("                 of those under 5°, {} touch no input angle under 5°; of those under 1°, {} touch none under 1°", m.tets_under_5_deg_unexplained, m.tets_under_1_deg_unexplained);
     }
+    if m.tets_under_bound > 0 {
+        println!("                 {} tets under {}°, {} of them touching no input angle as small; {} under 10°, {} of them touching none under 10°", m.tets_under_bound, m.input_angle_bound_deg, m.tets_under_bound_unexplained, m.tets_under_10_deg, m.tets_under_10_deg_unexplained);
+    }
     println!("max radius-edge  {:.3} ({} tets above the {} aimed at)", m.max_radius_edge, m.tets_above_radius_edge_bound, m.radius_edge_bound);
     for (label, text) in m.worst_tet.as_ref().map(|w| w.lines()).unwrap_or_default() {
         println!("{label:<16} {text}");

@@ -50,6 +50,16 @@ pub struct MeshSummary {
     pub tets_under_5_deg_unexplained: usize,
     /// Of the tets under 1°, those that touch no input angle under 1°.
     pub tets_under_1_deg_unexplained: usize,
+    /// Tets with a dihedral angle under 10°.
+    pub tets_under_10_deg: usize,
+    /// Of the tets under 10°, those that touch no input angle under 10°.
+    pub tets_under_10_deg_unexplained: usize,
+    /// Tets with a dihedral angle under [`MeshSummary::input_angle_bound_deg`] (the angle
+    /// required, else the one aimed at).
+    pub tets_under_bound: usize,
+    /// Of those, the ones that touch no input angle under that bound: where the mesh falls
+    /// short of it and the input does not explain why.
+    pub tets_under_bound_unexplained: usize,
     /// Near-degenerate tets (volume-length ratio under
     /// [`crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH`]).
     pub near_degenerate: usize,
@@ -102,13 +112,14 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
     let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
-    // a second pass over the tets only where some are under 5°
-    let (unexplained_5, unexplained_1) = if q.tets_min_dihedral_below_5 == 0 {
-        (0, 0)
-    } else if bound >= 5.0 {
-        unexplained(mesh, &angles)
+    // a second pass over the tets, with the input angles under 10° as well where the bound is
+    // lower
+    let counts = if !(q.min_dihedral_deg < bound.max(10.0)) {
+        Unexplained::default()
+    } else if bound >= 10.0 {
+        unexplained(mesh, &angles, bound)
     } else {
-        unexplained(mesh, &surface.map(|s| small_input_angles(s, 5.0, !plan.mesh.keep_surface)).unwrap_or_default())
+        unexplained(mesh, &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
     let r_bound = plan.mesh.max_radius_edge;
     let above = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
@@ -125,8 +136,12 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         max_radius_edge: q.max_radius_edge,
         tets_under_5_deg: q.tets_min_dihedral_below_5,
         tets_under_1_deg: q.tets_min_dihedral_below_1,
-        tets_under_5_deg_unexplained: unexplained_5,
-        tets_under_1_deg_unexplained: unexplained_1,
+        tets_under_5_deg_unexplained: counts.under[1].1,
+        tets_under_1_deg_unexplained: counts.under[0].1,
+        tets_under_10_deg: counts.under[2].0,
+        tets_under_10_deg_unexplained: counts.under[2].1,
+        tets_under_bound: counts.under[3].0,
+        tets_under_bound_unexplained: counts.under[3].1,
         near_degenerate: q.near_degenerate,
         refinement_stopped: report.refinement_stopped,
         refinement_stop: report.refinement_stop.clone(),
@@ -143,26 +158,33 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     Summarised { summary, quality: q, boundary, angles }
 }
 
-/// The tets under 5° and under 1° that touch no input angle as small (`angles` smallest first;
-/// every angle under 5° among them).
-fn unexplained(mesh: &TetMesh, angles: &[InputAngle]) -> (usize, usize) {
+/// Tets under 1°, 5°, 10° and the bound: how many, and how many of them touch no input angle
+/// as small.
+#[derive(Default)]
+struct Unexplained {
+    under: [(usize, usize); 4],
+}
+
+/// The counts of [`Unexplained`]; `angles` smallest first, every input angle under 10° and
+/// under `bound` among them.
+fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained {
     use crate::quality::tetrahedron::tet_min_max_dihedral;
     use crate::quality::worst_tet::touches_angle_below;
-    let (mut five, mut one) = (0, 0);
+    let limits = [1.0, 5.0, 10.0, bound];
+    let mut out = Unexplained::default();
     for t in &mesh.tets {
         let p = t.map(|v| mesh.vertices[v as usize]);
         let lo = tet_min_max_dihedral(&p).0;
-        if !(lo < 5.0) {
-            continue;
-        }
-        if !touches_angle_below(&p, angles, 5.0) {
-            five += 1;
-        }
-        if lo < 1.0 && !touches_angle_below(&p, angles, 1.0) {
-            one += 1;
+        for (k, &limit) in limits.iter().enumerate() {
+            if lo < limit {
+                out.under[k].0 += 1;
+                if !touches_angle_below(&p, angles, limit) {
+                    out.under[k].1 += 1;
+                }
+            }
         }
     }
-    (five, one)
+    out
 }
 
 /// Names a face tag: the face table's unique name, else the mesh's.
