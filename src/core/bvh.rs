@@ -206,6 +206,31 @@ impl Bvh {
         self.walk(|b| seg.hits(b), |b| seg.hits(b), &mut f);
     }
 
+    /// True when some item's box overlaps the closed box `q` (stops at the first).
+    pub fn any_overlapping(&self, q: &Aabb) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n as usize];
+            if !node.bbox.overlaps(q) {
+                continue;
+            }
+            if node.is_leaf() {
+                let r = node.first as usize..(node.first + node.count) as usize;
+                if self.boxes[r].iter().any(|b| b.overlaps(q)) {
+                    return true;
+                }
+            } else {
+                stack.push(node.first);
+                stack.push(n + 1);
+            }
+        }
+        false
+    }
+
     /// The root node (`None` for an empty tree). With [`Bvh::node`], for traversals that keep
     /// their own data per node (the fast winding number's dipoles): node indices are
     /// `0..num_nodes()`, and both children of a node have larger indices than the node, so a

@@ -8,7 +8,7 @@
 //!
 //! # Invariants
 //! - Each triangle (of either surface) is sampled on a barycentric grid of `k` steps per
-//!   side, `k` from its longest edge over `h / 4` (2 to 16). The distance to a surface is
+//!   side, `k` from its longest edge over `h / 2` (1 to 16). The distance to a surface is
 //!   1-Lipschitz, so the true one-sided distance is at most the sampled maximum plus the
 //!   grid's spacing (the longest edge over `k`): `hausdorff_bound` is that upper bound, never
 //!   an estimate below the truth; `hausdorff` is the largest distance actually found.
@@ -101,7 +101,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64) -> (f64, 
         .map(|t| {
             let [a, b, c] = from.corners(t);
             let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
-            let k = ((longest / (0.25 * h)).ceil() as usize).clamp(2, 16);
+            let k = ((longest / (0.5 * h)).ceil() as usize).clamp(1, 16);
             let mut worst: f64 = 0.0;
             let mut n = 0;
             for i in 0..=k {

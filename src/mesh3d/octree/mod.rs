@@ -43,7 +43,7 @@ pub use lattice::Lattice;
 pub use winding::Winding;
 
 use crate::core::predicates::orient3d;
-use crate::core::{RegionId, SizeField};
+use crate::core::{Aabb, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
 use crate::quality::tetrahedron::tet_min_max_dihedral;
 use glam::DVec3;
@@ -185,17 +185,24 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
     let oracle = Winding::new(surface);
     stage("winding_bvh", &mut t);
     let n = lattice.num_vertices();
-    let w: Vec<f64> = (0..n as u32).into_par_iter().map(|v| oracle.at(lattice.position(v))).collect();
+    // exact near the surface; coarser dipoles where no triangle's box comes within a cell
+    let w: Vec<f64> = (0..n as u32)
+        .into_par_iter()
+        .map(|v| {
+            let q = lattice.position(v);
+            let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
+            oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
+        })
+        .collect();
     stage("winding", &mut t);
     let cuts = cut::cut_and_warp(&lattice, &oracle, &w, opts.alpha_long, opts.alpha_short);
     stage("cut_warp", &mut t);
     if !cuts.sign.contains(&-1) {
         return Err(OctreeError::Empty(h));
     }
-    let (mut mesh, all_zero) = fill(&lattice, &cuts, &oracle)?;
+    let (mut mesh, all_zero, inner, minus) = fill(&lattice, &cuts, &oracle)?;
     stage("stencils", &mut t);
-    let faces = mesh.faces();
-    mesh.boundary = faces.iter().filter(|f| f.neighbor.is_none()).map(|f| f.vertices).collect();
+    mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     mesh.face_tags = tags::nearest_tags(surface, oracle.bvh(), &mesh);
     mesh.face_names = surface.face_names.clone();
     stage("boundary_tags", &mut t);
@@ -241,11 +248,13 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
 
 /// The stencils over every background tet; the result's vertices are the used lattice
 /// vertices (in lattice order) then the used cut points (in edge order). Returns the mesh
-/// (no boundary yet) and the number of all-zero tets kept.
-fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize), OctreeError> {
+/// (no boundary yet), the number of all-zero tets kept, and per output tet whether it is a
+/// whole background tet of four inside vertices.
+#[allow(clippy::type_complexity)]
+fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, Vec<bool>, Vec<bool>), OctreeError> {
     let nl = lattice.num_vertices() as u32;
     // per centre: the output tets as global corner ids (lattice id, or nl + cut index)
-    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>)> = (0..lattice.num_centres())
+    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>, Vec<bool>)> = (0..lattice.num_centres())
         .into_par_iter()
         .map(|i| {
             let mut background = Vec::with_capacity(12);
@@ -254,17 +263,22 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
             let mut local = Vec::new();
             let mut zero = 0;
             let mut bad = Vec::new();
+            let mut inner = Vec::new();
             for t in background {
                 let s = t.map(|v| cuts.sign[v as usize]);
                 if s == [-1; 4] {
                     out.push(t);
+                    inner.push(true);
                     continue;
                 }
+                let before = out.len();
                 if s == [0; 4] {
                     let c = t.iter().map(|&v| cuts.position(lattice, v)).sum::<DVec3>() / 4.0;
                     if oracle.inside(c) {
                         zero += 1;
+                        let before = out.len();
                         push_checked(t, lattice, cuts, &mut out, &mut bad);
+                        inner.resize(inner.len() + out.len() - before, false);
                     }
                     continue;
                 }
@@ -296,8 +310,9 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
                 for g in chosen {
                     push_checked(g, lattice, cuts, &mut out, &mut bad);
                 }
+                inner.resize(inner.len() + out.len() - before, false);
             }
-            (out, zero, bad)
+            (out, zero, bad, inner)
         })
         .collect();
     let bad: Vec<DVec3> = chunks.iter().flat_map(|c| c.2.iter().copied()).collect();
@@ -307,8 +322,10 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
     let zero = chunks.iter().map(|c| c.1).sum();
     let total: usize = chunks.iter().map(|c| c.0.len()).sum();
     let mut tets = Vec::with_capacity(total);
+    let mut inner = Vec::with_capacity(total);
     for c in chunks {
         tets.extend(c.0);
+        inner.extend(c.3);
     }
     // compact: used lattice vertices, then used cut points
     let mut map = vec![u32::MAX; nl as usize + cuts.edges.len()];
@@ -318,17 +335,53 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
         }
     }
     let mut vertices = Vec::new();
+    let mut minus = Vec::new();
     for (v, m) in map.iter_mut().enumerate() {
         if *m == 0 {
             *m = vertices.len() as u32;
             vertices.push(corner_position(v as u32, lattice, cuts));
+            minus.push(v < nl as usize && cuts.sign[v] == -1);
         }
     }
     for t in &mut tets {
         *t = t.map(|v| map[v as usize]);
     }
     let n = tets.len();
-    Ok((TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..TetMesh::default() }, zero))
+    Ok((TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..TetMesh::default() }, zero, inner, minus))
+}
+
+/// The faces of one tet only, outward. A whole background tet of four inside vertices has
+/// only faces shared with another tet (its neighbour across a face has three inside
+/// vertices, so it keeps that face), so only the other tets' faces are sorted, and among
+/// them a face of three inside vertices seen once is shared with such a whole tet.
+fn boundary_faces(mesh: &TetMesh, inner: &[bool], minus: &[bool]) -> Vec<[u32; 3]> {
+    use crate::mesh::tet_mesh::TET_FACES;
+    let mut rec: Vec<([u32; 3], [u32; 3])> = Vec::new();
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        if inner[t] {
+            continue;
+        }
+        for f in TET_FACES {
+            let v = [tet[f[0]], tet[f[1]], tet[f[2]]];
+            let mut k = v;
+            k.sort_unstable();
+            rec.push((k, v));
+        }
+    }
+    rec.par_sort_unstable();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < rec.len() {
+        let mut j = i + 1;
+        while j < rec.len() && rec[j].0 == rec[i].0 {
+            j += 1;
+        }
+        if j - i == 1 && !rec[i].0.iter().all(|&v| minus[v as usize]) {
+            out.push(rec[i].1);
+        }
+        i = j;
+    }
+    out
 }
 
 use cut::Cuts;

@@ -21,8 +21,9 @@
 //!   seen from a centre of curvature (a sphere's centre reads 1.01). Barill's higher orders
 //!   were tried and, truncated after the gradient term, did worse on curved patches (the
 //!   Hessian term is of the same order there). The sign `w > 0.5` is never close to the
-//!   threshold far from the surface of a closed one; near the surface the sum is exact up to
-//!   rounding; across the hole of an open surface the level set moves by that error.
+//!   threshold far from the surface of a closed one, where the mesher evaluates with
+//!   [`FAR_BETA`] (farther than a cell from every triangle's box); near the surface the sum
+//!   is exact up to rounding; across the hole of an open surface the level set moves by that error.
 
 use crate::core::bvh::{Bvh, NodeView};
 use crate::core::intersection::{SegmentCrossing, segment_crosses_triangle};
@@ -38,6 +39,9 @@ pub const INSIDE: f64 = 0.5;
 /// Far-field acceptance: a node is approximated when the query is farther than `BETA` times
 /// its radius from its centre (Barill et al. use 2 with higher orders).
 pub const BETA: f64 = 3.0;
+
+/// The far-field acceptance for points farther than a cell from every triangle.
+pub const FAR_BETA: f64 = 1.5;
 
 /// Per BVH node: the dipole of its triangles.
 #[derive(Copy, Clone, Debug, Default)]
@@ -124,6 +128,13 @@ impl<'a> Winding<'a> {
 
     /// The winding number at `q`.
     pub fn at(&self, q: DVec3) -> f64 {
+        self.at_with(q, BETA)
+    }
+
+    /// The winding number at `q`, nodes farther than `beta` times their radius taken as
+    /// dipoles (smaller is faster and coarser: [`FAR_BETA`] for points far from every
+    /// triangle, where only the sign is wanted and it is far from one half).
+    pub fn at_with(&self, q: DVec3, beta: f64) -> f64 {
         let Some(root) = self.bvh.root() else { return 0.0 };
         let mut sum = 0.0;
         let mut stack: Vec<u32> = Vec::with_capacity(64);
@@ -132,7 +143,7 @@ impl<'a> Winding<'a> {
             let d = &self.dipoles[n as usize];
             let r = d.centre - q;
             let dist = r.length();
-            if dist > BETA * d.radius {
+            if dist > beta * d.radius {
                 sum += d.normal.dot(r) / (dist * dist * dist);
                 continue;
             }
