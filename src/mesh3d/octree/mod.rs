@@ -110,6 +110,10 @@ pub struct OctreeReport {
     pub bisected_cut_points: usize,
     /// Lattice vertices warped onto the surface.
     pub warped_vertices: usize,
+    /// Background tets whose four vertices were all warped onto the surface, kept whole
+    /// because their centroid is inside and their angles within the paper's bounds (the
+    /// others, slivers flat on the surface, are left out).
+    pub all_zero_tets: usize,
     /// Tets and nodes of the result.
     pub tets: usize,
     /// Nodes of the result.
@@ -185,15 +189,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
     let oracle = Winding::new(surface);
     stage("winding_bvh", &mut t);
     let n = lattice.num_vertices();
-    // exact near the surface; coarser dipoles where no triangle's box comes within a cell
-    let w: Vec<f64> = (0..n as u32)
-        .into_par_iter()
-        .map(|v| {
-            let q = lattice.position(v);
-            let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
-            oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
-        })
-        .collect();
+    let w = winding_at_lattice(&lattice, &oracle);
     stage("winding", &mut t);
     let cuts = cut::cut_and_warp(&lattice, &oracle, &w, opts.alpha_long, opts.alpha_short);
     stage("cut_warp", &mut t);
@@ -219,7 +215,6 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
             (lo, hi, crate::quality::tetrahedron::tet_volume(&p))
         })
         .reduce(|| (180.0, 0.0, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
-    let _ = all_zero;
     let input_volume: f64 = (0..surface.triangles.len()).map(|t| {
         let [a, b, c] = surface.corners(t);
         a.dot(b.cross(c)) / 6.0
@@ -233,6 +228,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
         cut_points: cuts.edges.len(),
         bisected_cut_points: cuts.bisected,
         warped_vertices: cuts.num_warped,
+        all_zero_tets: all_zero,
         tets: mesh.tets.len(),
         nodes: mesh.vertices.len(),
         boundary_triangles: mesh.boundary.len(),
@@ -273,8 +269,12 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
                 }
                 let before = out.len();
                 if s == [0; 4] {
-                    let c = t.iter().map(|&v| cuts.position(lattice, v)).sum::<DVec3>() / 4.0;
-                    if oracle.inside(c) {
+                    // four vertices on the surface: kept when inside and not a sliver (flat
+                    // on a flat piece of surface it holds no volume; across an edge it does)
+                    let p = t.map(|v| cuts.position(lattice, v));
+                    let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+                    let (lo, hi) = if orient3d(p[0], p[1], p[2], p[3]).is_positive() { tet_min_max_dihedral(&p) } else { (0.0, 180.0) };
+                    if lo >= MIN_DIHEDRAL && hi <= MAX_DIHEDRAL && oracle.inside(c) {
                         zero += 1;
                         let before = out.len();
                         push_checked(t, lattice, cuts, &mut out, &mut bad);
@@ -385,6 +385,46 @@ fn boundary_faces(mesh: &TetMesh, inner: &[bool], minus: &[bool]) -> Vec<[u32; 3
 }
 
 use cut::Cuts;
+
+/// Cells per side of a block whose vertices share one winding number when no triangle comes
+/// near it.
+const BLOCK: u32 = 4;
+
+/// The winding number at every lattice vertex. In a block of `BLOCK³` cells whose box, grown
+/// by a cell, meets no triangle's box, every vertex takes the value at the block's centre:
+/// exact for a closed surface (the winding number is constant off the surface), a smooth
+/// approximation across the hole of an open one. Elsewhere each vertex is evaluated: with
+/// [`winding::BETA`] where a triangle's box comes within a cell, [`winding::FAR_BETA`]
+/// farther.
+fn winding_at_lattice(lattice: &Lattice, oracle: &Winding) -> Vec<f64> {
+    let h = lattice.h;
+    let nb = lattice.n.map(|x| x / BLOCK + 1);
+    let blocks: Vec<Option<f64>> = (0..nb[0] * nb[1] * nb[2])
+        .into_par_iter()
+        .map(|b| {
+            let (x, y, z) = (b % nb[0], (b / nb[0]) % nb[1], b / (nb[0] * nb[1]));
+            let lo = lattice.origin + DVec3::new(x as f64, y as f64, z as f64) * (BLOCK as f64 * h);
+            let hi = lo + DVec3::splat(BLOCK as f64 * h);
+            let grown = Aabb { min: lo - DVec3::splat(h), max: hi + DVec3::splat(h) };
+            (!oracle.bvh().any_overlapping(&grown)).then(|| oracle.at(0.5 * (lo + hi)))
+        })
+        .collect();
+    (0..lattice.num_vertices() as u32)
+        .into_par_iter()
+        .map(|v| {
+            let c = lattice.coords(v);
+            // corners (2i) and centres (2i + 1) of cube i belong to block i / BLOCK
+            let [i, j, k] = c.map(|x| (x as u32 / 2) / BLOCK);
+            let b = (i.min(nb[0] - 1) + nb[0] * (j.min(nb[1] - 1) + nb[1] * k.min(nb[2] - 1))) as usize;
+            if let Some(wb) = blocks[b] {
+                return wb;
+            }
+            let q = lattice.position(v);
+            let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
+            oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
+        })
+        .collect()
+}
 
 /// The position of a global corner id (a lattice vertex, or the lattice count plus a cut
 /// index).
