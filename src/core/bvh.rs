@@ -580,6 +580,24 @@ mod tests {
             .collect()
     }
 
+    #[test]
+    fn nearest_and_any_overlapping_match_brute_force() {
+        let boxes = random_boxes(500, 7);
+        let bvh = Bvh::from_boxes(&boxes);
+        let mut s = 99u64;
+        for _ in 0..200 {
+            let p = DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)) * 12.0 - DVec3::ONE;
+            // the distance to a box's centre is at least the distance to the box
+            let d = |i: u32| boxes[i as usize].center().distance(p);
+            let want = (0..boxes.len() as u32).map(|i| (i, d(i))).min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0))).unwrap();
+            assert_eq!(bvh.nearest(p, d), Some(want));
+            let q = Aabb { min: p - DVec3::splat(0.3), max: p + DVec3::splat(0.3) };
+            assert_eq!(bvh.any_overlapping(&q), boxes.iter().any(|b| b.overlaps(&q)));
+        }
+        assert_eq!(Bvh::default().nearest(DVec3::ZERO, |_| 0.0), None);
+        assert!(!Bvh::default().any_overlapping(&boxes[0]));
+    }
+
     fn brute_pairs(b: &[Aabb]) -> Vec<[u32; 2]> {
         let mut out = Vec::new();
         for i in 0..b.len() {
