@@ -10,7 +10,7 @@
 //! - Each triangle (of either surface) is sampled on a barycentric grid of `k` steps per
 //!   side, `k` from its longest edge over `h / 2` (1 to 16). The distance to a surface is
 //!   1-Lipschitz, so the true one-sided distance is at most the sampled maximum plus the
-//!   grid's spacing (the longest edge over `k`): `hausdorff_bound` is that upper bound, never
+//!   grid's spacing (corners are measured once per vertex) (the longest edge over `k`): `hausdorff_bound` is that upper bound, never
 //!   an estimate below the truth; `hausdorff` is the largest distance actually found.
 //! - A feature edge is an input edge of exactly two triangles whose normals turn by more
 //!   than the feature angle. It is *resolved* when every sample along it (spacing at most
@@ -95,26 +95,38 @@ fn distance_to(s: &TriSurface, bvh: &Bvh, p: DVec3) -> f64 {
 }
 
 /// Largest sampled distance from `from` to `to`, its upper bound, and the number of samples.
+/// The corners are sampled once per vertex (shared by the triangles around it).
 fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64) -> (f64, f64, usize) {
-    (0..from.triangles.len())
+    let mut used = vec![false; from.vertices.len()];
+    for t in &from.triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let at_vertex: Vec<f64> = from.vertices.par_iter().zip(&used).map(|(&p, &u)| if u { distance_to(to, to_bvh, p) } else { 0.0 }).collect();
+    let corners = used.iter().filter(|&&u| u).count();
+    let (worst, bound, n) = (0..from.triangles.len())
         .into_par_iter()
         .map(|t| {
             let [a, b, c] = from.corners(t);
             let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
             let k = ((longest / (0.5 * h)).ceil() as usize).clamp(1, 16);
-            let mut worst: f64 = 0.0;
+            let mut worst = from.triangles[t].iter().map(|&v| at_vertex[v as usize]).fold(0.0, f64::max);
             let mut n = 0;
             for i in 0..=k {
                 for j in 0..=k - i {
+                    if (i == 0 && (j == 0 || j == k)) || i == k {
+                        continue; // a corner
+                    }
                     let (u, v) = (i as f64 / k as f64, j as f64 / k as f64);
-                    let p = a + (b - a) * u + (c - a) * v;
-                    worst = worst.max(distance_to(to, to_bvh, p));
+                    worst = worst.max(distance_to(to, to_bvh, a + (b - a) * u + (c - a) * v));
                     n += 1;
                 }
             }
             (worst, worst + longest / k as f64, n)
         })
-        .reduce(|| (0.0, 0.0, 0), |x, y| (x.0.max(y.0), x.1.max(y.1), x.2 + y.2))
+        .reduce(|| (0.0, 0.0, 0), |x, y| (x.0.max(y.0), x.1.max(y.1), x.2 + y.2));
+    (worst, bound, n + corners)
 }
 
 /// The input edges of exactly two triangles whose normals turn by more than `angle_deg`.
