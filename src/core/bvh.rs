@@ -206,6 +206,98 @@ impl Bvh {
         self.walk(|b| seg.hits(b), |b| seg.hits(b), &mut f);
     }
 
+    /// True when some item's box overlaps the closed box `q` (stops at the first).
+    pub fn any_overlapping(&self, q: &Aabb) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n as usize];
+            if !node.bbox.overlaps(q) {
+                continue;
+            }
+            if node.is_leaf() {
+                let r = node.first as usize..(node.first + node.count) as usize;
+                if self.boxes[r].iter().any(|b| b.overlaps(q)) {
+                    return true;
+                }
+            } else {
+                stack.push(node.first);
+                stack.push(n + 1);
+            }
+        }
+        false
+    }
+
+    /// The root node (`None` for an empty tree). With [`Bvh::node`], for traversals that keep
+    /// their own data per node (the fast winding number's dipoles): node indices are
+    /// `0..num_nodes()`, and both children of a node have larger indices than the node, so a
+    /// reverse sweep over the indices visits children before parents.
+    pub fn root(&self) -> Option<u32> {
+        (!self.nodes.is_empty()).then_some(0)
+    }
+
+    /// Node `n` (see [`Bvh::root`]).
+    ///
+    /// # Panics
+    /// `n` out of range (`n >= num_nodes()`).
+    pub fn node(&self, n: u32) -> NodeView<'_> {
+        let node = &self.nodes[n as usize];
+        if node.is_leaf() {
+            let r = node.first as usize..(node.first + node.count) as usize;
+            NodeView::Leaf { bbox: node.bbox, items: &self.ids[r] }
+        } else {
+            let (left, right) = self.children(n);
+            NodeView::Internal { bbox: node.bbox, left, right }
+        }
+    }
+
+    /// The item nearest to `p` by `dist(item)` (a distance no smaller than the distance from
+    /// `p` to the item's box, such as the distance to the triangle the box bounds), and that
+    /// distance: branch and bound over the boxes, ties to the smaller item index, so the
+    /// answer depends only on the input. `None` for an empty tree.
+    pub fn nearest(&self, p: DVec3, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let mut best: Option<(u32, f64)> = None;
+        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
+        stack.push((0, box_distance(&self.nodes[0].bbox, p)));
+        while let Some((n, d)) = stack.pop() {
+            if best.is_some_and(|(_, bd)| d > bd) {
+                continue;
+            }
+            let node = &self.nodes[n as usize];
+            if node.is_leaf() {
+                let r = node.first as usize..(node.first + node.count) as usize;
+                for &id in &self.ids[r] {
+                    let di = dist(id);
+                    let better = match best {
+                        None => true,
+                        Some((bi, bd)) => di < bd || (di == bd && id < bi),
+                    };
+                    if better {
+                        best = Some((id, di));
+                    }
+                }
+            } else {
+                let (l, r) = self.children(n);
+                let (dl, dr) = (box_distance(&self.nodes[l as usize].bbox, p), box_distance(&self.nodes[r as usize].bbox, p));
+                // the nearer child is popped first
+                if dl <= dr {
+                    stack.push((r, dr));
+                    stack.push((l, dl));
+                } else {
+                    stack.push((l, dl));
+                    stack.push((r, dr));
+                }
+            }
+        }
+        best
+    }
+
     /// Depth-first walk visiting nodes whose box passes `node_ok` and reporting items whose
     /// box passes `item_ok`.
     fn walk(&self, node_ok: impl Fn(&Aabb) -> bool, item_ok: impl Fn(&Aabb) -> bool, f: &mut impl FnMut(u32)) {
@@ -397,6 +489,33 @@ fn build_node(prims: &mut [Prim], offset: usize, nodes: &mut [Node], base: u32, 
     root[0] = Node { bbox: ln[0].bbox.union(&rn[0].bbox), first: right_base, count: 0 };
 }
 
+/// One node of a [`Bvh`], read only.
+#[derive(Copy, Clone, Debug)]
+pub enum NodeView<'a> {
+    /// A leaf: its box and its items (at most [`Bvh::LEAF_SIZE`]).
+    Leaf {
+        /// The box of its items.
+        bbox: Aabb,
+        /// The caller's item indices.
+        items: &'a [u32],
+    },
+    /// An internal node: its box and its two children.
+    Internal {
+        /// The box of its subtree.
+        bbox: Aabb,
+        /// The left child's index.
+        left: u32,
+        /// The right child's index.
+        right: u32,
+    },
+}
+
+/// The distance from `p` to the closed box `b` (0 inside).
+fn box_distance(b: &Aabb, p: DVec3) -> f64 {
+    let d = (b.min - p).max(p - b.max).max(DVec3::ZERO);
+    d.length()
+}
+
 /// A segment prepared for conservative slab tests against boxes.
 struct SegmentProbe {
     p: DVec3,
@@ -459,6 +578,24 @@ mod tests {
                 Aabb { min: c - h, max: c + h }
             })
             .collect()
+    }
+
+    #[test]
+    fn nearest_and_any_overlapping_match_brute_force() {
+        let boxes = random_boxes(500, 7);
+        let bvh = Bvh::from_boxes(&boxes);
+        let mut s = 99u64;
+        for _ in 0..200 {
+            let p = DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)) * 12.0 - DVec3::ONE;
+            // the distance to a box's centre is at least the distance to the box
+            let d = |i: u32| boxes[i as usize].center().distance(p);
+            let want = (0..boxes.len() as u32).map(|i| (i, d(i))).min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0))).unwrap();
+            assert_eq!(bvh.nearest(p, d), Some(want));
+            let q = Aabb { min: p - DVec3::splat(0.3), max: p + DVec3::splat(0.3) };
+            assert_eq!(bvh.any_overlapping(&q), boxes.iter().any(|b| b.overlaps(&q)));
+        }
+        assert_eq!(Bvh::default().nearest(DVec3::ZERO, |_| 0.0), None);
+        assert!(!Bvh::default().any_overlapping(&boxes[0]));
     }
 
     fn brute_pairs(b: &[Aabb]) -> Vec<[u32; 2]> {

@@ -124,7 +124,8 @@ impl TetMesh {
                 faces.push((key, t as u32, parity));
             }
         }
-        faces.sort_unstable();
+        // the records are distinct (tet indices differ), so any sort gives the same order
+        rayon::slice::ParallelSliceMut::par_sort_unstable(&mut faces[..]);
         faces
     }
 

@@ -2,4 +2,5 @@
 
 pub mod delaunay;
 pub mod mesher;
+pub mod octree;
 pub mod optimize;

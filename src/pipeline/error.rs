@@ -41,6 +41,14 @@ pub enum PipelineError {
         /// Why.
         source: MeshingError,
     },
+    /// The octree mesher made no mesh.
+    #[error("{}: octree meshing: {source}", path.display())]
+    Octree {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: crate::mesh3d::octree::OctreeError,
+    },
     /// A selector failed.
     #[error("{}: {source}", path.display())]
     Select {

@@ -116,7 +116,8 @@ pub enum Method {
     /// Delaunay refinement with boundary recovery and optimisation.
     #[default]
     Delaunay,
-    /// Octree (isosurface stuffing): not built yet.
+    /// Octree: isosurface stuffing of the volume the surface's winding number encloses
+    /// ([`crate::mesh3d::octree`]); takes open and self-intersecting surfaces.
     Octree,
 }
 
@@ -126,6 +127,9 @@ pub enum Method {
 pub struct MeshSection {
     /// The method (default `delaunay`).
     pub method: Option<Spanned<Method>>,
+    /// The octree's grading (`method = "octree"` only): `"uniform"` (default) or `"graded"`
+    /// (not built yet: refused).
+    pub grading: Option<Spanned<crate::mesh3d::octree::Grading>>,
     /// See [`MeshOptions::max_radius_edge`] (at least 1.1; default 1.5).
     pub max_radius_edge: Option<Spanned<f64>>,
     /// See [`MeshOptions::min_dihedral`] (0 to 35; default 18).
@@ -263,8 +267,13 @@ impl JobFile {
 
     fn check_values(&self) -> Result<(), PipelineError> {
         let m = &self.job.mesh;
-        if let Some(method) = m.method.as_ref().filter(|x| *x.get_ref() == Method::Octree) {
-            return Err(self.error_at(method.span().start, "key `method`: \"octree\" is not built yet; use \"delaunay\"".into()));
+        if let Some(g) = &m.grading {
+            if self.method() != Method::Octree {
+                return Err(self.error_at(g.span().start, "key `grading`: only for method = \"octree\"".into()));
+            }
+            if *g.get_ref() == crate::mesh3d::octree::Grading::Graded {
+                return Err(self.error_at(g.span().start, "key `grading`: \"graded\" is not built yet; use \"uniform\"".into()));
+            }
         }
         if let Some(r) = &m.max_radius_edge {
             if !(r.get_ref().is_finite() && *r.get_ref() >= 1.1) {
@@ -314,6 +323,17 @@ impl JobFile {
     /// The selectors without their spans.
     pub fn selectors(&self) -> BTreeMap<String, Selector> {
         self.job.selectors.iter().map(|(k, v)| (k.clone(), v.get_ref().clone())).collect()
+    }
+
+    /// The meshing method (default Delaunay).
+    pub fn method(&self) -> Method {
+        self.job.mesh.method.as_ref().map_or(Method::Delaunay, |m| *m.get_ref())
+    }
+
+    /// The octree mesher's options.
+    pub fn octree_options(&self) -> crate::mesh3d::octree::OctreeOptions {
+        let grading = self.job.mesh.grading.as_ref().map_or_else(Default::default, |g| *g.get_ref());
+        crate::mesh3d::octree::OctreeOptions { grading, ..Default::default() }
     }
 
     /// [`MeshOptions`] of the `[mesh]` section.

@@ -83,6 +83,8 @@ pub struct Part {
     pub mesh: Option<TetMesh>,
     /// What the mesher did.
     pub mesh_report: Option<MeshReport>,
+    /// What the octree mesher did (method octree).
+    pub octree_report: Option<crate::mesh3d::octree::OctreeReport>,
     /// Faces of different solids that touch (a part of several solids), with the area over
     /// which they touch and how much of it the mesh shares.
     pub contacts: Vec<ContactReport>,
@@ -154,6 +156,7 @@ impl Part {
             certified: None,
             mesh: None,
             mesh_report: None,
+            octree_report: None,
             contacts: Vec::new(),
             seconds: StageSeconds::default(),
             tessellated: None,
@@ -321,6 +324,42 @@ impl Part {
         }
         self.seconds.mesh = t0.elapsed().as_secs_f64();
         self.mesh_report = Some(report);
+        Ok(self.mesh.insert(mesh))
+    }
+
+    /// Meshes the volume the part's surface encloses by isosurface stuffing
+    /// ([`crate::mesh3d::octree`]): the winding number decides inside, so open and
+    /// self-intersecting surfaces mesh too; one region (named after the solid of a one-solid
+    /// CAD part). A CAD part is tessellated to `size` first.
+    ///
+    /// # Errors
+    /// A failed certificate; [`PipelineError::Octree`] (a size too fine for the box, nothing
+    /// inside, a tet the warping turned over, graded mode).
+    pub fn mesh_octree(&mut self, size: &dyn SizeField, tess: &TessellateOptions, opts: &crate::mesh3d::octree::OctreeOptions) -> Result<&TetMesh, PipelineError> {
+        if self.is_cad() && self.certified.is_none() {
+            self.tessellate(size, tess)?;
+        }
+        let Some(surface) = &self.surface else {
+            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
+        };
+        let t0 = Instant::now();
+        let (mut mesh, report) = crate::mesh3d::octree::mesh_octree(surface, size, opts).map_err(|source| PipelineError::Octree { path: self.path.clone(), source })?;
+        let solids = solids_of(self, surface);
+        if let [solid] = &solids.solids[..] {
+            if let Some(name) = &solid.name {
+                mesh.region_names.insert(RegionId(1), name.clone());
+            }
+        }
+        self.seconds.mesh = t0.elapsed().as_secs_f64();
+        self.mesh_report = Some(MeshReport {
+            nodes: mesh.vertices.len(),
+            tets: mesh.tets.len(),
+            regions: 1,
+            stage_seconds: report.stage_seconds.clone(),
+            seconds: self.seconds.mesh,
+            ..MeshReport::default()
+        });
+        self.octree_report = Some(report);
         Ok(self.mesh.insert(mesh))
     }
 

@@ -24,8 +24,12 @@ pub struct Plan {
     pub density: Density,
     /// Part units per density unit.
     pub unit: f64,
-    /// Volume mesher options.
+    /// The volume meshing method.
+    pub method: super::job::Method,
+    /// Volume mesher options (Delaunay).
     pub mesh: MeshOptions,
+    /// Octree mesher options (`method` octree).
+    pub octree: crate::mesh3d::octree::OctreeOptions,
     /// Smallest dihedral angle every tet must have (degrees), or the run fails.
     pub require_min_dihedral: Option<f64>,
     /// Largest radius-edge ratio every tet must have, or the run fails.
@@ -73,6 +77,8 @@ pub struct RunReport {
     pub contacts: Vec<super::assembly::ContactReport>,
     /// The FE model, where the job asks for one (a deck or a step).
     pub fe: Option<super::fe_model::FeSummary>,
+    /// What the octree mesher did (method octree).
+    pub octree: Option<crate::mesh3d::octree::OctreeReport>,
 }
 
 /// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
@@ -95,13 +101,26 @@ pub fn evaluate_selectors(part: &Part, selectors: &BTreeMap<String, Selector>) -
 /// A selector or density error, a failed certificate, a mesher error, a requirement not met.
 pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunReport, PipelineError> {
     let selected = evaluate_selectors(part, &plan.selectors).map_err(|source| PipelineError::Select { path: part.path.clone(), source })?;
-    let field = part.density_field(&plan.density, &plan.selectors, plan.unit)?;
+    let octree = plan.method == super::job::Method::Octree;
+    let density_octree;
+    let density = if octree && !part.is_cad() && plan.density.size.is_none() {
+        // a surface mesh has no default size (the Delaunay mesher goes as coarse as quality
+        // allows); a lattice needs one
+        density_octree = crate::attributes::Density {
+            size: crate::attributes::values::Positive::new(part.diagonal() / super::part::DEFAULT_DIVISIONS / plan.unit),
+            ..plan.density.clone()
+        };
+        &density_octree
+    } else {
+        &plan.density
+    };
+    let field = part.density_field(density, &plan.selectors, plan.unit)?;
     let mut report = RunReport { input: part.path.display().to_string(), face_table: part.face_table(), selectors: selected, global_size: field.global(), ..RunReport::default() };
     if check_only {
         return Ok(report);
     }
     let tess = plan.tessellate_options(part);
-    let result = part.mesh(&field, &tess, &plan.mesh).map(|_| ());
+    let result = if octree { part.mesh_octree(&field, &tess, &plan.octree).map(|_| ()) } else { part.mesh(&field, &tess, &plan.mesh).map(|_| ()) };
     report.certificate_passed = part.certified.as_ref().map(|c| c.certificate.passed);
     result?;
     report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());
@@ -115,6 +134,7 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
     report.mesher = Some(r);
     report.contacts = part.contacts.clone();
     report.seconds = part.seconds.clone();
+    report.octree = part.octree_report.clone();
     summarised.check(&part.path, mesh, plan, &report.face_table)?;
     Ok(report)
 }
@@ -152,7 +172,9 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         selectors: jf.selectors(),
         density: job.density.clone(),
         unit,
+        method: jf.method(),
         mesh: jf.mesh_options(),
+        octree: jf.octree_options(),
         require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
         require_volume_error: job.require.volume_error.map(|r| r.get()),

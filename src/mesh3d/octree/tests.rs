@@ -1,0 +1,83 @@
+//! Tests of the octree mesher as a whole (the stages test themselves beside their code).
+
+use super::*;
+use crate::core::size_field::UniformSize;
+use crate::mesh::shapes;
+
+/// The unit cube's boundary, each face split into `n × n` squares of two triangles,
+/// outward.
+pub(crate) fn cube_surface(n: usize) -> TriSurface {
+    let mut s = shapes::kuhn_cube(n, 0.0, 0).boundary_surface();
+    s.remove_unused_vertices();
+    s
+}
+
+fn sphere(n: usize) -> TriSurface {
+    // a cube's boundary pushed onto the sphere of radius 1 around its centre
+    let mut s = cube_surface(n);
+    for p in &mut s.vertices {
+        *p = (*p - DVec3::splat(0.5)).normalize();
+    }
+    s
+}
+
+fn check(mesh: &TetMesh, report: &OctreeReport) {
+    mesh.validate().unwrap();
+    assert!(report.dihedral[0] >= MIN_DIHEDRAL && report.dihedral[1] <= MAX_DIHEDRAL, "{:?}", report.dihedral);
+}
+
+#[test]
+fn cube_meshes_within_the_bounds() {
+    let s = cube_surface(4);
+    let (mesh, r) = mesh_octree(&s, &UniformSize(0.1), &OctreeOptions::default()).unwrap();
+    check(&mesh, &r);
+    assert!((r.input_volume - 1.0).abs() < 1e-12);
+    // a cube's corners and edges are cut off by up to a cell
+    assert!((r.volume - 1.0).abs() < 0.05, "{}", r.volume);
+    assert!(r.deviation.hausdorff <= r.cell_size, "{:?}", r.deviation);
+    assert_eq!(r.deviation.feature_edges, 12 * 4);
+    let tags = s.tags();
+    assert!(mesh.face_tags.iter().all(|t| tags.contains(t)));
+}
+
+#[test]
+fn sphere_meshes_within_the_bounds_at_many_offsets() {
+    let s = sphere(12);
+    for k in 0..6 {
+        let h = 0.13 + 0.011 * k as f64;
+        let (mesh, r) = mesh_octree(&s, &UniformSize(h), &OctreeOptions::default()).unwrap();
+        check(&mesh, &r);
+        assert!((r.volume - r.input_volume).abs() < 0.03 * r.input_volume, "{} vs {}", r.volume, r.input_volume);
+    }
+}
+
+#[test]
+fn open_cube_meshes() {
+    let mut s = cube_surface(4);
+    let keep: Vec<usize> = (0..s.triangles.len()).filter(|&t| !s.corners(t).iter().all(|p| (p.z - 1.0).abs() < 1e-12)).collect();
+    s.triangles = keep.iter().map(|&t| s.triangles[t]).collect();
+    s.face_tags = vec![crate::core::FaceId(1); s.triangles.len()];
+    let (mesh, r) = mesh_octree(&s, &UniformSize(0.1), &OctreeOptions::default()).unwrap();
+    check(&mesh, &r);
+    assert!(r.bisected_cut_points > 0);
+    assert!((r.volume - 1.0).abs() < 0.05, "{}", r.volume);
+}
+
+#[test]
+fn same_bytes_for_any_thread_count() {
+    let s = sphere(8);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| mesh_octree(&s, &UniformSize(0.12), &OctreeOptions::default()).unwrap().0)
+    };
+    let (a, b) = (run(1), run(3));
+    assert_eq!(a, b);
+}
+
+#[test]
+fn graded_is_refused_for_now() {
+    let s = cube_surface(1);
+    let opts = OctreeOptions { grading: Grading::Graded, ..OctreeOptions::default() };
+    assert!(matches!(mesh_octree(&s, &UniformSize(0.2), &opts), Err(OctreeError::GradedNotBuilt)));
+}
+
