@@ -147,7 +147,10 @@ pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
 /// Prints a tet mesh's size and quality: counts, dihedral angles, radius-edge, where the
 /// worst tet sits, the small input angles, and whether refinement and the optimisation ended
 /// or stopped at a budget (and which). Shared by `fepre mesh` and `fepre run`.
-pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
+///
+/// `delaunay`: the mesh came from the Delaunay mesher, whose refinement and optimisation lines
+/// follow (the octree mesher has neither).
+pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay: bool) {
     use crate::quality::worst_tet::{fmt_num, fmt_point};
     println!("nodes            {}", m.nodes);
     println!("tets             {}", m.tets);
@@ -173,6 +176,9 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary) {
     }
     if m.input_caps_repaired > 0 {
         println!("input caps       {} flat input triangles with a vertex on their long side, each repaired with its neighbour", m.input_caps_repaired);
+    }
+    if !delaunay {
+        return;
     }
     println!("refinement       {}", refinement_text(m));
     if m.optimize_out_of_attempts {

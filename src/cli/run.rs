@@ -84,7 +84,7 @@ fn print(r: &RunReport, check: bool) {
     }
     if let Some(m) = &r.mesh {
         println!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
-        crate::cli::print_mesh_summary(m);
+        crate::cli::print_mesh_summary(m, r.octree.is_none());
     }
     crate::cli::contacts::print(&r.contacts);
     if let Some(fe) = &r.fe {
