@@ -632,3 +632,160 @@ impl Model {
         self.vertices = vertices;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cad::brep::{Edge, Face, Loop, Shell, Vertex};
+    use crate::cad::geom::{Curve, Frame, Interval, Line, Plane, Surface};
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    use crate::tessellate::{TessellateOptions, tessellate};
+
+    /// A surface model of planar polygons (outward counter-clockwise), each face with its own
+    /// vertices and line edges, all in one `OPEN_SHELL`, as some CAD systems write them.
+    fn polygons(faces: &[Vec<DVec3>]) -> Model {
+        let mut m = Model::default();
+        m.shells.push(Shell { faces: Vec::new(), closed: false, solid: None, void: false, source: EntityRef(1) });
+        for (k, poly) in faces.iter().enumerate() {
+            let v0 = m.vertices.len() as u32;
+            for (i, &point) in poly.iter().enumerate() {
+                m.vertices.push(Vertex { point, source: EntityRef(1000 + 100 * k as u64 + i as u64) });
+            }
+            let mut coedges = Vec::new();
+            for i in 0..poly.len() {
+                let j = (i + 1) % poly.len();
+                m.curves.push(Curve::Line(Line { origin: poly[i], direction: poly[j] - poly[i] }));
+                m.edges.push(Edge {
+                    curve: Some(m.curves.len() as u32 - 1),
+                    start: v0 + i as u32,
+                    end: v0 + j as u32,
+                    range: Interval::new(0.0, 1.0),
+                    same_sense: true,
+                    closed: false,
+                    seam: false,
+                    degenerate: false,
+                    source: EntityRef(2000 + 100 * k as u64 + i as u64),
+                });
+                coedges.push(Coedge { edge: m.edges.len() as u32 - 1, forward: true });
+            }
+            let n = (poly[1] - poly[0]).cross(poly[2] - poly[0]);
+            m.surfaces.push(Surface::Plane(Plane { frame: Frame::from_axes(poly[0], Some(n), Some(poly[1] - poly[0])).unwrap() }));
+            let fid = FaceId::from_index(k);
+            m.loops.push(Loop { face: fid, outer: true, orientation: true, coedges, vertex: None, source: EntityRef(3000 + k as u64) });
+            m.faces.push(Face { surface: k as u32, same_sense: true, loops: vec![k as u32], shell: 0, name: None, colour: None, source: EntityRef(4000 + k as u64) });
+            m.shells[0].faces.push(fid);
+        }
+        m.mark_edges();
+        m
+    }
+
+    fn p(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    /// The 10 mm cube's faces, the top one (z = 10) last.
+    fn cube_sides() -> Vec<Vec<DVec3>> {
+        vec![
+            vec![p(0., 0., 0.), p(0., 10., 0.), p(10., 10., 0.), p(10., 0., 0.)],
+            vec![p(0., 0., 0.), p(10., 0., 0.), p(10., 0., 10.), p(0., 0., 10.)],
+            vec![p(0., 10., 0.), p(0., 10., 10.), p(10., 10., 10.), p(10., 10., 0.)],
+            vec![p(0., 0., 0.), p(0., 0., 10.), p(0., 10., 10.), p(0., 10., 0.)],
+            vec![p(10., 0., 0.), p(10., 10., 0.), p(10., 10., 10.), p(10., 0., 10.)],
+        ]
+    }
+
+    #[test]
+    fn a_t_junction_is_split_sewn_and_reported() {
+        // the top cut in two halves at x = 5; the sides y = 0 and y = 10 keep one top edge
+        // each, against two edges of the halves meeting at (5, 0, 10) and (5, 10, 10)
+        let mut faces = cube_sides();
+        faces.push(vec![p(0., 0., 10.), p(5., 0., 10.), p(5., 10., 10.), p(0., 10., 10.)]);
+        faces.push(vec![p(5., 0., 10.), p(10., 0., 10.), p(10., 10., 10.), p(5., 10., 10.)]);
+        let mut m = polygons(&faces);
+        let r = m.sew().expect("an open shell");
+        assert_eq!(r.splits.len(), 2, "{r:?}");
+        let mut at: Vec<[f64; 3]> = r.splits.iter().map(|s| s.at).collect();
+        at.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(at, vec![[5., 0., 10.], [5., 10., 10.]]);
+        // the split edges are the sides' top edges (faces 2 and 3)
+        let mut split_edges: Vec<EntityRef> = r.splits.iter().map(|s| s.edge).collect();
+        split_edges.sort();
+        assert_eq!(split_edges, vec![EntityRef(2102), EntityRef(2201)]);
+        assert!(r.splits.iter().all(|s| s.distance <= r.tolerance));
+        assert_eq!(r.free_edges_before, 4 * 5 + 2 * 4);
+        assert_eq!(r.free_edges_after, 0, "{r:?}");
+        assert!(r.holes.is_empty());
+        // 12 cube edges, 2 pieces more, 1 between the halves
+        assert_eq!(m.edges.len(), 15);
+        assert_eq!(m.vertices.len(), 10);
+        assert!(m.issues(1e-9).is_empty(), "{:?}", m.issues(1e-9));
+        // watertight where sewn: the tessellation closes and passes its certificate
+        let t = tessellate(&m, &TessellateOptions::default());
+        let c = certify(&m, &t, &CertifyOptions::default());
+        assert!(c.passed, "{:?}", c.failures);
+        assert!(c.watertight(), "{c:?}");
+        assert_eq!(c.shells.len(), 1);
+        assert!(c.shells[0].brep_closed);
+        assert!((c.volume[0] - 1000.0).abs() < 1e-9, "{:?}", c.volume);
+    }
+
+    #[test]
+    fn a_t_junction_with_three_pieces_and_a_reversed_edge() {
+        // the side y = 0 in two pieces at x = 4, the top in three strips at x = 3 and x = 7:
+        // the top's front edge pieces cross the side's, both sides are split to match
+        let mut faces = cube_sides();
+        faces[1] = vec![p(0., 0., 0.), p(10., 0., 0.), p(10., 0., 10.), p(4., 0., 10.), p(0., 0., 10.)];
+        faces.push(vec![p(0., 0., 10.), p(3., 0., 10.), p(3., 10., 10.), p(0., 10., 10.)]);
+        faces.push(vec![p(3., 0., 10.), p(7., 0., 10.), p(7., 10., 10.), p(3., 10., 10.)]);
+        faces.push(vec![p(7., 0., 10.), p(10., 0., 10.), p(10., 10., 10.), p(7., 10., 10.)]);
+        let mut m = polygons(&faces);
+        let r = m.sew().expect("an open shell");
+        // y = 0: its piece (10,0,10)-(4,0,10) split at x = 7, (4,0,10)-(0,0,10) at x = 3; the
+        // top strip (3..7) split at x = 4; y = 10: its top edge at x = 3 and x = 7
+        assert_eq!(r.splits.len(), 5, "{:?}", r.splits);
+        assert_eq!(r.free_edges_after, 0, "{r:?}");
+        assert!(m.issues(1e-9).is_empty(), "{:?}", m.issues(1e-9));
+        let t = tessellate(&m, &TessellateOptions::default());
+        let c = certify(&m, &t, &CertifyOptions::default());
+        assert!(c.passed && c.watertight(), "{:?}", c.failures);
+        assert!((c.volume[0] - 1000.0).abs() < 1e-9, "{:?}", c.volume);
+    }
+
+    #[test]
+    fn a_missing_face_is_one_hole_with_its_size() {
+        let mut m = polygons(&cube_sides());
+        let r = m.sew().expect("an open shell");
+        assert!(r.splits.is_empty());
+        assert_eq!(r.free_edges_after, 4);
+        assert_eq!(r.holes.len(), 1, "{:?}", r.holes);
+        let h = &r.holes[0];
+        assert_eq!(h.edges, 4);
+        assert!((h.length - 40.0).abs() < 1e-9, "{h:?}");
+        assert!((DVec3::from_array(h.near) - p(5., 5., 10.)).length() < 1e-9, "{h:?}");
+        assert!(h.closed_ring);
+        assert_eq!(h.step_faces, vec![EntityRef(4001), EntityRef(4002), EntityRef(4003), EntityRef(4004)]);
+        assert!(h.describe().starts_with("4 free edges, 40.000000 mm around, near (5.000000, 5.000000, 10.000000), faces #4001"), "{}", h.describe());
+        // an open surface model: certified open along its hole, not watertight
+        let t = tessellate(&m, &TessellateOptions::default());
+        let c = certify(&m, &t, &CertifyOptions::default());
+        assert!(c.passed, "{:?}", c.failures);
+        assert!(!c.watertight());
+        assert!(c.open_solids.is_empty());
+    }
+
+    #[test]
+    fn a_solid_left_open_fails_its_certificate_naming_the_hole() {
+        let mut m = polygons(&cube_sides());
+        m.shells[0].closed = true;
+        m.shells[0].solid = Some(0);
+        m.solids.push(crate::cad::brep::Solid { shells: vec![0], name: Some("box".into()), instance: 0, source: EntityRef(7) });
+        assert!(m.sew().is_none(), "closed shells are not sewn");
+        let t = tessellate(&m, &TessellateOptions::default());
+        let c = certify(&m, &t, &CertifyOptions::default());
+        assert!(!c.passed && !c.watertight());
+        assert_eq!(c.open_solids.len(), 5, "every face its own copies: 5 holes of 4 edges");
+        let f = &c.failures[0];
+        assert_eq!((f.check, f.step_id), ("open_solid", Some(EntityRef(7))));
+        assert!(f.message.starts_with("solid #7 'box' (CLOSED_SHELL #1) does not close: a hole of 4 free edges"), "{}", f.message);
+    }
+}
