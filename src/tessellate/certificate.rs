@@ -339,7 +339,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         let more = if h.step_edges.len() > 8 { " ..." } else { "" };
         failures.push(CheckFailure {
             check: "open_solid",
-            face: h.faces.first().copied(),
+            face: None,
             step_id: solid.map(|so| so.source).or(shell.map(|sh| sh.source)),
             message: format!("{what}: a hole of {}; free edges {}{more}", h.describe(), edges.join(" ")),
         });
