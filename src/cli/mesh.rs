@@ -106,6 +106,8 @@ struct Report<'a> {
     mesher: &'a crate::mesh3d::mesher::MeshReport,
     /// Faces of different solids that touch (several solids).
     contacts: &'a [crate::pipeline::assembly::ContactReport],
+    /// Faces of open surface-model shells beside the solids, left out of the mesh.
+    open_surface_faces: usize,
 }
 
 /// Runs `fepre mesh`.
@@ -155,6 +157,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         face_table: &report.face_table,
         mesher: &mesher,
         contacts: &report.contacts,
+        open_surface_faces: part.open_surface_faces,
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -162,6 +165,9 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         return Ok(());
     }
     crate::cli::print_mesh_summary(&m);
+    if part.open_surface_faces > 0 {
+        println!("open shells      {} faces of open surface shells beside the solids left out (`fepre tessellate` lists their holes)", part.open_surface_faces);
+    }
     let by_refinement = match mesher.refinement_boundary_points {
         0 => String::new(),
         n => format!(" ({n} by refinement, splitting faces that its points encroached)"),

@@ -187,7 +187,7 @@ impl Certificate {
 }
 
 /// Faces joined by shared (non-degenerate) edges: the group index of every face.
-fn face_groups(model: &Model) -> (Vec<u32>, usize) {
+pub(crate) fn face_groups(model: &Model) -> (Vec<u32>, usize) {
     let n = model.faces.len();
     let mut uf = UnionFind::new(n);
     let mut first_face_of_edge: FxHashMap<u32, u32> = FxHashMap::default();
