@@ -4,8 +4,11 @@
 //! Reads the STEP file, tessellates every face at the chord deviation asked for, checks the
 //! result with [`crate::tessellate::certificate`] and writes it only when the certificate
 //! passes (or with `--force`). Exit codes: 0 written, 1 the file could not be read or the
-//! certificate failed (the message names the face and its STEP `#id`; no file is written),
-//! 2 bad usage.
+//! certificate failed (the message names the face and its STEP `#id`, or the solid left open
+//! and its free edges; no file is written), 2 bad usage. A surface model left open after
+//! sewing exits 0 with `watertight: false` and its holes listed (`open_surface`); open
+//! surface shells beside solids are listed the same way, and `watertight` speaks of the
+//! solids.
 
 use crate::cad::brep::{Dropped, EntityRef, FaceEntry, Model, Units};
 use crate::cli::usage_error;
