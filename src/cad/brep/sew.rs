@@ -271,8 +271,9 @@ impl Model {
         let mut cand: Vec<u32> = at_vertex.keys().copied().collect();
         cand.sort_unstable_by(|&a, &b| self.vertices[a as usize].point.x.total_cmp(&self.vertices[b as usize].point.x).then(a.cmp(&b)));
         let xs: Vec<f64> = cand.iter().map(|&v| self.vertices[v as usize].point.x).collect();
-        // edge -> (parameter, vertex, distance)
-        let mut cuts: Vec<(usize, Vec<(f64, u32, f64)>)> = Vec::new();
+        // edge -> where it is cut: (parameter, vertex, distance)
+        type Cut = (f64, u32, f64);
+        let mut cuts: Vec<(usize, Vec<Cut>)> = Vec::new();
         for &e in &free {
             let (lo, hi) = self.edge_box(e, tol);
             let (s, t) = (self.edges[e].start, self.edges[e].end);
