@@ -167,6 +167,9 @@ fn text(r: &Report, max_listed: usize) -> String {
     let _ = writeln!(out, "shells     {} ({} of a surface model)", s.shells, s.surface_model_shells);
     if let Some(sw) = &s.sewing {
         let _ = writeln!(out, "sewn       {} edges, {} vertices merged (tolerance {:.3e} mm); free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
+        for line in sw.detail_lines(max_listed) {
+            let _ = writeln!(out, "           {line}");
+        }
     }
     let _ = writeln!(out, "faces      {}", s.faces);
     let _ = writeln!(out, "edges      {} ({} closed, {} seam, {} degenerate)", s.edges, s.closed_edges, s.seam_edges, s.degenerate_edges);

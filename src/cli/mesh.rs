@@ -122,6 +122,8 @@ struct Report<'a> {
     /// What the octree mesher did (--method octree).
     #[serde(skip_serializing_if = "Option::is_none")]
     octree: Option<&'a crate::mesh3d::octree::OctreeReport>,
+    /// Faces of open surface-model shells beside the solids, left out of the mesh.
+    open_surface_faces: usize,
 }
 
 /// Runs `fepre mesh`.
@@ -177,6 +179,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         mesher: &mesher,
         contacts: &report.contacts,
         octree: report.octree.as_ref(),
+        open_surface_faces: part.open_surface_faces,
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
@@ -191,6 +194,9 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         println!("  volume         {:.6e} (input by the divergence theorem {:.6e}, {:+.3} %)", o.volume, o.input_volume, 100.0 * (o.volume - o.input_volume) / o.input_volume.abs().max(f64::MIN_POSITIVE));
         println!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
         println!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);
+    }
+    if part.open_surface_faces > 0 {
+        println!("open shells      {} faces of open surface shells beside the solids left out (`fepre tessellate` lists their holes)", part.open_surface_faces);
     }
     let by_refinement = match mesher.refinement_boundary_points {
         0 => String::new(),

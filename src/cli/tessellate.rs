@@ -4,8 +4,11 @@
 //! Reads the STEP file, tessellates every face at the chord deviation asked for, checks the
 //! result with [`crate::tessellate::certificate`] and writes it only when the certificate
 //! passes (or with `--force`). Exit codes: 0 written, 1 the file could not be read or the
-//! certificate failed (the message names the face and its STEP `#id`; no file is written),
-//! 2 bad usage.
+//! certificate failed (the message names the face and its STEP `#id`, or the solid left open
+//! and its free edges; no file is written), 2 bad usage. A surface model left open after
+//! sewing exits 0 with `watertight: false` and its holes listed (`open_surface`); open
+//! surface shells beside solids are listed the same way, and `watertight` speaks of the
+//! solids.
 
 use crate::cad::brep::{Dropped, EntityRef, FaceEntry, Model, Units};
 use crate::cli::usage_error;
@@ -95,7 +98,14 @@ struct Report {
     face_table: Vec<FaceEntry>,
     triangles: usize,
     vertices: usize,
+    /// Closed, manifold, oriented where it should be ([`Certificate::watertight`]).
     watertight: bool,
+    /// What `watertight` speaks of: `solids` (open surface shells beside them are reported
+    /// in `open_surface`), or `surface model`.
+    watertight_of: &'static str,
+    /// The shells of a surface model (no solid) left open after sewing: their free edges
+    /// grouped into holes.
+    open_surface: Option<OpenSurface>,
     euler: Vec<EulerEntry>,
     volume: f64,
     area: f64,
@@ -109,6 +119,46 @@ struct Report {
     read_seconds: f64,
     tessellate_seconds: f64,
     certificate: Certificate,
+}
+
+/// Open shells of a surface model after sewing.
+#[derive(Debug, Serialize)]
+struct OpenSurface {
+    /// Shells that bound no solid and do not close.
+    shells: usize,
+    /// Their free edges.
+    free_edges: usize,
+    /// The free edges grouped into holes, largest first.
+    holes: Vec<crate::cad::brep::Hole>,
+}
+
+/// The open surface-model shells of `m`, or `None` when every one closes (or there is none).
+fn open_surface(m: &Model) -> Option<OpenSurface> {
+    let holes = m.holes(|s| s.solid.is_none() && !s.closed);
+    if holes.is_empty() {
+        return None;
+    }
+    let mut shells: Vec<EntityRef> = holes.iter().flat_map(|h| h.shells.iter().copied()).collect();
+    shells.sort_unstable();
+    shells.dedup();
+    Some(OpenSurface { shells: shells.len(), free_edges: holes.iter().map(|h| h.edges).sum(), holes })
+}
+
+/// The lines that say where a surface is open.
+fn print_open(r: &Report) {
+    if let Some(o) = &r.open_surface {
+        let beside = if r.watertight_of == "solids" { " beside the solids (not part of `watertight`)" } else { "" };
+        println!("open shells  {}{beside}: {} free edges in {} hole{}", o.shells, o.free_edges, o.holes.len(), if o.holes.len() == 1 { "" } else { "s" });
+        for h in o.holes.iter().take(10) {
+            println!("  hole       {}", h.describe());
+        }
+        if o.holes.len() > 10 {
+            println!("  ... {} more holes (--json lists all)", o.holes.len() - 10);
+        }
+    }
+    for h in r.certificate.open_solids.iter().take(10) {
+        println!("OPEN SOLID   {}: {}", h.shells.iter().map(|s| format!("shell {s}")).collect::<Vec<_>>().join(", "), h.describe());
+    }
 }
 
 /// What `fepre tessellate` made: the B-rep, its certified tessellation, the seconds.
@@ -154,10 +204,14 @@ pub fn run(args: &Args) -> Result<()> {
         println!("solids       {} ({} surface-model shells)", r.solids, r.surface_model_shells);
         if let Some(sw) = &r.sewing {
             println!("sewn         {} edges and {} vertices merged (tolerance {:.3e} mm), free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
+            for x in sw.splits.iter().take(10) {
+                println!("  split      edge {} at vertex {} ({:.6}, {:.6}, {:.6})", x.edge, x.vertex, x.at[0], x.at[1], x.at[2]);
+            }
         }
         println!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
         println!("triangles    {} ({} vertices)", r.triangles, r.vertices);
-        println!("watertight   {}", r.watertight);
+        println!("watertight   {} (of the {})", r.watertight, r.watertight_of);
+        print_open(&r);
         let e: Vec<String> = r.euler.iter().map(|e| format!("{}/{}", e.mesh, e.brep)).collect();
         println!("euler        {} (mesh/B-rep per shell)", e.join(" "));
         println!("volume mm3   {:.9} (B-rep {:.9})", r.volume, r.certificate.volume[1]);
@@ -260,7 +314,9 @@ fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Re
         face_table: c.model.face_table(),
         triangles: s.triangles.len(),
         vertices: s.vertices.len(),
-        watertight: cert.closed && cert.manifold && cert.oriented && cert.shells.iter().all(|x| x.brep_closed),
+        watertight: cert.watertight(),
+        watertight_of: if cert.shells.iter().any(|x| x.solid) { "solids" } else { "surface model" },
+        open_surface: open_surface(&c.model),
         euler: cert.shells.iter().map(|x| EulerEntry { brep_shells: x.brep_shells.clone(), mesh: x.euler_mesh, brep: x.euler_brep }).collect(),
         volume,
         area: cert.area[0],

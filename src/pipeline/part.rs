@@ -93,6 +93,9 @@ pub struct Part {
     /// A STEP file of tessellated geometry only: its faces and solids (its triangles are
     /// [`Part::surface`], meshed as a surface mesh's are).
     pub tessellated: Option<step::Tessellated>,
+    /// Faces of open surface-model shells beside the solids, left out of the surface to mesh
+    /// (their holes are in `fepre tessellate`'s report).
+    pub open_surface_faces: usize,
     catalogue: OnceLock<FaceCatalogue>,
 }
 
@@ -160,6 +163,7 @@ impl Part {
             contacts: Vec::new(),
             seconds: StageSeconds::default(),
             tessellated: None,
+            open_surface_faces: 0,
             catalogue: OnceLock::new(),
         }
     }
@@ -258,7 +262,9 @@ impl Part {
         self.seconds.certify = certify_s;
         let message = (!c.certificate.passed).then(|| failure_message(&self.path, &c.certificate, &model.dropped));
         if message.is_none() {
-            self.surface = Some(c.tessellation.surface.clone());
+            let (surface, left_out) = solids_only(model, &c.tessellation.surface);
+            self.surface = Some(surface);
+            self.open_surface_faces = left_out;
         }
         let c = self.certified.insert(c);
         match message {
@@ -301,9 +307,9 @@ impl Part {
             if let Some(model) = &self.model {
                 let (chords, _) = certified_tessellation(model, tess, None, &CertifyOptions::default());
                 if chords.certificate.passed {
-                    let retry = self.mesh_once(&chords.tessellation.surface, field, &opts.clone().with_presize(true));
+                    let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true));
                     if retry.is_ok() {
-                        self.surface = Some(chords.tessellation.surface.clone());
+                        self.surface = Some(solids_only(model, &chords.tessellation.surface).0);
                         self.certified = Some(chords);
                         result = retry;
                     }
@@ -437,6 +443,40 @@ fn certified_tessellation(model: &Model, opts: &TessellateOptions, size: Option<
     let t1 = Instant::now();
     let certificate = certify(model, &tessellation, checks);
     (Certified { tessellation, certificate }, [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()])
+}
+
+/// The surface to mesh of a model with solids: without the triangles of surface-model shells
+/// (no solid) whose faces are left open after sewing; with the number of faces left out.
+/// A model without solids, or without open surface shells, keeps its whole surface.
+fn solids_only(model: &Model, surface: &TriSurface) -> (TriSurface, usize) {
+    if model.solids.is_empty() {
+        return (surface.clone(), 0);
+    }
+    let holes = model.holes(|s| s.solid.is_none() && !s.closed);
+    if holes.is_empty() {
+        return (surface.clone(), 0);
+    }
+    let (group, ngroups) = crate::tessellate::certificate::face_groups(model);
+    let mut open = vec![false; ngroups];
+    for f in holes.iter().flat_map(|h| h.faces.iter()) {
+        if let Some(k) = f.index() {
+            open[group[k] as usize] = true;
+        }
+    }
+    let drop = |f: crate::core::FaceId| {
+        f.index().is_some_and(|k| k < model.faces.len() && open[group[k] as usize] && model.shells[model.faces[k].shell as usize].solid.is_none())
+    };
+    let left_out = (0..model.faces.len()).filter(|&k| drop(crate::core::FaceId::from_index(k))).count();
+    let mut out = surface.clone();
+    let keep: Vec<bool> = out.face_tags.iter().map(|&f| !drop(f)).collect();
+    let mut k = 0;
+    out.triangles.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
+    out.face_tags.retain(|&f| !drop(f));
+    out.remove_unused_vertices();
+    (out, left_out)
 }
 
 /// A boundary-recovery failure, of the part or of one solid of it.

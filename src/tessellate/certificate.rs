@@ -5,6 +5,11 @@
 //! STEP `#id`) or edge it is about. Nothing here panics on a bad tessellation.
 //!
 //! # Checks
+//! - **Every solid closes** (`open_solid`): a shell that should close (a `CLOSED_SHELL`, or
+//!   the shell of a `MANIFOLD_SOLID_BREP`) whose B-rep still has free edges after sewing is a
+//!   failure, one per hole, naming the solid, its shell, the free edges and where they are
+//!   ([`Certificate::open_solids`]). Such a shell counts as closed below, so its open
+//!   triangles fail `closed` as well.
 //! - **Every face meshed** (none in [`Tessellation::failed`]).
 //! - **Closed, manifold, oriented** ([`crate::mesh::topology`]), for every *shell group*
 //!   whose B-rep is closed. A shell group is a set of faces joined by shared edges: one B-rep
@@ -97,8 +102,10 @@ pub struct ShellCheck {
     /// The B-rep closes (every edge used twice or as a seam), or one of its shells is a
     /// `CLOSED_SHELL` (then a face the reader dropped leaves the triangles open: a failure).
     pub brep_closed: bool,
-    /// One of its shells is a `CLOSED_SHELL`.
+    /// One of its shells is a `CLOSED_SHELL` or bounds a solid: it should close.
     pub declared_closed: bool,
+    /// One of its shells bounds a solid (`MANIFOLD_SOLID_BREP`, `BREP_WITH_VOIDS`).
+    pub solid: bool,
     /// A void of a solid (expected to enclose negative volume).
     pub void: bool,
     /// Edge-connected components of its triangles (1 when right).
@@ -161,12 +168,26 @@ pub struct Certificate {
     pub failures: Vec<CheckFailure>,
     /// Number of failures.
     pub failure_count: usize,
+    /// Holes (free edges grouped) of the shells that should close: each is an
+    /// `open_solid` failure.
+    pub open_solids: Vec<crate::cad::brep::Hole>,
     /// Time spent, seconds.
     pub seconds: f64,
 }
 
+impl Certificate {
+    /// The surface is watertight where it should be: closed, manifold and oriented, and every
+    /// shell group it speaks of closes. With solids in the model it speaks of the solids'
+    /// groups (open surface shells beside them are reported apart); a surface model's
+    /// groups otherwise.
+    pub fn watertight(&self) -> bool {
+        let any_solid = self.shells.iter().any(|x| x.solid);
+        self.closed && self.manifold && self.oriented && self.open_solids.is_empty() && self.shells.iter().filter(|x| x.solid || !any_solid).all(|x| x.brep_closed)
+    }
+}
+
 /// Faces joined by shared (non-degenerate) edges: the group index of every face.
-fn face_groups(model: &Model) -> (Vec<u32>, usize) {
+pub(crate) fn face_groups(model: &Model) -> (Vec<u32>, usize) {
     let n = model.faces.len();
     let mut uf = UnionFind::new(n);
     let mut first_face_of_edge: FxHashMap<u32, u32> = FxHashMap::default();
@@ -297,6 +318,32 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
     let delta = t.chord;
     let mut failures: Vec<CheckFailure> = Vec::new();
     let face_ref = |f: FaceId| model.try_face(f).map(|x| x.source);
+    // shells that should close and do not: one failure per hole, first
+    let should_close = |sh: &crate::cad::brep::Shell| sh.closed || sh.solid.is_some();
+    let open_solids = model.holes(should_close);
+    for h in &open_solids {
+        let shell = h.shells.first().and_then(|&src| model.shells.iter().find(|s| s.source == src));
+        let solid = shell.and_then(|s| s.solid).and_then(|k| model.solids.get(k as usize));
+        let what = match (solid, shell) {
+            (Some(so), Some(sh)) => format!(
+                "solid {}{} ({} {}) does not close",
+                so.source,
+                so.name.as_ref().map_or(String::new(), |n| format!(" '{n}'")),
+                if sh.closed { "CLOSED_SHELL" } else { "OPEN_SHELL" },
+                sh.source
+            ),
+            (None, Some(sh)) => format!("CLOSED_SHELL {} does not close", sh.source),
+            _ => "a shell that should close does not".to_string(),
+        };
+        let edges: Vec<String> = h.step_edges.iter().take(8).map(|e| e.to_string()).collect();
+        let more = if h.step_edges.len() > 8 { " ..." } else { "" };
+        failures.push(CheckFailure {
+            check: "open_solid",
+            face: None,
+            step_id: solid.map(|so| so.source).or(shell.map(|sh| sh.source)),
+            message: format!("{what}: a hole of {}; free edges {}{more}", h.describe(), edges.join(" ")),
+        });
+    }
     for ff in &t.failed {
         failures.push(CheckFailure { check: "face_meshed", face: Some(ff.face), step_id: Some(ff.source), message: ff.why.clone() });
     }
@@ -367,6 +414,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             faces: 0,
             brep_closed: true,
             declared_closed: false,
+            solid: false,
             void: false,
             mesh_components: 0,
             euler_mesh: 0,
@@ -408,7 +456,8 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             x.brep_shells.push(shell.source);
         }
         x.void |= shell.void;
-        x.declared_closed |= shell.closed;
+        x.declared_closed |= should_close(shell);
+        x.solid |= shell.solid.is_some();
         for &l in &face.loops {
             let lp = &model.loops[l as usize];
             verts[g].extend(lp.vertex);
@@ -589,6 +638,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         shells,
         failures,
         failure_count,
+        open_solids,
         seconds: t0.elapsed().as_secs_f64(),
     }
 }

@@ -19,6 +19,6 @@ mod validate;
 pub use model::{Coedge, Dropped, Edge, EntityRef, Face, Loop, Model, Shell, Solid, Units, Vertex};
 pub use edge_flags::DEGENERATE_RELATIVE;
 pub use face_table::{FaceEntry, face_table_of_names};
-pub use sew::{SEW_RELATIVE, SewReport};
+pub use sew::{EdgeSplit, Hole, SEW_RELATIVE, SewReport};
 pub use summary::Summary;
 pub use validate::VERTEX_ON_CURVE_RELATIVE;
