@@ -91,6 +91,15 @@ impl TriSurface {
         [self.vertices[a as usize], self.vertices[b as usize], self.vertices[c as usize]]
     }
 
+    /// The signed volume its triangles enclose, by the divergence theorem (positive for a
+    /// closed surface oriented outward; for any surface, the integral of its winding number).
+    pub fn signed_volume(&self) -> f64 {
+        (0..self.triangles.len()).map(|t| {
+            let [a, b, c] = self.corners(t);
+            a.dot(b.cross(c)) / 6.0
+        }).sum()
+    }
+
     /// Bounding box of the vertices.
     pub fn bbox(&self) -> Aabb {
         Aabb::from_points(&self.vertices)

@@ -215,10 +215,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
             (lo, hi, crate::quality::tetrahedron::tet_volume(&p))
         })
         .reduce(|| (180.0, 0.0, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
-    let input_volume: f64 = (0..surface.triangles.len()).map(|t| {
-        let [a, b, c] = surface.corners(t);
-        a.dot(b.cross(c)) / 6.0
-    }).sum();
+    let input_volume = surface.signed_volume();
     stages.push(("total".to_string(), t_all.elapsed().as_secs_f64()));
     let report = OctreeReport {
         grading: "uniform".into(),
