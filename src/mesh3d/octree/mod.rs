@@ -157,6 +157,9 @@ pub enum OctreeError {
     /// Graded mode is not built.
     #[error("graded octree meshing is not built yet; use uniform")]
     GradedNotBuilt,
+    /// Our own bug: the stencils and the cut points disagree.
+    #[error("internal error in the octree mesher: {0}")]
+    Internal(String),
     /// The result failed its own check.
     #[error("the octree mesh is invalid: {0}")]
     Invalid(#[from] crate::mesh::MeshError),
@@ -247,7 +250,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
 fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, Vec<bool>, Vec<bool>), OctreeError> {
     let nl = lattice.num_vertices() as u32;
     // per centre: the output tets as global corner ids (lattice id, or nl + cut index)
-    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>, Vec<bool>)> = (0..lattice.num_centres())
+    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>, Vec<bool>, Vec<DVec3>)> = (0..lattice.num_centres())
         .into_par_iter()
         .map(|i| {
             let mut background = Vec::with_capacity(12);
@@ -257,6 +260,7 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
             let mut zero = 0;
             let mut bad = Vec::new();
             let mut inner = Vec::new();
+            let mut missing = Vec::new();
             for t in background {
                 let s = t.map(|v| cuts.sign[v as usize]);
                 if s == [-1; 4] {
@@ -283,25 +287,34 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
                 let refs = t.map(|v| lattice.coords(v));
                 let ranks = [0, 1, 2, 3].map(|k| stencil::parity_rank(refs[k], t[k]));
                 stencil::stuff(s, ranks, refs, &mut local);
-                let global = |local: &[[Local; 4]]| -> Vec<[u32; 4]> {
+                // `None` where a stencil asks for a cut point its edge lacks (our bug)
+                let global = |local: &[[Local; 4]]| -> Option<Vec<[u32; 4]>> {
                     local
                         .iter()
                         .map(|l| {
-                            l.map(|c| match c {
-                                Local::Vertex(k) => t[k as usize],
-                                Local::Cut(a, b) => nl + cuts.cut(t[a as usize], t[b as usize]).expect("a sign-changing edge keeps its cut point"),
-                            })
+                            let mut g = [0u32; 4];
+                            for (k, c) in l.iter().enumerate() {
+                                g[k] = match *c {
+                                    Local::Vertex(k) => t[k as usize],
+                                    Local::Cut(a, b) => nl + cuts.cut(t[a as usize], t[b as usize])?,
+                                };
+                            }
+                            Some(g)
                         })
                         .collect()
                 };
-                let mut chosen = global(&local);
+                let Some(mut chosen) = global(&local) else {
+                    missing.push(lattice.position(t[0]));
+                    continue;
+                };
                 if s.iter().filter(|&&x| x == -1).count() == 2 && s.iter().filter(|&&x| x == 1).count() == 2 {
                     // the surface quadrilateral: the better of its two diagonals
                     let mut other = Vec::new();
                     stencil::stuff_variant(s, ranks, refs, &mut other, true);
-                    let other = global(&other);
-                    if margin(&other, lattice, cuts) > margin(&chosen, lattice, cuts) {
-                        chosen = other;
+                    if let Some(other) = global(&other) {
+                        if margin(&other, lattice, cuts) > margin(&chosen, lattice, cuts) {
+                            chosen = other;
+                        }
                     }
                 }
                 for g in chosen {
@@ -309,9 +322,15 @@ fn fill(lattice: &Lattice, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, us
                 }
                 inner.resize(inner.len() + out.len() - before, false);
             }
-            (out, zero, bad, inner)
+            (out, zero, bad, inner, missing)
         })
         .collect();
+    if let Some(&at) = chunks.iter().find_map(|c| c.4.first()) {
+        return Err(OctreeError::Internal(format!(
+            "a stencil asked for a cut point on a lattice edge without one, near ({:.6}, {:.6}, {:.6})",
+            at.x, at.y, at.z
+        )));
+    }
     let bad: Vec<DVec3> = chunks.iter().flat_map(|c| c.2.iter().copied()).collect();
     if let Some(&at) = bad.first() {
         return Err(OctreeError::Inverted { count: bad.len(), at, h: lattice.h });

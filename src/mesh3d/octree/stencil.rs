@@ -149,11 +149,12 @@ pub fn stuff_variant(s: [i8; 4], rank: [u64; 4], refs: [[i32; 3]; 4], out: &mut 
             continue;
         }
         let is_iso = f.iter().all(|c| matches!(c, Local::Cut(..)));
-        let (k, _) = if flip && is_iso && f.len() == 4 {
-            f.iter().enumerate().min_by_key(|(_, c)| key(**c)).expect("a facet has corners")
+        let first = if flip && is_iso && f.len() == 4 {
+            f.iter().enumerate().min_by_key(|(_, c)| key(**c))
         } else {
-            f.iter().enumerate().max_by_key(|(_, c)| key(**c)).expect("a facet has corners")
+            f.iter().enumerate().max_by_key(|(_, c)| key(**c))
         };
+        let Some((k, _)) = first else { continue };
         let m = f.len();
         for j in 1..m - 1 {
             let t = [apex, f[k], f[(k + j) % m], f[(k + j + 1) % m]];
