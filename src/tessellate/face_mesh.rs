@@ -474,6 +474,14 @@ fn inside(loops: &[Vec<DVec2>], p: DVec2) -> bool {
 /// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` and the largest normal curvature-like term, over a
 /// sample grid of the box `lo..hi`.
 pub(super) fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
+    let (su, sv, [ku, kv]) = surface_bends(surf, lo, hi);
+    (su, sv, ku.max(kv))
+}
+
+/// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` and the largest normal curvature-like terms along each
+/// scaled parameter, over a sample grid of the box `lo..hi`: `[max(k_uu, k_uv), max(k_vv,
+/// k_uv)]` (a cylinder bends along `u` only: its `v` term is zero).
+pub(super) fn surface_bends(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, [f64; 2]) {
     let n = 6;
     let (mut su, mut sv, mut cnt) = (0.0, 0.0, 0.0);
     let mut samples = Vec::new();
@@ -491,15 +499,16 @@ pub(super) fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64,
     let (su, sv) = ((su / cnt).max(1e-300), (sv / cnt).max(1e-300));
     // second derivatives against the scaled parameters, normal part only (tangential parts
     // do not bend the surface)
-    let mut k: f64 = 0.0;
+    let (mut ku, mut kv): (f64, f64) = (0.0, 0.0);
     for d in &samples {
         let Some(nrm) = d.normal() else { continue };
         let kuu = d.duu.dot(nrm).abs() / (su * su);
         let kvv = d.dvv.dot(nrm).abs() / (sv * sv);
         let kuv = d.duv.dot(nrm).abs() / (su * sv);
-        k = k.max(kuu).max(kvv).max(kuv);
+        ku = ku.max(kuu).max(kuv);
+        kv = kv.max(kvv).max(kuv);
     }
-    (su, sv, k)
+    (su, sv, [ku, kv])
 }
 
 /// One face's triangulation: 3D triangles and the same triangles in the face's parameter
@@ -537,7 +546,28 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
     if !(lo.is_finite() && hi.is_finite()) {
         return Err("parameters of the boundary are not finite".into());
     }
-    let (su, sv, k) = surface_scales(surf, lo, hi);
+    let (su, sv, [ku, kv]) = surface_bends(surf, lo, hi);
+    // interior grid steps: from the largest bend, or on a cylinder along each parameter from
+    // its own bend (its generators are straight: one step along them)
+    let ruled = matches!(surf, Surface::Cylinder(_));
+    let ext = (hi - lo) * DVec2::new(su, sv);
+    let (ku, kv) = if ruled { (ku, kv) } else { (ku.max(kv), ku.max(kv)) };
+    let step = |k: f64, len: f64| if k > 0.0 { (8.0 * tol / k).sqrt() } else { len };
+    let (hu, hv) = if ruled { (step(ku, ext.x).min(ext.x), step(kv, ext.y).min(ext.y)) } else { (step(ku, ext.x), step(kv, ext.y)) };
+    let steps = |len: f64, h: f64| if h > 0.0 { ((len / h).ceil() as usize).clamp(1, opts.max_grid) } else { 1 };
+    let (nu, nv) = (steps(ext.x, hu), steps(ext.y, hv));
+    // without a size field, spade triangulates a cylinder in a metric where those steps are
+    // equal: the triangles stretch along its straight generators (it becomes a strip between
+    // its two circles, as long as it is) instead of filling them with points. Not with a
+    // size field (it needs lengths near 3D lengths), nor on other surfaces (a cone's apex, an
+    // extrusion's pole: the fans there fold; wing_fuselage.step)
+    let (su, sv) = match size {
+        None if ruled && ku.max(kv) > 0.0 && hu > 0.0 && hv > 0.0 => {
+            let h = hu.min(hv);
+            (su * h / hu, sv * h / hv)
+        }
+        _ => (su, sv),
+    };
     // flushed as spade will see them (`core::cdt`'s guard), for the inside tests too
     let scale = |p: DVec2| DVec2::new(cdt::flush(p.x * su), cdt::flush(p.y * sv));
     let scaled: Vec<Vec<DVec2>> = loops.iter().map(|l| l.iter().map(|(p, _)| scale(*p)).collect()).collect();
@@ -564,12 +594,9 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
             }
         }
     }
-    // interior grid where the surface bends
-    if k > 0.0 {
-        let h = (8.0 * tol / k).sqrt();
+    // interior grid where the surface bends, spaced along each parameter by its own bend
+    if ku.max(kv) > 0.0 {
         let (slo, shi) = (scale(lo), scale(hi));
-        let nu = (((shi.x - slo.x) / h).ceil() as usize).min(opts.max_grid);
-        let nv = (((shi.y - slo.y) / h).ceil() as usize).min(opts.max_grid);
         if nu >= 2 || nv >= 2 {
             let (nu, nv) = (nu.max(1), nv.max(1));
             let cell = DVec2::new((shi.x - slo.x) / nu as f64, (shi.y - slo.y) / nv as f64);
