@@ -23,6 +23,7 @@ mod feature_size;
 pub mod quadrature;
 mod refine;
 mod sizing;
+mod volume_chord;
 
 #[cfg(test)]
 mod tests;
@@ -49,11 +50,17 @@ pub struct TessellateOptions {
     pub max_angle_deg: f64,
     /// Most interior grid points per face direction (default 200).
     pub max_grid: usize,
+    /// The share of each closed solid's volume its chords may cut (default 2.5e-3): a solid
+    /// whose triangles enclose a volume further off the B-rep's own (by quadrature) is
+    /// tessellated again with its faces' chords shrunk in proportion (slender and thin parts,
+    /// whose thickness is small against the model size; see `volume_chord`). 0 leaves the
+    /// model-wide chord everywhere, as asked.
+    pub volume_relative: f64,
 }
 
 impl Default for TessellateOptions {
     fn default() -> Self {
-        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200 }
+        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200, volume_relative: 2.5e-3 }
     }
 }
 
@@ -61,6 +68,13 @@ impl TessellateOptions {
     /// Sets [`TessellateOptions::chord_relative`].
     pub fn with_chord_relative(mut self, r: f64) -> Self {
         self.chord_relative = r;
+        self
+    }
+
+    /// Sets [`TessellateOptions::volume_relative`] (0: the model-wide chord everywhere, as
+    /// asked).
+    pub fn with_volume_relative(mut self, eta: f64) -> Self {
+        self.volume_relative = eta;
         self
     }
 
@@ -104,8 +118,11 @@ pub struct Tessellation {
     pub edges: Vec<EdgePoints>,
     /// Per face (index `FaceId - 1`), its domain triangulation; `None` for a failed face.
     pub domains: Vec<Option<FaceDomain>>,
-    /// The absolute chord tolerance used (`chord_relative` times the model size), mm.
+    /// The model-wide chord tolerance (`chord_relative` times the model size), mm.
     pub chord: f64,
+    /// The chord asked of each face (index `FaceId - 1`), mm: `chord`, or less on slender
+    /// and thin solids ([`TessellateOptions::volume_relative`]).
+    pub face_chords: Vec<f64>,
 }
 
 /// Tessellates every face of `model` by the chord and angle criteria: triangles follow the
@@ -124,8 +141,32 @@ pub fn tessellate_sized(model: &Model, opts: &TessellateOptions, size: &dyn Size
 }
 
 fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>) -> Tessellation {
+    let tol = opts.chord_relative * model.size();
+    let uniform = vec![tol; model.faces.len()];
+    if !(opts.volume_relative > 0.0) {
+        return tessellate_chords(model, opts, size, tol, &uniform);
+    }
+    // solids that lose more than `volume_relative` of their volume: again with smaller
+    // chords on their faces (see `volume_chord`); without the size field until the chords
+    // are settled, only the volumes are wanted
+    let mut chords = uniform;
+    let mut t = tessellate_chords(model, opts, None, tol, &chords);
+    for _ in 0..volume_chord::ROUNDS {
+        let Some(next) = volume_chord::shrink_chords(model, &t, &chords, tol, opts.volume_relative) else { break };
+        chords = next;
+        t = tessellate_chords(model, opts, None, tol, &chords);
+    }
+    match size {
+        Some(_) => tessellate_chords(model, opts, size, tol, &chords),
+        None => t,
+    }
+}
+
+/// Tessellates with the chord `face_chord[f]` on face `f` (its edges: the smallest of their
+/// faces'), `tol` the model-wide chord.
+fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, tol: f64, face_chord: &[f64]) -> Tessellation {
     let model_size = model.size();
-    let tol = opts.chord_relative * model_size;
+    let edge_chord = volume_chord::edge_chords(model, face_chord, tol);
     let mut vertices: Vec<DVec3> = model.vertices.iter().map(|v| v.point).collect();
     // straight edges bounding a curved face: pieces of at most sqrt(8 tol size) / 4, the
     // grid spacing of a face curved with radius size / 16
@@ -145,9 +186,10 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
             .edges
             .iter()
             .zip(&on_curved)
-            .map(|(e, &curved)| {
+            .zip(&edge_chord)
+            .map(|((e, &curved), &chord)| {
                 let straight = if curved { max_straight } else { 0.0 };
-                edge_points::discretise(model, e, tol, opts.max_angle_deg, straight, size, vertices)
+                edge_points::discretise(model, e, chord, opts.max_angle_deg, straight, size, vertices)
             })
             .collect()
     };
@@ -171,7 +213,8 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
     let mut domains = Vec::with_capacity(model.faces.len());
     for fid in model.face_ids() {
         let face = model.face(fid);
-        match face_mesh::mesh_face(model, fid, &edges, tol, max_straight, opts, size, &mut vertices) {
+        let chord = fid.index().and_then(|k| face_chord.get(k)).copied().unwrap_or(tol);
+        match face_mesh::mesh_face(model, fid, &edges, chord, max_straight, opts, size, &mut vertices) {
             Ok(fm) => {
                 let start = triangles.len();
                 face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));
@@ -187,5 +230,5 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
             }
         }
     }
-    Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol }
+    Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol, face_chords: face_chord.to_vec() }
 }
