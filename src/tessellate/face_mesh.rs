@@ -547,13 +547,17 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
         return Err("parameters of the boundary are not finite".into());
     }
     let (su, sv, [ku, kv]) = surface_bends(surf, lo, hi);
-    // interior grid steps: from the largest bend, or on a cylinder along each parameter from
-    // its own bend (its generators are straight: one step along them)
-    let ruled = matches!(surf, Surface::Cylinder(_));
+    // interior grid steps: from the largest bend, or on a cylinder without a size field along
+    // each parameter from its own bend (its generators are straight: one step along them)
+    let ruled = matches!(surf, Surface::Cylinder(_)) && size.is_none();
     let ext = (hi - lo) * DVec2::new(su, sv);
     let (ku, kv) = if ruled { (ku, kv) } else { (ku.max(kv), ku.max(kv)) };
     let step = |k: f64, len: f64| if k > 0.0 { (8.0 * tol / k).sqrt() } else { len };
-    let (hu, hv) = if ruled { (step(ku, ext.x).min(ext.x), step(kv, ext.y).min(ext.y)) } else { (step(ku, ext.x), step(kv, ext.y)) };
+    // (along the generators at most four pieces of a straight edge on a curved face: the
+    // triangles stay shorter than the sides they lie along, a cylinder cut by its own seam
+    // has rows along it)
+    let along = if max_straight > 0.0 { 4.0 * max_straight } else { f64::INFINITY };
+    let (hu, hv) = if ruled { (step(ku, ext.x).min(ext.x).min(along), step(kv, ext.y).min(ext.y).min(along)) } else { (step(ku, ext.x), step(kv, ext.y)) };
     let steps = |len: f64, h: f64| if h > 0.0 { ((len / h).ceil() as usize).clamp(1, opts.max_grid) } else { 1 };
     let (nu, nv) = (steps(ext.x, hu), steps(ext.y, hv));
     // without a size field, spade triangulates a cylinder in a metric where those steps are
@@ -562,7 +566,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
     // size field (it needs lengths near 3D lengths), nor on other surfaces (a cone's apex, an
     // extrusion's pole: the fans there fold; wing_fuselage.step)
     let (su, sv) = match size {
-        None if ruled && ku.max(kv) > 0.0 && hu > 0.0 && hv > 0.0 => {
+        None if ruled && hu > 0.0 && hv > 0.0 => {
             let h = hu.min(hv);
             (su * h / hu, sv * h / hv)
         }
