@@ -74,6 +74,11 @@ impl SegmentIndex {
         }
         SegmentIndex(map)
     }
+
+    /// The edge and the index of its segment between the points `a` and `b`, if any.
+    pub fn segment(&self, a: u32, b: u32) -> Option<(u32, u32)> {
+        self.0.get(&(a.min(b), a.max(b))).copied()
+    }
 }
 
 /// Adds the integrals over the `(u, v)` triangle `t`, signed by its orientation (the domain's
