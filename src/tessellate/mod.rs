@@ -21,12 +21,15 @@ pub mod edge_points;
 pub mod face_mesh;
 mod feature_size;
 pub mod quadrature;
+pub mod reached;
 mod refine;
 mod sizing;
 mod volume_chord;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_slender;
 
 use crate::cad::brep::{EntityRef, Model};
 use crate::core::{FaceId, FaceNames, SizeField};
@@ -50,7 +53,7 @@ pub struct TessellateOptions {
     pub max_angle_deg: f64,
     /// Most interior grid points per face direction (default 200).
     pub max_grid: usize,
-    /// The share of each closed solid's volume its chords may cut (default 2.5e-3): a solid
+    /// The share of each closed solid's volume its chords may cut (default 4e-3): a solid
     /// whose triangles enclose a volume further off the B-rep's own (by quadrature) is
     /// tessellated again with its faces' chords shrunk in proportion (slender and thin parts,
     /// whose thickness is small against the model size; see `volume_chord`). 0 leaves the
@@ -60,7 +63,7 @@ pub struct TessellateOptions {
 
 impl Default for TessellateOptions {
     fn default() -> Self {
-        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200, volume_relative: 2.5e-3 }
+        TessellateOptions { chord_relative: 2e-4, max_angle_deg: 20.0, max_grid: 200, volume_relative: 4e-3 }
     }
 }
 
@@ -147,19 +150,18 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
         return tessellate_chords(model, opts, size, tol, &uniform);
     }
     // solids that lose more than `volume_relative` of their volume: again with smaller
-    // chords on their faces (see `volume_chord`); without the size field until the chords
-    // are settled, only the volumes are wanted
+    // chords on their faces (see `volume_chord`), aiming at half of it; with a size field
+    // just under it (chords finer than the size make thin triangles beside it)
+    let aim = if size.is_some() { 0.9 } else { 0.5 };
     let mut chords = uniform;
-    let mut t = tessellate_chords(model, opts, None, tol, &chords);
+    let mut t = tessellate_chords(model, opts, size, tol, &chords);
+    let mut prev_loss = Vec::new();
     for _ in 0..volume_chord::ROUNDS {
-        let Some(next) = volume_chord::shrink_chords(model, &t, &chords, tol, opts.volume_relative) else { break };
+        let Some(next) = volume_chord::shrink_chords(model, &t, &chords, tol, opts.volume_relative, aim, &mut prev_loss) else { break };
         chords = next;
-        t = tessellate_chords(model, opts, None, tol, &chords);
+        t = tessellate_chords(model, opts, size, tol, &chords);
     }
-    match size {
-        Some(_) => tessellate_chords(model, opts, size, tol, &chords),
-        None => t,
-    }
+    t
 }
 
 /// Tessellates with the chord `face_chord[f]` on face `f` (its edges: the smallest of their

@@ -14,8 +14,10 @@
 //! δ_g ← δ_g · (η / 2) |V_g| / |V_mesh,g − V_g|
 //! ```
 //!
-//! on its faces (the loss is linear in the chord: this aims at half of `η`), at most
-//! [`ROUNDS`] times and never below `δ / MAX_SHRINK`. `|V| / A` is a thickness (half a
+//! on its faces (the loss is linear in the chord: this aims at half of `η`; just under `η`
+//! before a size field spaces the points, `0.9` for the `1/2`), at most
+//! [`ROUNDS`] times, never below `δ / MAX_SHRINK`, and only while the error is one chords
+//! make (below [`MAX_LOSS`], and halved by the last shrink). `|V| / A` is a thickness (half a
 //! plate's, half a rod's radius): the bound follows the local feature size of the part, not
 //! its diagonal, and parts that keep their volume at `δ` are left as they are. An edge takes
 //! the smallest chord of the faces that use it.
@@ -31,11 +33,17 @@ use glam::DVec3;
 pub(super) const ROUNDS: usize = 2;
 /// The chord of a face is never shrunk below the model-wide chord over this.
 pub(super) const MAX_SHRINK: f64 = 100.0;
+/// A volume error above this share is not the chords' doing: a slender part cut by chords
+/// as coarse as the angle criterion allows (20° per segment) loses 2 %.
+pub(super) const MAX_LOSS: f64 = 0.2;
 
 /// The chords of the next tessellation, from `t` made with the chords `chords` (index
 /// `FaceId - 1`, `tol` the model-wide one): `None` when every closed shell group of `t` is
 /// within `eta` of its B-rep volume, or no chord can shrink further (module docs).
-pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol: f64, eta: f64) -> Option<Vec<f64>> {
+///
+/// `aim` is the share of `eta` aimed at (0.5; 0.9 before a size field); `prev_loss` holds
+/// each group's volume error in the last round (empty before the first).
+pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol: f64, eta: f64, aim: f64, prev_loss: &mut Vec<Option<f64>>) -> Option<Vec<f64>> {
     if !(eta > 0.0 && tol > 0.0) || chords.len() != model.faces.len() {
         return None;
     }
@@ -66,14 +74,19 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
         }
         volume[g][1] += face_integrals(model, FaceId::from_index(f), dom, &t.edges, &index, centre).volume;
     }
+    prev_loss.resize(ngroups, None);
     let floor = tol / MAX_SHRINK;
     let factor: Vec<f64> = volume
-        .iter()
+        .into_iter()
         .enumerate()
-        .map(|(g, &[mesh, brep])| {
+        .map(|(g, [mesh, brep])| {
             let loss = (mesh - brep).abs();
-            let f = 0.5 * eta * brep.abs() / loss;
-            if closed[g] && meshed[g] && loss > eta * brep.abs() && f.is_finite() { f } else { 1.0 }
+            let f = aim * eta * brep.abs() / loss;
+            // a loss the chords cannot make (a solid whose faces do not close it, cross or
+            // fold), or that the last smaller chords did not halve, is not theirs to mend
+            let chords_made_it = loss <= MAX_LOSS * brep.abs() && prev_loss[g].is_none_or(|p| loss <= 0.5 * p);
+            prev_loss[g] = Some(loss);
+            if closed[g] && meshed[g] && loss > eta * brep.abs() && f.is_finite() && chords_made_it { f } else { 1.0 }
         })
         .collect();
     let next: Vec<f64> = chords.iter().enumerate().map(|(f, &d)| (d * factor[group[f] as usize]).max(floor).min(d)).collect();
