@@ -26,7 +26,7 @@ use std::time::Instant;
 /// Examples shown by `fepre tessellate --help`.
 pub const EXAMPLES: &str = "\
 Examples:
-  fepre tessellate part.step -o part.stl                 certified surface, default deviation (2e-4 of the model size)
+  fepre tessellate part.step -o part.stl                 certified surface, default deviation (2e-4 of the model size, less on slender parts)
   fepre tessellate part.step -o part.msh --deviation 5e-5  finer; MSH 4.1 keeps each face as a physical group
   fepre tessellate part.stp -o part.vtu --json           one JSON report: Euler per shell, volume, area, checks
   fepre tessellate part.step -o part.obj --force         write even when a check fails (the report says which)
@@ -47,9 +47,12 @@ pub struct Args {
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
     /// Largest distance between the triangles and the exact surface, as a fraction of the
-    /// model size (the diagonal of its bounding box).
-    #[arg(long, value_name = "REL", default_value_t = TessellateOptions::default().chord_relative, value_parser = positive_fraction)]
-    pub deviation: f64,
+    /// model size (the diagonal of its bounding box). Without it, 2e-4, and smaller on the
+    /// faces of a solid that would lose more than 0.4 % of its volume (slender and thin
+    /// parts); with it, exactly this everywhere: a deviation so coarse that a solid's volume
+    /// is off by more than 0.5 % fails the certificate.
+    #[arg(long, value_name = "REL", value_parser = positive_fraction)]
+    pub deviation: Option<f64>,
     /// Longest triangle edge (model units, mm for STEP): edges are cut to it and faces refined
     /// to well-shaped triangles of about this size, as a volume mesher wants its boundary.
     #[arg(long, value_name = "H", value_parser = crate::cli::positive)]
@@ -180,7 +183,10 @@ pub fn run(args: &Args) -> Result<()> {
         return Err(usage_error(format!("{}: the surface is written as .stl, .obj, .vtu or .msh", out.display())));
     }
     let t0 = Instant::now();
-    let opts = TessellateOptions::default().with_chord_relative(args.deviation);
+    let opts = match args.deviation {
+        Some(d) => TessellateOptions::default().with_chord_relative(d).with_volume_relative(0.0),
+        None => TessellateOptions::default(),
+    };
     let size = args.max_edge.map(UniformSize);
     let model = match crate::cad::step::read_shape(&args.cad)? {
         crate::cad::step::Shape::Brep(m) => m,
@@ -321,7 +327,7 @@ fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Re
         volume,
         area: cert.area[0],
         units: c.model.units.clone(),
-        deviation: args.deviation,
+        deviation: args.deviation.unwrap_or(TessellateOptions::default().chord_relative),
         max_edge: args.max_edge,
         chord_mm: c.tessellation.chord,
         dropped: c.model.dropped.clone(),
