@@ -114,3 +114,24 @@ fn mesh_goes_from_step_to_valid_tets_with_opencascade_volume() {
         assert!(!tags.is_empty() && tags.iter().all(|&t| t >= 1), "{name}: {tags:?}");
     }
 }
+
+#[test]
+fn a_coarse_deviation_that_loses_volume_fails_naming_the_solid() {
+    // 0.05 of the diagonal cuts the cylinder's circles to a few chords: its volume is off by
+    // far more than 0.5 %, and the certificate says so (it used to pass: its tolerance was
+    // area x chord, a third of the volume); nothing is written
+    let Some(cyl) = common::corpus_file("occt-cylinder.step") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cyl.stl");
+    let o = fepre(&["tessellate".as_ref(), cyl.as_os_str(), "-o".as_ref(), out.as_os_str(), "--deviation".as_ref(), "0.05".as_ref()]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stdout));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("volume") && err.contains("solid #") && err.contains("% off") && err.contains("deviate up to"), "{err}");
+    assert!(!out.exists());
+    // at the default deviation the same cylinder passes, within 0.5 % of its volume
+    let o = fepre(&["tessellate".as_ref(), cyl.as_os_str(), "-o".as_ref(), out.as_os_str(), "--json".as_ref()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let vol = v["certificate"]["volume"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect::<Vec<_>>();
+    assert!((vol[0] / vol[1] - 1.0).abs() < 5e-3, "{vol:?}");
+}
