@@ -150,9 +150,9 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
         return tessellate_chords(model, opts, size, tol, &uniform);
     }
     // solids that lose more than `volume_relative` of their volume: again with smaller
-    // chords on their faces (see `volume_chord`), aiming at half of it; with a size field
-    // just under it (chords finer than the size make thin triangles beside it)
-    let aim = if size.is_some() { 0.9 } else { 0.5 };
+    // chords on their faces (see `volume_chord`), aiming at three quarters of it; with a
+    // size field just under it (chords finer than the size make thin triangles beside it)
+    let aim = if size.is_some() { 0.9 } else { 0.75 };
     let mut chords = uniform;
     let mut t = tessellate_chords(model, opts, size, tol, &chords);
     let mut prev_loss = Vec::new();

@@ -11,11 +11,11 @@
 //! the chord
 //!
 //! ```text
-//! δ_g ← δ_g · (η / 2) |V_g| / |V_mesh,g − V_g|
+//! δ_g ← δ_g · a η |V_g| / |V_mesh,g − V_g|
 //! ```
 //!
-//! on its faces (the loss is linear in the chord: this aims at half of `η`; just under `η`
-//! before a size field spaces the points, `0.9` for the `1/2`), at most
+//! on its faces (the loss is linear in the chord: this aims at `a η`, with `a` = 0.75 in
+//! [`super::tessellate`] and 0.9 before a size field spaces the points), at most
 //! [`ROUNDS`] times, never below `δ / MAX_SHRINK`, and only while the error is one chords
 //! make (below [`MAX_LOSS`], and halved by the last shrink). `|V| / A` is a thickness (half a
 //! plate's, half a rod's radius): the bound follows the local feature size of the part, not
@@ -41,7 +41,7 @@ pub(super) const MAX_LOSS: f64 = 0.2;
 /// `FaceId - 1`, `tol` the model-wide one): `None` when every closed shell group of `t` is
 /// within `eta` of its B-rep volume, or no chord can shrink further (module docs).
 ///
-/// `aim` is the share of `eta` aimed at (0.5; 0.9 before a size field); `prev_loss` holds
+/// `aim` is the share of `eta` aimed at (0.75; 0.9 before a size field); `prev_loss` holds
 /// each group's volume error in the last round (empty before the first).
 pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol: f64, eta: f64, aim: f64, prev_loss: &mut Vec<Option<f64>>) -> Option<Vec<f64>> {
     if !(eta > 0.0 && tol > 0.0) || chords.len() != model.faces.len() {
