@@ -17,7 +17,9 @@
 //! on its faces (the loss is linear in the chord: this aims at `a η`, with `a` = 0.75 in
 //! [`super::tessellate`] and 0.9 before a size field spaces the points), at most
 //! [`ROUNDS`] times, never below `δ / MAX_SHRINK`, and only while the error is one chords
-//! make (below [`MAX_LOSS`], and halved by the last shrink). `|V| / A` is a thickness (half a
+//! make (below [`MAX_LOSS`], and halved by the last shrink). The quadrature is only done
+//! for groups whose band `Σ δ_f A_f` over their curved faces (the most chords within `δ_f`
+//! can cut) exceeds `η |V_mesh,g|`: the others keep their volume whatever it says. `|V| / A` is a thickness (half a
 //! plate's, half a rod's radius): the bound follows the local feature size of the part, not
 //! its diagonal, and parts that keep their volume at `δ` are left as they are. An edge takes
 //! the smallest chord of the faces that use it.
@@ -60,17 +62,33 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
     let centre = model.bounds().map_or(DVec3::ZERO, |(lo, hi)| 0.5 * (lo + hi));
     let index = SegmentIndex::new(&t.edges);
     let s = &t.surface;
-    // per group: the triangles' volume and the B-rep's
+    // per group: the triangles' volume, and the band `Σ δ_f A_f` over its curved faces
+    // that bounds what the chords can cut
     let mut volume = vec![[0.0f64; 2]; ngroups];
+    let mut band = vec![0.0f64; ngroups];
     for (f, dom) in t.domains.iter().enumerate() {
         let Some(dom) = dom else { continue };
         let g = group[f] as usize;
         if !(closed[g] && meshed[g]) {
             continue;
         }
+        let curved = !matches!(model.surface(model.faces[f].surface), crate::cad::geom::Surface::Plane(_));
         for tr in s.triangles.get(dom.triangles.clone()).unwrap_or(&[]) {
             let [a, b, c] = tr.map(|i| s.vertices.get(i as usize).copied().unwrap_or(DVec3::NAN) - centre);
             volume[g][0] += a.dot(b.cross(c)) / 6.0;
+            if curved {
+                band[g] += chords[f] * (b - a).cross(c - a).length() / 2.0;
+            }
+        }
+    }
+    // the B-rep's volume by quadrature, only where the band could cut more than `eta` (or
+    // is not a number)
+    let suspect: Vec<bool> = (0..ngroups).map(|g| !(band[g] <= eta * volume[g][0].abs())).collect();
+    for (f, dom) in t.domains.iter().enumerate() {
+        let Some(dom) = dom else { continue };
+        let g = group[f] as usize;
+        if !(closed[g] && meshed[g] && suspect[g]) {
+            continue;
         }
         volume[g][1] += face_integrals(model, FaceId::from_index(f), dom, &t.edges, &index, centre).volume;
     }
@@ -85,8 +103,10 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
             // a loss the chords cannot make (a solid whose faces do not close it, cross or
             // fold), or that the last smaller chords did not halve, is not theirs to mend
             let chords_made_it = loss <= MAX_LOSS * brep.abs() && prev_loss[g].is_none_or(|p| loss <= 0.5 * p);
-            prev_loss[g] = Some(loss);
-            if closed[g] && meshed[g] && loss > eta * brep.abs() && f.is_finite() && chords_made_it { f } else { 1.0 }
+            if suspect[g] {
+                prev_loss[g] = Some(loss);
+            }
+            if suspect[g] && closed[g] && meshed[g] && loss > eta * brep.abs() && f.is_finite() && chords_made_it { f } else { 1.0 }
         })
         .collect();
     let next: Vec<f64> = chords.iter().enumerate().map(|(f, &d)| (d * factor[group[f] as usize]).max(floor).min(d)).collect();
