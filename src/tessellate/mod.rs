@@ -19,6 +19,7 @@
 pub mod certificate;
 pub mod edge_points;
 pub mod face_mesh;
+pub mod orient;
 mod feature_size;
 pub mod quadrature;
 mod refine;
