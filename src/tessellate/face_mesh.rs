@@ -87,6 +87,14 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         if pts.len() < 2 {
             return Err(format!("loop {} has fewer than two points", lp.source));
         }
+        // a surface closed but not periodic (a B-spline whose first and last rows of control
+        // points coincide): seam points have two parameters, and inversion returns either
+        if dom.u_closed && dom.u_period.is_none() {
+            seam_sides(&mut pts, 0, dom.u.min, dom.u.max);
+        }
+        if dom.v_closed && dom.v_period.is_none() {
+            seam_sides(&mut pts, 1, dom.v.min, dom.v.max);
+        }
         // a loop through a pole (a cone's apex between two generators): u jumps there
         // arbitrarily, so the loop is rotated to end at the pole and unwrapped from its new
         // start; the pole then becomes a segment of the pole line (open_poles)
@@ -104,10 +112,12 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
             None => 0.0,
         };
         let goes_around = dom.u_period.is_some_and(|per| turn.abs() > 0.75 * per);
-        // (cones only: a loop of a swept B-spline face through its pole is left to the general
-        // path, which meshes the corpus's wing_fuselage.step right)
-        let cone = matches!(surf, Surface::Cone(_));
-        if let Some(k) = (0..n).find(|&k| cone && n >= 3 && !goes_around && through_pole(k)) {
+        // (cones and spheres only: a loop of a swept B-spline face through its pole is left to
+        // the general path, which meshes the corpus's wing_fuselage.step right; on a sphere the
+        // general path took u across the pole by the nearest turn, a spherical triangle with a
+        // corner at the pole then seemed to go once around and was cut to the pole again)
+        let analytic_pole = matches!(surf, Surface::Cone(_) | Surface::Sphere(_));
+        if let Some(k) = (0..n).find(|&k| analytic_pole && n >= 3 && !goes_around && through_pole(k)) {
             pts.rotate_left(k + 1);
             if let Some(per) = dom.u_period {
                 let mut last = pts[0].0.x;
@@ -135,9 +145,54 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
                 wrap = Some(gap.x.signum() * dom.u_period.unwrap_or(0.0));
             }
         }
+        if dom.u_period.is_none() && dom.v_period.is_none() {
+            // no period, so no unwrapping to undo at a pole (a B-spline patch with a
+            // collapsed side): the pole point becomes a segment of the pole line
+            pts = open_poles(surf, pts);
+        }
         loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
     }
     Ok(loops)
+}
+
+/// Puts the loop's points on the seam of a surface closed (not periodic) in parameter `axis`
+/// on the side of their neighbours. There, `lo` and `hi` are the same points and inversion
+/// returns either; a run of seam points (a seam edge, or a vertex on it) taken on the far
+/// side makes the loop jump across the domain and back, so that its segments cross. A run
+/// whose neighbours lie on different sides (the loop crosses the seam) is left as it is.
+fn seam_sides(pts: &mut UvLoop, axis: usize, lo: f64, hi: f64) {
+    let n = pts.len();
+    let len = hi - lo;
+    if !(len.is_finite() && len > 0.0) {
+        return;
+    }
+    let eps = 1e-7 * len;
+    let seam: Vec<bool> = pts.iter().map(|(p, _)| (p[axis] - lo).abs() <= eps || (hi - p[axis]).abs() <= eps).collect();
+    let Some(start) = (0..n).find(|&k| !seam[k]) else { return };
+    let side = |x: f64| if x - lo <= hi - x { lo } else { hi };
+    let at = |k: usize| (start + k) % n;
+    let mut k = 1;
+    while k < n {
+        if !seam[at(k)] {
+            k += 1;
+            continue;
+        }
+        let mut j = k;
+        while j < n && seam[at(j)] {
+            j += 1;
+        }
+        // the run k..j, between the points at k - 1 and j (both off the seam)
+        let (before, after) = (side(pts[at(k - 1)].0[axis]), side(pts[at(j)].0[axis]));
+        if before == after {
+            for m in k..j {
+                let x = &mut pts[at(m)].0[axis];
+                if side(*x) != before {
+                    *x += before - side(*x);
+                }
+            }
+        }
+        k = j;
+    }
 }
 
 /// True where `∂S/∂u` vanishes and `∂S/∂v` does not: a pole line `v = const`.
@@ -146,25 +201,47 @@ fn is_pole(surf: &Surface, uv: DVec2) -> bool {
     su.length() <= 1e-7 * sv.length() && sv.length() > 0.0
 }
 
-/// A loop point at a pole of the parametrisation (a cone's apex, a sphere's pole: `∂S/∂u`
-/// vanishes, every `u` gives the same point) is a segment of the pole line in `(u, v)`: it is
-/// replaced by two points with the same vertex, at its neighbours' `u`, so the domain reaches
-/// the pole along its whole width instead of pinching to one arbitrary `u`.
+/// True where `∂S/∂v` vanishes and `∂S/∂u` does not: a pole line `u = const`.
+fn is_v_pole(surf: &Surface, uv: DVec2) -> bool {
+    let (su, sv) = surf.first_derivatives(uv.x, uv.y);
+    sv.length() <= 1e-7 * su.length() && su.length() > 0.0
+}
+
+/// A loop point at a pole of the parametrisation (a cone's apex, a sphere's pole, the
+/// collapsed row of a B-spline's control points: one partial derivative vanishes, every value
+/// of that parameter gives the same point) is a segment of the pole line in `(u, v)`: it is
+/// replaced by two points with the same vertex, at its neighbours' parameter, so the domain
+/// reaches the pole along its whole width instead of pinching to one arbitrary value (the
+/// triangles next to the pinch then leave out a sliver of the face, which the certificate's
+/// area check sees).
 fn open_poles(surf: &Surface, pts: UvLoop) -> UvLoop {
     let n = pts.len();
     if n < 3 {
         return pts;
     }
+    let dom = surf.domain();
     let mut out = Vec::with_capacity(n + 2);
     for k in 0..n {
         let (uv, id) = pts[k];
-        let pole = is_pole(surf, uv);
+        // the parameter along the pole line: 0 (u) where ∂S/∂u vanishes, 1 (v) where ∂S/∂v does
+        let axis = if is_pole(surf, uv) {
+            Some(0)
+        } else if is_v_pole(surf, uv) {
+            Some(1)
+        } else {
+            None
+        };
         let (prev, next) = (pts[(k + n - 1) % n], pts[(k + 1) % n]);
-        if pole && prev.1 != id && next.1 != id {
-            // the pole line from the previous point's u to the next one's, in steps of at most
-            // 1/32 turn (triangles meeting the pole then span little u: no folds there)
-            let (a, b) = (DVec2::new(prev.0.x, uv.y), DVec2::new(next.0.x, uv.y));
-            let steps = ((b.x - a.x).abs() * 32.0 / std::f64::consts::TAU).ceil().max(1.0) as usize;
+        if let Some(axis) = axis.filter(|_| prev.1 != id && next.1 != id) {
+            // the pole line from the previous point's parameter to the next one's, in steps of
+            // at most 1/32 turn (1/32 of the domain where it is not periodic): triangles
+            // meeting the pole then span little of it, no folds there
+            let (mut a, mut b) = (uv, uv);
+            a[axis] = prev.0[axis];
+            b[axis] = next.0[axis];
+            let (period, range) = if axis == 0 { (dom.u_period, dom.u) } else { (dom.v_period, dom.v) };
+            let turn = period.unwrap_or(if range.is_bounded() { range.length() } else { std::f64::consts::TAU });
+            let steps = ((b[axis] - a[axis]).abs() * 32.0 / turn).ceil().clamp(1.0, 256.0) as usize;
             out.push((a, id));
             if (b - a).length() > 0.0 {
                 out.extend((1..=steps).map(|k| (a + (b - a) * (k as f64 / steps as f64), id)));
