@@ -596,13 +596,45 @@ pub struct FaceMesh {
     pub boundary: Vec<([u32; 2], [DVec2; 2])>,
 }
 
+/// Why a face could not be meshed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FaceError {
+    /// Boundary segments cross or touch in parameter space: those segments, as the global
+    /// vertex ids of their ends (the tessellator splits the edge segments among them and
+    /// meshes again).
+    Crossing(Vec<[u32; 2]>),
+    /// Any other reason, in words.
+    Other(String),
+}
+
+impl From<String> for FaceError {
+    fn from(s: String) -> FaceError {
+        FaceError::Other(s)
+    }
+}
+
+impl From<&str> for FaceError {
+    fn from(s: &str) -> FaceError {
+        FaceError::Other(s.to_string())
+    }
+}
+
+impl std::fmt::Display for FaceError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FaceError::Crossing(segs) => write!(f, "boundary segments cross in parameter space ({} segments)", segs.len()),
+            FaceError::Other(s) => f.write_str(s),
+        }
+    }
+}
+
 /// The triangles of one face, with global vertex indices (new interior vertices appended to
 /// `vertices`), oriented outward by the face's sense.
 ///
 /// # Errors
-/// A message saying why the face could not be meshed.
+/// Why the face could not be meshed: crossing boundary segments, or a message.
 #[allow(clippy::too_many_arguments)]
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, FaceError> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let loops = uv_loops(model, fid, edges, tol, max_straight, size, vertices)?;
@@ -637,7 +669,14 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
                 continue;
             }
             if tri.try_add_constraint(a, b).is_empty() && !tri.exists_constraint(a, b) {
-                return Err("boundary segments cross in parameter space".into());
+                let ids: Vec<Vec<u32>> = loops.iter().map(|l| l.iter().map(|(_, id)| *id).collect()).collect();
+                let mut segs = super::crossings::crossing_segments(&scaled, &ids);
+                if segs.is_empty() {
+                    // spade refused it for a reason the exact test does not see: this segment
+                    let (ia, ib) = (tri.vertex(a).data().id, tri.vertex(b).data().id);
+                    segs.extend(ia.zip(ib).map(|(x, y)| [x, y]));
+                }
+                return Err(FaceError::Crossing(segs));
             }
         }
     }
