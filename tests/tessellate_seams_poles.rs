@@ -10,7 +10,7 @@
 //!   (xr1-db-214_7.stp, trj6_as1-td-214.stp, trj9_io1-sy-214.stp);
 //! - a B-spline vertex blend closed in `u` with a pole at `v = 1` (trj10_ap209-td.stp): the
 //!   seam as above, then the certificate's own quadrature took the seam edge's sliver points
-//!   to the far end (a face 7 % short of its area), and the pole pinched the domain;
+//!   to the far end (a face 7 % short of its area);
 //! - a spherical triangle with a corner at the pole (bug33398.step): `u` taken across the pole
 //!   by the nearest turn made the loop seem to go once around the sphere.
 

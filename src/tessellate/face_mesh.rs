@@ -145,11 +145,6 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
                 wrap = Some(gap.x.signum() * dom.u_period.unwrap_or(0.0));
             }
         }
-        if dom.u_period.is_none() && dom.v_period.is_none() {
-            // no period, so no unwrapping to undo at a pole (a B-spline patch with a
-            // collapsed side): the pole point becomes a segment of the pole line
-            pts = open_poles(surf, pts);
-        }
         loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
     }
     Ok(loops)
@@ -201,47 +196,25 @@ fn is_pole(surf: &Surface, uv: DVec2) -> bool {
     su.length() <= 1e-7 * sv.length() && sv.length() > 0.0
 }
 
-/// True where `∂S/∂v` vanishes and `∂S/∂u` does not: a pole line `u = const`.
-fn is_v_pole(surf: &Surface, uv: DVec2) -> bool {
-    let (su, sv) = surf.first_derivatives(uv.x, uv.y);
-    sv.length() <= 1e-7 * su.length() && su.length() > 0.0
-}
-
-/// A loop point at a pole of the parametrisation (a cone's apex, a sphere's pole, the
-/// collapsed row of a B-spline's control points: one partial derivative vanishes, every value
-/// of that parameter gives the same point) is a segment of the pole line in `(u, v)`: it is
-/// replaced by two points with the same vertex, at its neighbours' parameter, so the domain
-/// reaches the pole along its whole width instead of pinching to one arbitrary value (the
-/// triangles next to the pinch then leave out a sliver of the face, which the certificate's
-/// area check sees).
+/// A loop point at a pole of the parametrisation (a cone's apex, a sphere's pole: `∂S/∂u`
+/// vanishes, every `u` gives the same point) is a segment of the pole line in `(u, v)`: it is
+/// replaced by two points with the same vertex, at its neighbours' `u`, so the domain reaches
+/// the pole along its whole width instead of pinching to one arbitrary `u`.
 fn open_poles(surf: &Surface, pts: UvLoop) -> UvLoop {
     let n = pts.len();
     if n < 3 {
         return pts;
     }
-    let dom = surf.domain();
     let mut out = Vec::with_capacity(n + 2);
     for k in 0..n {
         let (uv, id) = pts[k];
-        // the parameter along the pole line: 0 (u) where ∂S/∂u vanishes, 1 (v) where ∂S/∂v does
-        let axis = if is_pole(surf, uv) {
-            Some(0)
-        } else if is_v_pole(surf, uv) {
-            Some(1)
-        } else {
-            None
-        };
+        let pole = is_pole(surf, uv);
         let (prev, next) = (pts[(k + n - 1) % n], pts[(k + 1) % n]);
-        if let Some(axis) = axis.filter(|_| prev.1 != id && next.1 != id) {
-            // the pole line from the previous point's parameter to the next one's, in steps of
-            // at most 1/32 turn (1/32 of the domain where it is not periodic): triangles
-            // meeting the pole then span little of it, no folds there
-            let (mut a, mut b) = (uv, uv);
-            a[axis] = prev.0[axis];
-            b[axis] = next.0[axis];
-            let (period, range) = if axis == 0 { (dom.u_period, dom.u) } else { (dom.v_period, dom.v) };
-            let turn = period.unwrap_or(if range.is_bounded() { range.length() } else { std::f64::consts::TAU });
-            let steps = ((b[axis] - a[axis]).abs() * 32.0 / turn).ceil().clamp(1.0, 256.0) as usize;
+        if pole && prev.1 != id && next.1 != id {
+            // the pole line from the previous point's u to the next one's, in steps of at most
+            // 1/32 turn (triangles meeting the pole then span little u: no folds there)
+            let (a, b) = (DVec2::new(prev.0.x, uv.y), DVec2::new(next.0.x, uv.y));
+            let steps = ((b.x - a.x).abs() * 32.0 / std::f64::consts::TAU).ceil().max(1.0) as usize;
             out.push((a, id));
             if (b - a).length() > 0.0 {
                 out.extend((1..=steps).map(|k| (a + (b - a) * (k as f64 / steps as f64), id)));
