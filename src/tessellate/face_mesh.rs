@@ -87,6 +87,14 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         if pts.len() < 2 {
             return Err(format!("loop {} has fewer than two points", lp.source));
         }
+        // a surface closed but not periodic (a B-spline whose first and last rows of control
+        // points coincide): seam points have two parameters, and inversion returns either
+        if dom.u_closed && dom.u_period.is_none() {
+            seam_sides(&mut pts, 0, dom.u.min, dom.u.max);
+        }
+        if dom.v_closed && dom.v_period.is_none() {
+            seam_sides(&mut pts, 1, dom.v.min, dom.v.max);
+        }
         // a loop through a pole (a cone's apex between two generators): u jumps there
         // arbitrarily, so the loop is rotated to end at the pole and unwrapped from its new
         // start; the pole then becomes a segment of the pole line (open_poles)
@@ -104,10 +112,12 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
             None => 0.0,
         };
         let goes_around = dom.u_period.is_some_and(|per| turn.abs() > 0.75 * per);
-        // (cones only: a loop of a swept B-spline face through its pole is left to the general
-        // path, which meshes the corpus's wing_fuselage.step right)
-        let cone = matches!(surf, Surface::Cone(_));
-        if let Some(k) = (0..n).find(|&k| cone && n >= 3 && !goes_around && through_pole(k)) {
+        // (cones and spheres only: a loop of a swept B-spline face through its pole is left to
+        // the general path, which meshes the corpus's wing_fuselage.step right; on a sphere the
+        // general path took u across the pole by the nearest turn, a spherical triangle with a
+        // corner at the pole then seemed to go once around and was cut to the pole again)
+        let analytic_pole = matches!(surf, Surface::Cone(_) | Surface::Sphere(_));
+        if let Some(k) = (0..n).find(|&k| analytic_pole && n >= 3 && !goes_around && through_pole(k)) {
             pts.rotate_left(k + 1);
             if let Some(per) = dom.u_period {
                 let mut last = pts[0].0.x;
@@ -138,6 +148,46 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
     }
     Ok(loops)
+}
+
+/// Puts the loop's points on the seam of a surface closed (not periodic) in parameter `axis`
+/// on the side of their neighbours. There, `lo` and `hi` are the same points and inversion
+/// returns either; a run of seam points (a seam edge, or a vertex on it) taken on the far
+/// side makes the loop jump across the domain and back, so that its segments cross. A run
+/// whose neighbours lie on different sides (the loop crosses the seam) is left as it is.
+fn seam_sides(pts: &mut UvLoop, axis: usize, lo: f64, hi: f64) {
+    let n = pts.len();
+    let len = hi - lo;
+    if !(len.is_finite() && len > 0.0) {
+        return;
+    }
+    let eps = 1e-7 * len;
+    let seam: Vec<bool> = pts.iter().map(|(p, _)| (p[axis] - lo).abs() <= eps || (hi - p[axis]).abs() <= eps).collect();
+    let Some(start) = (0..n).find(|&k| !seam[k]) else { return };
+    let side = |x: f64| if x - lo <= hi - x { lo } else { hi };
+    let at = |k: usize| (start + k) % n;
+    let mut k = 1;
+    while k < n {
+        if !seam[at(k)] {
+            k += 1;
+            continue;
+        }
+        let mut j = k;
+        while j < n && seam[at(j)] {
+            j += 1;
+        }
+        // the run k..j, between the points at k - 1 and j (both off the seam)
+        let (before, after) = (side(pts[at(k - 1)].0[axis]), side(pts[at(j)].0[axis]));
+        if before == after {
+            for m in k..j {
+                let x = &mut pts[at(m)].0[axis];
+                if side(*x) != before {
+                    *x += before - side(*x);
+                }
+            }
+        }
+        k = j;
+    }
 }
 
 /// True where `∂S/∂u` vanishes and `∂S/∂v` does not: a pole line `v = const`.
@@ -519,13 +569,45 @@ pub struct FaceMesh {
     pub boundary: Vec<([u32; 2], [DVec2; 2])>,
 }
 
+/// Why a face could not be meshed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FaceError {
+    /// Boundary segments cross or touch in parameter space: those segments, as the global
+    /// vertex ids of their ends (the tessellator splits the edge segments among them and
+    /// meshes again).
+    Crossing(Vec<[u32; 2]>),
+    /// Any other reason, in words.
+    Other(String),
+}
+
+impl From<String> for FaceError {
+    fn from(s: String) -> FaceError {
+        FaceError::Other(s)
+    }
+}
+
+impl From<&str> for FaceError {
+    fn from(s: &str) -> FaceError {
+        FaceError::Other(s.to_string())
+    }
+}
+
+impl std::fmt::Display for FaceError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FaceError::Crossing(segs) => write!(f, "boundary segments cross in parameter space ({} segments)", segs.len()),
+            FaceError::Other(s) => f.write_str(s),
+        }
+    }
+}
+
 /// The triangles of one face, with global vertex indices (new interior vertices appended to
 /// `vertices`), oriented outward by the face's sense.
 ///
 /// # Errors
-/// A message saying why the face could not be meshed.
+/// Why the face could not be meshed: crossing boundary segments, or a message.
 #[allow(clippy::too_many_arguments)]
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, FaceError> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let loops = uv_loops(model, fid, edges, tol, max_straight, size, vertices)?;
@@ -560,7 +642,14 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
                 continue;
             }
             if tri.try_add_constraint(a, b).is_empty() && !tri.exists_constraint(a, b) {
-                return Err("boundary segments cross in parameter space".into());
+                let ids: Vec<Vec<u32>> = loops.iter().map(|l| l.iter().map(|(_, id)| *id).collect()).collect();
+                let mut segs = super::crossings::crossing_segments(&scaled, &ids);
+                if segs.is_empty() {
+                    // spade refused it for a reason the exact test does not see: this segment
+                    let (ia, ib) = (tri.vertex(a).data().id, tri.vertex(b).data().id);
+                    segs.extend(ia.zip(ib).map(|(x, y)| [x, y]));
+                }
+                return Err(FaceError::Crossing(segs));
             }
         }
     }
