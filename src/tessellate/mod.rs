@@ -27,6 +27,7 @@ mod crossings;
 pub mod edge_points;
 pub mod face_mesh;
 pub mod orient;
+mod seams;
 mod feature_size;
 pub mod quadrature;
 mod refine;
