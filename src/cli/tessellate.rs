@@ -214,6 +214,11 @@ pub fn run(args: &Args) -> Result<()> {
                 println!("  split      edge {} at vertex {} ({:.6}, {:.6}, {:.6})", x.edge, x.vertex, x.at[0], x.at[1], x.at[2]);
             }
         }
+        for x in &r.certificate.reoriented {
+            let shells: Vec<String> = x.brep_shells.iter().map(|s| s.to_string()).collect();
+            let what = if x.void { "void, enclosed" } else { "enclosed" };
+            println!("reoriented   shell {} ({} faces, {what} {:.6e} mm3 as written): its face senses disagree with its geometry: turned (OpenCASCADE turns it too)", shells.join(" "), x.faces, x.volume_as_written);
+        }
         println!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
         println!("triangles    {} ({} vertices)", r.triangles, r.vertices);
         println!("watertight   {} (of the {})", r.watertight, r.watertight_of);

@@ -13,6 +13,7 @@ use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, Regi
 use super::assembly::{ContactReport, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
+use crate::tessellate::orient::turn_inside_out_shells;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -254,10 +255,14 @@ impl Part {
     /// [`PipelineError::Certificate`] when a check fails (the message names faces and STEP
     /// `#id`s); the failed tessellation is kept in [`Part::certified`] for reports.
     pub fn tessellate(&mut self, size: &dyn SizeField, opts: &TessellateOptions) -> Result<&Certificate, PipelineError> {
-        let Some(model) = &self.model else {
+        let Some(model) = &mut self.model else {
             return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
         };
         let (c, [tessellate_s, certify_s]) = certified_tessellation(model, opts, Some(size), &CertifyOptions::default());
+        if !c.certificate.reoriented.is_empty() {
+            // faces turned: what the catalogue says of their normals is built again on use
+            self.catalogue = OnceLock::new();
+        }
         self.seconds.tessellate = tessellate_s;
         self.seconds.certify = certify_s;
         let message = (!c.certificate.passed).then(|| failure_message(&self.path, &c.certificate, &model.dropped));
@@ -305,7 +310,8 @@ impl Part {
             // each other than their triangles are long): the chords-only tessellation, cut to
             // the size by the mesher, as a surface mesh is
             if let Some(model) = &self.model {
-                let (chords, _) = certified_tessellation(model, tess, None, &CertifyOptions::default());
+                // the model's shells are turned already (by the first tessellation)
+                let (chords, _) = certified_tessellation(&mut model.clone(), tess, None, &CertifyOptions::default());
                 if chords.certificate.passed {
                     let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true));
                     if retry.is_ok() {
@@ -427,21 +433,30 @@ pub fn tessellate_file(path: &Path, opts: &TessellateOptions, size: Option<&dyn 
 }
 
 /// [`tessellate_file`] of a model already read (`read` its seconds).
-pub fn tessellate_model(model: Model, read: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Model, Certified, StageSeconds) {
-    let (c, [tessellate, certify]) = certified_tessellation(&model, opts, size, checks);
+pub fn tessellate_model(mut model: Model, read: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Model, Certified, StageSeconds) {
+    let (c, [tessellate, certify]) = certified_tessellation(&mut model, opts, size, checks);
     (model, c, StageSeconds { read, tessellate, certify, mesh: 0.0 })
 }
 
 /// Tessellates `model` (to `size` where given) and certifies the result; with the seconds of
 /// each.
-fn certified_tessellation(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Certified, [f64; 2]) {
+/// Shells the file wrote inside out are turned in `model` first ([`turn_inside_out_shells`]),
+/// and listed in the certificate.
+fn certified_tessellation(model: &mut Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Certified, [f64; 2]) {
     let t0 = Instant::now();
-    let tessellation = match size {
+    let mut tessellation = match size {
         Some(s) => tessellate_sized(model, opts, s),
         None => tessellate(model, opts),
     };
     let t1 = Instant::now();
-    let certificate = certify(model, &tessellation, checks);
+    let mut certificate = certify(model, &tessellation, checks);
+    if !certificate.outward {
+        let turned = turn_inside_out_shells(model, &mut tessellation, &certificate);
+        if !turned.is_empty() {
+            certificate = certify(model, &tessellation, checks);
+            certificate.reoriented = turned;
+        }
+    }
     (Certified { tessellation, certificate }, [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()])
 }
 

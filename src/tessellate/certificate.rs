@@ -125,6 +125,8 @@ pub struct ShellCheck {
     pub void: bool,
     /// Edge-connected components of its triangles (1 when right).
     pub mesh_components: usize,
+    /// Its triangles close (every edge of them used twice).
+    pub mesh_closed: bool,
     /// `V − E + F` of its triangles.
     pub euler_mesh: i64,
     /// The B-rep's own Euler characteristic (see the module docs).
@@ -188,6 +190,9 @@ pub struct Certificate {
     /// Holes (free edges grouped) of the shells that should close: each is an
     /// `open_solid` failure.
     pub open_solids: Vec<crate::cad::brep::Hole>,
+    /// Closed shells the file oriented inside out (an outer shell enclosing negative volume, a
+    /// void positive), turned before this certificate was made ([`super::orient`]).
+    pub reoriented: Vec<super::orient::Reoriented>,
     /// Time spent, seconds.
     pub seconds: f64,
 }
@@ -446,6 +451,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             solid: false,
             void: false,
             mesh_components: 0,
+            mesh_closed: false,
             euler_mesh: 0,
             euler_brep: 0,
             genus_mesh: None,
@@ -523,6 +529,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         area_total[0] += x.area_mesh;
         area_total[1] += x.area_brep;
         let closed = x.mesh_components > 0 && comp_closed[g];
+        x.mesh_closed = closed;
         let even = |e: i64| (e % 2 == 0 && e <= 2).then_some((2 - e) / 2);
         x.genus_brep = if x.brep_closed { even(x.euler_brep) } else { None };
         x.genus_mesh = if closed { even(x.euler_mesh) } else { None };
@@ -687,6 +694,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         failures,
         failure_count,
         open_solids,
+        reoriented: Vec::new(),
         seconds: t0.elapsed().as_secs_f64(),
     }
 }

@@ -77,6 +77,32 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
     EdgePoints { ids, params: ts }
 }
 
+/// Splits the segments `ks` of an edge's points (segment `k` between points `k` and `k + 1`)
+/// at their parameter midpoints, the new points appended to `vertices`. Both faces of the
+/// edge take the new points, so the surface stays watertight. An edge without a curve (or a
+/// degenerate one) is left as it is.
+pub fn split_segments(model: &Model, edge: &Edge, ep: &mut EdgePoints, ks: &mut [usize], vertices: &mut Vec<DVec3>) {
+    let Some(ci) = edge.curve.filter(|_| !edge.degenerate) else { return };
+    let curve = model.curve(ci);
+    ks.sort_unstable();
+    let mut last = None;
+    // from the end, so the indices before each split stay valid
+    for &k in ks.iter().rev() {
+        if last == Some(k) || k + 1 >= ep.ids.len() || ep.params.len() != ep.ids.len() {
+            continue;
+        }
+        last = Some(k);
+        let t = 0.5 * (ep.params[k] + ep.params[k + 1]);
+        let p = curve.point(t);
+        if !p.is_finite() {
+            continue;
+        }
+        vertices.push(p);
+        ep.ids.insert(k + 1, vertices.len() as u32 - 1);
+        ep.params.insert(k + 1, t);
+    }
+}
+
 /// The parameters `ts` with each piece longer than `max_len` (its chord) cut into equal
 /// parameter steps no longer than that, at most 64.
 fn split_long(p: &dyn Fn(f64) -> DVec3, ts: &[f64], max_len: f64) -> Vec<f64> {

@@ -5,6 +5,7 @@
 
 use super::TessellateOptions;
 use super::edge_points::EdgePoints;
+use super::seams::{is_pole, open_poles, seam_sides};
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
 use crate::core::cdt;
@@ -42,7 +43,7 @@ impl HasPosition for V {
 
 /// A loop in parameter space: `(u, v)` and global vertex index per point (not repeated at
 /// the end).
-type UvLoop = Vec<(DVec2, u32)>;
+pub(super) type UvLoop = Vec<(DVec2, u32)>;
 
 /// A loop in `(u, v)` and, when it goes once around a surface periodic in `u` (closed edges
 /// without a seam), the `u` shift from its start to its end.
@@ -87,6 +88,14 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         if pts.len() < 2 {
             return Err(format!("loop {} has fewer than two points", lp.source));
         }
+        // a surface closed but not periodic (a B-spline whose first and last rows of control
+        // points coincide): seam points have two parameters, and inversion returns either
+        if dom.u_closed && dom.u_period.is_none() {
+            seam_sides(&mut pts, 0, dom.u.min, dom.u.max);
+        }
+        if dom.v_closed && dom.v_period.is_none() {
+            seam_sides(&mut pts, 1, dom.v.min, dom.v.max);
+        }
         // a loop through a pole (a cone's apex between two generators): u jumps there
         // arbitrarily, so the loop is rotated to end at the pole and unwrapped from its new
         // start; the pole then becomes a segment of the pole line (open_poles)
@@ -104,10 +113,12 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
             None => 0.0,
         };
         let goes_around = dom.u_period.is_some_and(|per| turn.abs() > 0.75 * per);
-        // (cones only: a loop of a swept B-spline face through its pole is left to the general
-        // path, which meshes the corpus's wing_fuselage.step right)
-        let cone = matches!(surf, Surface::Cone(_));
-        if let Some(k) = (0..n).find(|&k| cone && n >= 3 && !goes_around && through_pole(k)) {
+        // (cones and spheres only: a loop of a swept B-spline face through its pole is left to
+        // the general path, which meshes the corpus's wing_fuselage.step right; on a sphere the
+        // general path took u across the pole by the nearest turn, a spherical triangle with a
+        // corner at the pole then seemed to go once around and was cut to the pole again)
+        let analytic_pole = matches!(surf, Surface::Cone(_) | Surface::Sphere(_));
+        if let Some(k) = (0..n).find(|&k| analytic_pole && n >= 3 && !goes_around && through_pole(k)) {
             pts.rotate_left(k + 1);
             if let Some(per) = dom.u_period {
                 let mut last = pts[0].0.x;
@@ -138,42 +149,6 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         loops.push(Mapped { pts, wrap, face_left: face.same_sense == lp.orientation });
     }
     Ok(loops)
-}
-
-/// True where `∂S/∂u` vanishes and `∂S/∂v` does not: a pole line `v = const`.
-fn is_pole(surf: &Surface, uv: DVec2) -> bool {
-    let (su, sv) = surf.first_derivatives(uv.x, uv.y);
-    su.length() <= 1e-7 * sv.length() && sv.length() > 0.0
-}
-
-/// A loop point at a pole of the parametrisation (a cone's apex, a sphere's pole: `∂S/∂u`
-/// vanishes, every `u` gives the same point) is a segment of the pole line in `(u, v)`: it is
-/// replaced by two points with the same vertex, at its neighbours' `u`, so the domain reaches
-/// the pole along its whole width instead of pinching to one arbitrary `u`.
-fn open_poles(surf: &Surface, pts: UvLoop) -> UvLoop {
-    let n = pts.len();
-    if n < 3 {
-        return pts;
-    }
-    let mut out = Vec::with_capacity(n + 2);
-    for k in 0..n {
-        let (uv, id) = pts[k];
-        let pole = is_pole(surf, uv);
-        let (prev, next) = (pts[(k + n - 1) % n], pts[(k + 1) % n]);
-        if pole && prev.1 != id && next.1 != id {
-            // the pole line from the previous point's u to the next one's, in steps of at most
-            // 1/32 turn (triangles meeting the pole then span little u: no folds there)
-            let (a, b) = (DVec2::new(prev.0.x, uv.y), DVec2::new(next.0.x, uv.y));
-            let steps = ((b.x - a.x).abs() * 32.0 / std::f64::consts::TAU).ceil().max(1.0) as usize;
-            out.push((a, id));
-            if (b - a).length() > 0.0 {
-                out.extend((1..=steps).map(|k| (a + (b - a) * (k as f64 / steps as f64), id)));
-            }
-        } else {
-            out.push((uv, id));
-        }
-    }
-    out
 }
 
 /// The boundary of a face without edge loops (a whole sphere or torus): the rectangle of the
@@ -528,13 +503,45 @@ pub struct FaceMesh {
     pub boundary: Vec<([u32; 2], [DVec2; 2])>,
 }
 
+/// Why a face could not be meshed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FaceError {
+    /// Boundary segments cross or touch in parameter space: those segments, as the global
+    /// vertex ids of their ends (the tessellator splits the edge segments among them and
+    /// meshes again).
+    Crossing(Vec<[u32; 2]>),
+    /// Any other reason, in words.
+    Other(String),
+}
+
+impl From<String> for FaceError {
+    fn from(s: String) -> FaceError {
+        FaceError::Other(s)
+    }
+}
+
+impl From<&str> for FaceError {
+    fn from(s: &str) -> FaceError {
+        FaceError::Other(s.to_string())
+    }
+}
+
+impl std::fmt::Display for FaceError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FaceError::Crossing(segs) => write!(f, "boundary segments cross in parameter space ({} segments)", segs.len()),
+            FaceError::Other(s) => f.write_str(s),
+        }
+    }
+}
+
 /// The triangles of one face, with global vertex indices (new interior vertices appended to
 /// `vertices`), oriented outward by the face's sense.
 ///
 /// # Errors
-/// A message saying why the face could not be meshed.
+/// Why the face could not be meshed: crossing boundary segments, or a message.
 #[allow(clippy::too_many_arguments)]
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, String> {
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, FaceError> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let loops = uv_loops(model, fid, edges, tol, max_straight, size, vertices)?;
@@ -594,7 +601,14 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
                 continue;
             }
             if tri.try_add_constraint(a, b).is_empty() && !tri.exists_constraint(a, b) {
-                return Err("boundary segments cross in parameter space".into());
+                let ids: Vec<Vec<u32>> = loops.iter().map(|l| l.iter().map(|(_, id)| *id).collect()).collect();
+                let mut segs = super::crossings::crossing_segments(&scaled, &ids);
+                if segs.is_empty() {
+                    // spade refused it for a reason the exact test does not see: this segment
+                    let (ia, ib) = (tri.vertex(a).data().id, tri.vertex(b).data().id);
+                    segs.extend(ia.zip(ib).map(|(x, y)| [x, y]));
+                }
+                return Err(FaceError::Crossing(segs));
             }
         }
     }

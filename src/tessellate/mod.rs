@@ -12,13 +12,22 @@
 //! the outside, exact where a point-in-polygon test fails on thin triangles), and the rest are
 //! lifted to 3D, oriented by the face's sense and tagged with its [`FaceId`].
 //!
+//! Two loop segments of a face that cross in `(u, v)` although their edges do not meet (chords
+//! of two close edges, which cut inside their curves by up to the chord tolerance) are found
+//! with exact predicates (module `crossings`); those edge segments are split at their parameter
+//! midpoints, on the shared edge points so both faces take the new points, and the faces are
+//! meshed again (a few rounds at most).
+//!
 //! Faces that cannot be meshed this way (a periodic face bounded by closed edges without a
-//! seam, loops that cross in parameter space) are listed in [`Tessellation::failed`], never
-//! left out silently. The result is meant to be checked with [`crate::mesh::topology`].
+//! seam, loops that still cross in parameter space) are listed in [`Tessellation::failed`],
+//! never left out silently. The result is meant to be checked with [`crate::mesh::topology`].
 
 pub mod certificate;
+mod crossings;
 pub mod edge_points;
 pub mod face_mesh;
+pub mod orient;
+mod seams;
 mod feature_size;
 pub mod quadrature;
 pub mod reached;
@@ -207,30 +216,80 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         }
         None => None,
     };
-    let edges = discretise(size, &mut vertices);
-    let mut triangles = Vec::new();
-    let mut face_tags = Vec::new();
-    let mut failed = Vec::new();
-    let mut face_names = FaceNames::new();
-    let mut domains = Vec::with_capacity(model.faces.len());
-    for fid in model.face_ids() {
-        let face = model.face(fid);
-        let chord = fid.index().and_then(|k| face_chord.get(k)).copied().unwrap_or(tol);
-        match face_mesh::mesh_face(model, fid, &edges, chord, max_straight, opts, size, &mut vertices) {
-            Ok(fm) => {
-                let start = triangles.len();
-                face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));
-                triangles.extend(fm.triangles);
-                if let Some(n) = &face.name {
-                    face_names.insert(fid, n.clone());
-                }
-                domains.push(Some(FaceDomain { triangles: start..triangles.len(), uv: fm.uv, boundary: fm.boundary }));
+    let mut edges = discretise(size, &mut vertices);
+    // boundary segments that cross in a face's (u, v) are split on their edges (shared by the
+    // faces on both sides, so the surface stays watertight) and every face meshed again
+    let mut round = 0;
+    loop {
+        let edge_vertices = vertices.len();
+        let mut meshed = mesh_faces(model, &edges, tol, face_chord, max_straight, opts, size, &mut vertices);
+        if meshed.split.iter().all(Vec::is_empty) || round == SPLIT_ROUNDS {
+            let Meshed { triangles, face_tags, face_names, failed, domains, .. } = meshed;
+            return Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol, face_chords: face_chord.to_vec() };
+        }
+        // the faces' interior vertices go: the next round makes them again
+        vertices.truncate(edge_vertices);
+        for (e, ks) in meshed.split.iter_mut().enumerate() {
+            if !ks.is_empty() {
+                edge_points::split_segments(model, &model.edges[e], &mut edges[e], ks, &mut vertices);
             }
-            Err(why) => {
-                failed.push(FailedFace { face: fid, source: face.source, why });
-                domains.push(None);
+        }
+        round += 1;
+    }
+}
+
+/// Most rounds of splitting edge segments that cross in a face's parameter domain (each
+/// halves them: at most 64 times finer there).
+const SPLIT_ROUNDS: usize = 6;
+
+/// Every face meshed on the given edge points, and per edge the segments (index `k`: between
+/// its points `k` and `k + 1`) to split because they cross another boundary segment of a face.
+struct Meshed {
+    triangles: Vec<[u32; 3]>,
+    face_tags: Vec<FaceId>,
+    face_names: FaceNames,
+    failed: Vec<FailedFace>,
+    domains: Vec<Option<FaceDomain>>,
+    split: Vec<Vec<usize>>,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn mesh_faces(model: &Model, edges: &[EdgePoints], tol: f64, face_chord: &[f64], max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Meshed {
+    // edge segments by their end vertices
+    let mut segment: rustc_hash::FxHashMap<(u32, u32), (usize, usize)> = rustc_hash::FxHashMap::default();
+    for (e, ep) in edges.iter().enumerate() {
+        for (k, w) in ep.ids.windows(2).enumerate() {
+            if w[0] != w[1] {
+                segment.insert((w[0].min(w[1]), w[0].max(w[1])), (e, k));
             }
         }
     }
-    Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol, face_chords: face_chord.to_vec() }
+    let mut out = Meshed { triangles: Vec::new(), face_tags: Vec::new(), face_names: FaceNames::new(), failed: Vec::new(), domains: Vec::with_capacity(model.faces.len()), split: vec![Vec::new(); edges.len()] };
+    for fid in model.face_ids() {
+        let face = model.face(fid);
+        let chord = fid.index().and_then(|k| face_chord.get(k)).copied().unwrap_or(tol);
+        match face_mesh::mesh_face(model, fid, edges, chord, max_straight, opts, size, vertices) {
+            Ok(fm) => {
+                let start = out.triangles.len();
+                out.face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));
+                out.triangles.extend(fm.triangles);
+                if let Some(n) = &face.name {
+                    out.face_names.insert(fid, n.clone());
+                }
+                out.domains.push(Some(FaceDomain { triangles: start..out.triangles.len(), uv: fm.uv, boundary: fm.boundary }));
+            }
+            Err(why) => {
+                if let face_mesh::FaceError::Crossing(segs) = &why {
+                    for &[a, b] in segs {
+                        if let Some(&(e, k)) = segment.get(&(a.min(b), a.max(b))) {
+                            out.split[e].push(k);
+                        }
+                    }
+                }
+                out.failed.push(FailedFace { face: fid, source: face.source, why: why.to_string() });
+                out.domains.push(None);
+            }
+        }
+    }
+    out
 }

@@ -264,3 +264,50 @@ fn faces_bounded_by_a_parabola_or_a_hyperbola_have_their_area() {
         assert_eq!(again.curves.iter().map(|c| c.kind()).collect::<Vec<_>>(), m.curves.iter().map(|c| c.kind()).collect::<Vec<_>>());
     }
 }
+
+#[test]
+fn a_sliver_between_close_arcs_is_meshed_by_splitting_its_crossing_chords() {
+    // a planar crescent between an arc of radius 10 over [0, π] and one 0.001 inside it over
+    // [0.05, π - 0.05]: the chord tolerance (2e-4 of the model size, about 0.0045) lets the
+    // outer chords cut 0.003 inside their arc, across the inner arc's points, so the loop
+    // crosses itself until the crossing chords are split
+    let (big, d) = (10.0, 0.05);
+    let small = big - 0.001;
+    let polar = |r: f64, t: f64| DVec3::new(r * t.cos(), r * t.sin(), 0.0);
+    let mut m = Model::default();
+    let corners = [polar(big, 0.0), polar(big, std::f64::consts::PI), polar(small, std::f64::consts::PI - d), polar(small, d)];
+    m.vertices = corners.iter().map(|&point| Vertex { point, source: EntityRef(0) }).collect();
+    let circle = |r: f64| Curve::Circle(crate::cad::geom::Circle { frame: Frame::WORLD, radius: r });
+    let line = |a: DVec3, b: DVec3| Curve::Line(Line { origin: a, direction: b - a });
+    m.curves = vec![circle(big), line(corners[1], corners[2]), circle(small), line(corners[3], corners[0])];
+    let ranges = [Interval::new(0.0, std::f64::consts::PI), Interval::new(0.0, 1.0), Interval::new(d, std::f64::consts::PI - d), Interval::new(0.0, 1.0)];
+    // edges: outer arc 0 -> 1, line 1 -> 2, inner arc 3 -> 2 (used backwards), line 3 -> 0
+    let ends = [(0, 1), (1, 2), (3, 2), (3, 0)];
+    for (k, (&(start, end), range)) in ends.iter().zip(ranges).enumerate() {
+        m.edges.push(Edge { curve: Some(k as u32), start, end, range, same_sense: true, closed: false, seam: false, degenerate: false, source: EntityRef(k as u64 + 1) });
+    }
+    let coedges = vec![Coedge { edge: 0, forward: true }, Coedge { edge: 1, forward: true }, Coedge { edge: 2, forward: false }, Coedge { edge: 3, forward: true }];
+    m.surfaces.push(Surface::Plane(Plane { frame: Frame::WORLD }));
+    m.shells.push(Shell { faces: vec![FaceId(1)], closed: false, solid: None, void: false, source: EntityRef(50) });
+    m.loops.push(Loop { face: FaceId(1), outer: true, orientation: true, coedges: coedges.clone(), vertex: None, source: EntityRef(51) });
+    m.faces.push(Face { surface: 0, same_sense: true, loops: vec![0], shell: 0, name: None, colour: None, source: EntityRef(52) });
+    let t = tessellate(&m, &TessellateOptions::default());
+    assert!(t.failed.is_empty(), "{:?}", t.failed);
+    // no fold: every triangle faces +z, and together they cover exactly the boundary polygon
+    let v = &t.surface.vertices;
+    let areas: Vec<f64> = t.surface.triangles.iter().map(|tr| {
+        let [a, b, c] = tr.map(|i| v[i as usize]);
+        (b - a).cross(c - a).z / 2.0
+    }).collect();
+    assert!(areas.iter().all(|&a| a > 0.0), "a triangle folds over");
+    let mut ring: Vec<DVec3> = Vec::new();
+    for c in &coedges {
+        let ids = &t.edges[c.edge as usize].ids;
+        let ids: Vec<u32> = if c.forward { ids.clone() } else { ids.iter().rev().copied().collect() };
+        ring.extend(ids[..ids.len() - 1].iter().map(|&i| v[i as usize]));
+    }
+    let polygon: f64 = (0..ring.len()).map(|i| ring[i].truncate().perp_dot(ring[(i + 1) % ring.len()].truncate())).sum::<f64>() / 2.0;
+    let total: f64 = areas.iter().sum();
+    assert!((total - polygon).abs() <= 1e-9 * polygon.abs().max(1e-12) + 1e-15, "triangles {total}, polygon {polygon}");
+    assert!(polygon > 0.0, "the boundary polygon turns the wrong way: {polygon}");
+}

@@ -219,9 +219,16 @@ impl Surface {
             _ => self.project(p),
         };
         let d = self.domain();
-        DVec2::new(
+        let q = DVec2::new(
             d.u_period.map_or(q.x, |per| unwrap_near(q.x, near.x, per)),
             d.v_period.map_or(q.y, |per| unwrap_near(q.y, near.y, per)),
+        );
+        // closed without a period (a B-spline whose first and last rows of control points
+        // coincide): a point on the seam has both ends' parameters; the global search may
+        // return the far one
+        DVec2::new(
+            if d.u_closed && d.u_period.is_none() { seam_side_near(q.x, near.x, d.u.min, d.u.max) } else { q.x },
+            if d.v_closed && d.v_period.is_none() { seam_side_near(q.y, near.y, d.v.min, d.v.max) } else { q.y },
         )
     }
 
@@ -243,5 +250,22 @@ impl Surface {
             Surface::Extrusion(s) => Surface::Extrusion(s.transformed(t)),
             Surface::Offset(s) => Surface::Offset(s.transformed(t)),
         }
+    }
+}
+
+/// `x`, a parameter of a surface closed but not periodic over `lo..hi`, moved to the other
+/// end when it lies on the seam (within 1e-7 of the range) and `near` is closer to that end.
+fn seam_side_near(x: f64, near: f64, lo: f64, hi: f64) -> f64 {
+    let len = hi - lo;
+    if !(len.is_finite() && len > 0.0) {
+        return x;
+    }
+    let eps = 1e-7 * len;
+    if (x - lo).abs() <= eps && (hi - near) < (near - lo) {
+        x + len
+    } else if (hi - x).abs() <= eps && (near - lo) < (hi - near) {
+        x - len
+    } else {
+        x
     }
 }

@@ -99,7 +99,7 @@ impl Converter<'_> {
         let e = self.entity(id)?;
         let s = self.ctx.scale;
         let name = e.type_name();
-        if e.has("B_SPLINE_CURVE") || name == "B_SPLINE_CURVE_WITH_KNOTS" {
+        if e.has("B_SPLINE_CURVE") || name == "B_SPLINE_CURVE_WITH_KNOTS" || IMPLIED_KNOT_CURVES.contains(&name) {
             return Ok((Curve::BSpline(self.bspline_curve(id)?), false));
         }
         match name {
@@ -203,10 +203,12 @@ impl Converter<'_> {
 
     fn bspline_curve(&mut self, id: u64) -> R<BSplineCurve> {
         let e = self.entity(id)?;
-        // simple form: (name, degree, points, form, closed, self_int, mults, knots, spec)
+        // simple form: (name, degree, points, form, closed, self_int, mults, knots, spec), or
+        // without the last three for the forms whose knots are implied (QUASI_UNIFORM_CURVE ...)
         // complex form: B_SPLINE_CURVE(degree, points, ...) B_SPLINE_CURVE_WITH_KNOTS(mults, knots, spec)
         let (base, off) = match e.record("B_SPLINE_CURVE") {
             Some(r) => (Args { e, params: &r.params }, 0),
+            None if IMPLIED_KNOT_CURVES.contains(&e.type_name()) => (Args::of(e, e.type_name())?, 1),
             None => (Args::of(e, "B_SPLINE_CURVE_WITH_KNOTS")?, 1),
         };
         let degree = base.i64(off)?;
@@ -215,11 +217,11 @@ impl Converter<'_> {
         }
         let degree = degree as usize;
         let points = base.ids(off + 1)?.into_iter().map(|p| self.point(p)).collect::<R<Vec<_>>>()?;
-        let knots = if off == 1 {
+        let knots = if off == 1 && e.has("B_SPLINE_CURVE_WITH_KNOTS") {
             let m = base.i64s(6)?;
             let k = base.f64s(7)?;
             expand_knots(&k, &m).map_err(|w| drop_entity(e, w))?
-        } else if let Some(r) = e.record("B_SPLINE_CURVE_WITH_KNOTS") {
+        } else if let Some(r) = e.record("B_SPLINE_CURVE_WITH_KNOTS").filter(|_| off == 0) {
             let a = Args { e, params: &r.params };
             expand_knots(&a.f64s(1)?, &a.i64s(0)?).map_err(|w| drop_entity(e, w))?
         } else {
@@ -254,7 +256,7 @@ impl Converter<'_> {
     fn surface_inner(&mut self, id: u64) -> R<Surface> {
         let e = self.entity(id)?;
         let s = self.ctx.scale;
-        if e.has("B_SPLINE_SURFACE") || e.type_name() == "B_SPLINE_SURFACE_WITH_KNOTS" {
+        if e.has("B_SPLINE_SURFACE") || e.type_name() == "B_SPLINE_SURFACE_WITH_KNOTS" || IMPLIED_KNOT_SURFACES.contains(&e.type_name()) {
             return Ok(Surface::BSpline(self.bspline_surface(id)?));
         }
         let name = e.type_name();
@@ -330,9 +332,11 @@ impl Converter<'_> {
     fn bspline_surface(&mut self, id: u64) -> R<BSplineSurface> {
         let e = self.entity(id)?;
         // simple: (name, du, dv, points, form, uc, vc, si, um, vm, uk, vk, spec)
+        // or without the last five for the forms whose knots are implied (QUASI_UNIFORM_SURFACE ...)
         // complex: B_SPLINE_SURFACE(du, dv, points, form, uc, vc, si) B_SPLINE_SURFACE_WITH_KNOTS(um, vm, uk, vk, spec)
         let (base, off) = match e.record("B_SPLINE_SURFACE") {
             Some(r) => (Args { e, params: &r.params }, 0),
+            None if IMPLIED_KNOT_SURFACES.contains(&e.type_name()) => (Args::of(e, e.type_name())?, 1),
             None => (Args::of(e, "B_SPLINE_SURFACE_WITH_KNOTS")?, 1),
         };
         let (du, dv) = (base.i64(off)?, base.i64(off + 1)?);
@@ -353,11 +357,11 @@ impl Converter<'_> {
                 points.push(self.point(pid)?);
             }
         }
-        let (ku, kv) = if off == 1 {
+        let (ku, kv) = if off == 1 && e.has("B_SPLINE_SURFACE_WITH_KNOTS") {
             let ku = expand_knots(&base.f64s(10)?, &base.i64s(8)?).map_err(|w| drop_entity(e, format!("u knots: {w}")))?;
             let kv = expand_knots(&base.f64s(11)?, &base.i64s(9)?).map_err(|w| drop_entity(e, format!("v knots: {w}")))?;
             (ku, kv)
-        } else if let Some(r) = e.record("B_SPLINE_SURFACE_WITH_KNOTS") {
+        } else if let Some(r) = e.record("B_SPLINE_SURFACE_WITH_KNOTS").filter(|_| off == 0) {
             let a = Args { e, params: &r.params };
             let ku = expand_knots(&a.f64s(2)?, &a.i64s(0)?).map_err(|w| drop_entity(e, format!("u knots: {w}")))?;
             let kv = expand_knots(&a.f64s(3)?, &a.i64s(1)?).map_err(|w| drop_entity(e, format!("v knots: {w}")))?;
@@ -383,15 +387,23 @@ impl Converter<'_> {
     }
 }
 
+/// The simple B-spline curve entities whose knots are implied by their form (AP203/214/242:
+/// subtypes of `B_SPLINE_CURVE` beside `B_SPLINE_CURVE_WITH_KNOTS`); see [`implicit_knots`].
+const IMPLIED_KNOT_CURVES: [&str; 3] = ["UNIFORM_CURVE", "QUASI_UNIFORM_CURVE", "BEZIER_CURVE"];
+
+/// The same for surfaces.
+const IMPLIED_KNOT_SURFACES: [&str; 3] = ["UNIFORM_SURFACE", "QUASI_UNIFORM_SURFACE", "BEZIER_SURFACE"];
+
 /// Knots of the B-spline forms that give none: `BEZIER_*` (clamped, pieces of `degree`),
-/// `UNIFORM_*` (0, 1, 2, ...) and `QUASI_UNIFORM_*` (clamped uniform).
+/// `UNIFORM_*` (-degree, 1 - degree, ...) and `QUASI_UNIFORM_*` (clamped uniform).
 fn implicit_knots(e: &super::table::Entity, degree: usize, n: usize) -> R<Vec<f64>> {
     let has = |suffix: &str| e.records.iter().any(|r| r.name.starts_with(suffix));
     if n < degree + 1 {
         return Err(drop_entity(e, "too few control points"));
     }
     if has("UNIFORM_") {
-        return Ok((0..n + degree + 1).map(|k| k as f64).collect());
+        // ISO 10303-42: knots -degree, 1 - degree, ..., each once
+        return Ok((0..n + degree + 1).map(|k| k as f64 - degree as f64).collect());
     }
     if has("QUASI_UNIFORM_") || has("BEZIER_") {
         let inner = n - degree - 1;
