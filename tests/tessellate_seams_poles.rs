@@ -12,7 +12,10 @@
 //!   seam as above, then the certificate's own quadrature took the seam edge's sliver points
 //!   to the far end (a face 7 % short of its area);
 //! - a spherical triangle with a corner at the pole (bug33398.step): `u` taken across the pole
-//!   by the nearest turn made the loop seem to go once around the sphere.
+//!   by the nearest turn made the loop seem to go once around the sphere;
+//! - a sphere written as two lunes between meridians through both poles (PRO10363.stp): the
+//!   jump of `u` across the second pole is half a turn either way, and both faces took the same
+//!   half (the loop's sense decides it now).
 
 mod common;
 
@@ -27,6 +30,7 @@ const FILES: &[(&str, f64, usize)] = &[
     ("trj9_io1-sy-214.stp", 75169.9566586193, 1),
     ("trj10_ap209-td.stp", 247526.7163182121, 1),
     ("bug33398.step", 82220.62315323846, 4),
+    ("PRO10363.stp", 1701057.58994659, 4),
 ];
 
 #[test]

@@ -5,7 +5,7 @@
 
 use super::TessellateOptions;
 use super::edge_points::EdgePoints;
-use super::seams::{is_pole, open_poles, seam_sides};
+use super::seams::{is_pole, open_poles, seam_sides, unwrap_through_poles};
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
 use crate::core::cdt;
@@ -120,17 +120,12 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
         let analytic_pole = matches!(surf, Surface::Cone(_) | Surface::Sphere(_));
         if let Some(k) = (0..n).find(|&k| analytic_pole && n >= 3 && !goes_around && through_pole(k)) {
             pts.rotate_left(k + 1);
+            let face_left = face.same_sense == lp.orientation;
             if let Some(per) = dom.u_period {
-                let mut last = pts[0].0.x;
-                for pt in pts.iter_mut().skip(1) {
-                    if !is_pole(surf, pt.0) {
-                        pt.0.x = crate::cad::geom::unwrap_near(pt.0.x, last, per);
-                        last = pt.0.x;
-                    }
-                }
+                unwrap_through_poles(surf, &mut pts, per, face_left);
             }
             pts = open_poles(surf, pts);
-            loops.push(Mapped { pts, wrap: None, face_left: face.same_sense == lp.orientation });
+            loops.push(Mapped { pts, wrap: None, face_left });
             continue;
         }
         // closure: the last point comes back to the first, or a period away

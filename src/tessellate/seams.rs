@@ -80,3 +80,44 @@ pub(super) fn open_poles(surf: &Surface, pts: UvLoop) -> UvLoop {
     }
     out
 }
+
+/// Unwraps the `u` of a loop that ends at a pole from its first point on, pole points left
+/// out, and at each pole inside the loop (a lune between two meridians of a sphere passes
+/// both poles) takes the turn of `u` that the loop's sense asks for: across a pole `u` may
+/// jump by any amount, and the nearest turn is a guess (half a turn either way for a lune).
+/// Of the jumps by `0` and `±period`, the one whose polygon (poles opened) has the face on
+/// the side `face_left` says, with the least area, is kept.
+pub(super) fn unwrap_through_poles(surf: &Surface, pts: &mut UvLoop, per: f64, face_left: bool) {
+    let mut last = pts[0].0.x;
+    for pt in pts.iter_mut().skip(1) {
+        if !is_pole(surf, pt.0) {
+            pt.0.x = crate::cad::geom::unwrap_near(pt.0.x, last, per);
+            last = pt.0.x;
+        }
+    }
+    let n = pts.len();
+    for i in 1..n.saturating_sub(1) {
+        if !is_pole(surf, pts[i].0) || pts[i - 1].1 == pts[i].1 || pts[i + 1].1 == pts[i].1 {
+            continue;
+        }
+        let area = |shift: f64| {
+            let mut c = pts.clone();
+            for pt in c.iter_mut().skip(i + 1) {
+                pt.0.x += shift;
+            }
+            let poly: Vec<DVec2> = open_poles(surf, c).iter().map(|p| p.0).collect();
+            let n = poly.len();
+            (0..n).map(|k| poly[k].perp_dot(poly[(k + 1) % n])).sum::<f64>() / 2.0
+        };
+        let best = [0.0, per, -per]
+            .into_iter()
+            .map(|s| (s, area(s)))
+            .filter(|&(_, a)| (a > 0.0) == face_left)
+            .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()));
+        if let Some((shift, _)) = best.filter(|&(s, _)| s != 0.0) {
+            for pt in pts.iter_mut().skip(i + 1) {
+                pt.0.x += shift;
+            }
+        }
+    }
+}

@@ -311,3 +311,63 @@ fn a_sliver_between_close_arcs_is_meshed_by_splitting_its_crossing_chords() {
     assert!((total - polygon).abs() <= 1e-9 * polygon.abs().max(1e-12) + 1e-15, "triangles {total}, polygon {polygon}");
     assert!(polygon > 0.0, "the boundary polygon turns the wrong way: {polygon}");
 }
+
+/// A sphere of radius 10 about the origin written as two lunes between the meridians at
+/// azimuths `a1 < a2` (each a half circle from the north pole to the south pole), as several
+/// CAD systems write spheres: face 1 spans `u` in `(a1, a2)`, face 2 the rest.
+fn sphere_of_two_lunes(a1: f64, a2: f64) -> String {
+    let meridian = |k: usize, a: f64| {
+        let (c, s) = (a.cos(), a.sin());
+        format!(
+            "#{d1}=DIRECTION('',({:?},{:?},0.));#{d2}=DIRECTION('',({c:?},{s:?},0.));#{ax}=AXIS2_PLACEMENT_3D('',#1,#{d1},#{d2});\
+#{ci}=CIRCLE('',#{ax},10.);#{ec}=EDGE_CURVE('',#21,#22,#{ci},.T.);",
+            -s,
+            c,
+            d1 = 100 + 10 * k,
+            d2 = 101 + 10 * k,
+            ax = 102 + 10 * k,
+            ci = 103 + 10 * k,
+            ec = 104 + 10 * k
+        )
+    };
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('lunes','',(''),(''),'','','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=SPHERICAL_SURFACE('',#4,10.);\
+#11=CARTESIAN_POINT('',(0.,0.,10.));#12=CARTESIAN_POINT('',(0.,0.,-10.));#21=VERTEX_POINT('',#11);#22=VERTEX_POINT('',#12);\
+{}{}\
+#51=ORIENTED_EDGE('',*,*,#114,.T.);#52=ORIENTED_EDGE('',*,*,#124,.F.);#53=EDGE_LOOP('',(#51,#52));#54=FACE_OUTER_BOUND('',#53,.T.);\
+#55=ADVANCED_FACE('a',(#54),#5,.T.);\
+#61=ORIENTED_EDGE('',*,*,#124,.T.);#62=ORIENTED_EDGE('',*,*,#114,.F.);#63=EDGE_LOOP('',(#61,#62));#64=FACE_OUTER_BOUND('',#63,.T.);\
+#65=ADVANCED_FACE('b',(#64),#5,.T.);\
+#70=CLOSED_SHELL('',(#55,#65));#71=MANIFOLD_SOLID_BREP('',#70);\
+#80=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\
+#81=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#80)) REPRESENTATION_CONTEXT('','') );\
+#90=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#4,#71),#81);\nENDSEC;\nEND-ISO-10303-21;\n",
+        meridian(1, a1),
+        meridian(2, a2)
+    )
+}
+
+#[test]
+fn a_sphere_written_as_two_lunes_meshes_each_on_its_own_side() {
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    // lunes of half a turn (the jump across the poles is half a turn either way: the loop's
+    // sense decides) with a meridian on the seam, off it, and lunes of unequal width
+    for (a1, a2) in [(0.0, std::f64::consts::PI), (std::f64::consts::FRAC_PI_2, 1.5 * std::f64::consts::PI), (0.3, 2.0), (-2.5, 0.1)] {
+        let m = crate::cad::step::read_bytes(std::path::Path::new("lunes.stp"), sphere_of_two_lunes(a1, a2).as_bytes()).unwrap_or_else(|e| panic!("{a1} {a2}: {e}"));
+        let t = tessellate(&m, &TessellateOptions::default());
+        assert!(t.failed.is_empty(), "{a1} {a2}: {:?}", t.failed);
+        let cert = certify(&m, &t, &CertifyOptions::default());
+        assert!(cert.passed, "{a1} {a2}: {:?}", cert.failures.iter().take(5).collect::<Vec<_>>());
+        let want = 4.0 / 3.0 * std::f64::consts::PI * 1000.0;
+        assert!((cert.volume[0] / want - 1.0).abs() < 5e-3, "{a1} {a2}: volume {} against {want}", cert.volume[0]);
+        // every triangle of face 1 lies between the meridians, every one of face 2 outside
+        let s = &t.surface;
+        for (tr, tag) in s.triangles.iter().zip(&s.face_tags) {
+            let c = tr.iter().map(|&i| s.vertices[i as usize]).sum::<DVec3>() / 3.0;
+            let inside = (c.y.atan2(c.x) - a1).rem_euclid(std::f64::consts::TAU) < a2 - a1;
+            assert_eq!(inside, *tag == FaceId(1), "{a1} {a2}: a triangle of face {tag:?} at {c} is on the wrong side");
+        }
+    }
+}
