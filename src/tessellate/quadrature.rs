@@ -91,10 +91,10 @@ fn triangle(surf: &Surface, t: [DVec2; 3], c: DVec3, acc: &mut FaceIntegrals) {
     let (mut a, mut v) = (0.0, 0.0);
     for (b, w) in RULE {
         let q = t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
-        let (su, sv) = surf.first_derivatives(q.x, q.y);
+        let (p, su, sv) = surf.point_and_tangents(q.x, q.y);
         let n = su.cross(sv);
         a += w * n.length();
-        v += w * (surf.point(q.x, q.y) - c).dot(n);
+        v += w * (p - c).dot(n);
     }
     acc.area += det * a;
     acc.volume += det * v / 3.0;

@@ -73,13 +73,21 @@ impl BSplineSurface {
 
     /// Point and derivatives up to second order at `(u, v)`.
     pub fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        self.derivs_to(u, v, 2)
+    }
+
+    /// Point and derivatives up to order `nd` (0, 1 or 2) at `(u, v)`; the higher ones zero.
+    /// The point alone costs about a third of all derivatives (the quadrature of the
+    /// certificate and of the volume check evaluates millions of them).
+    pub fn derivs_to(&self, u: f64, v: f64, nd: usize) -> SurfaceDerivs {
+        let nd = nd.min(2);
         let [pu, pv] = self.degree;
         let su = find_span(&self.knots_u, pu, self.nu, u);
         let sv = find_span(&self.knots_v, pv, self.nv, v);
         let mut bu = [[0.0; MAX_DEGREE + 1]; 3];
         let mut bv = [[0.0; MAX_DEGREE + 1]; 3];
-        basis_derivatives(&self.knots_u, pu, su, u, 2, &mut bu);
-        basis_derivatives(&self.knots_v, pv, sv, v, 2, &mut bv);
+        basis_derivatives(&self.knots_u, pu, su, u, nd, &mut bu);
+        basis_derivatives(&self.knots_v, pv, sv, v, nd, &mut bv);
         // homogeneous sums: a[k][l] = Σ N^(k) M^(l) w P, w[k][l] = Σ N^(k) M^(l) w
         let mut a = [[DVec3::ZERO; 3]; 3];
         let mut w = [[0.0f64; 3]; 3];
@@ -94,13 +102,13 @@ impl BSplineSurface {
                     Some(ws) => (self.points[idx] * ws[idx], ws[idx]),
                     None => (self.points[idx], 1.0),
                 };
-                for l in 0..3 {
+                for l in 0..=nd {
                     ra[l] += bv[l][j] * q;
                     rw[l] += bv[l][j] * wt;
                 }
             }
-            for k in 0..3 {
-                for l in 0..3 - k {
+            for k in 0..=nd {
+                for l in 0..=nd - k {
                     a[k][l] += bu[k][i] * ra[l];
                     w[k][l] += bu[k][i] * rw[l];
                 }
@@ -122,7 +130,7 @@ impl BSplineSurface {
 
     /// Point at `(u, v)`.
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
-        self.derivs(u, v).p
+        self.derivs_to(u, v, 0).p
     }
 
     fn rows_equal(&self, a: usize, b: usize, along_u: bool) -> bool {

@@ -139,8 +139,18 @@ impl Surface {
 
     /// First partial derivatives `(∂S/∂u, ∂S/∂v)`.
     pub fn first_derivatives(&self, u: f64, v: f64) -> (DVec3, DVec3) {
-        let d = self.derivs(u, v);
-        (d.du, d.dv)
+        let (_, du, dv) = self.point_and_tangents(u, v);
+        (du, dv)
+    }
+
+    /// The point and the first partial derivatives at `(u, v)` in one evaluation (a
+    /// B-spline's without the second derivatives).
+    pub fn point_and_tangents(&self, u: f64, v: f64) -> (DVec3, DVec3, DVec3) {
+        let d = match self {
+            Surface::BSpline(s) => s.derivs_to(u, v, 1),
+            _ => self.derivs(u, v),
+        };
+        (d.p, d.du, d.dv)
     }
 
     /// The unit normal of the parametrization, `∂S/∂u × ∂S/∂v` normalised (a face's outward
