@@ -123,7 +123,16 @@ pub fn face_integrals(model: &Model, fid: FaceId, domain: &FaceDomain, edges: &[
         let mut prev = ua;
         for j in 1..=n {
             let s = j as f64 / n as f64;
-            let q = if j == n { ub } else { surf.project_near(curve.point(ta + (tb - ta) * s), ua + (ub - ua) * s) };
+            let (pt, near) = (curve.point(ta + (tb - ta) * s), ua + (ub - ua) * s);
+            // a B-spline's Newton from the chord's (u, v) alone: an edge point just off the
+            // surface sent project_near to its global search (four starts) nearly every time
+            let q = if j == n {
+                ub
+            } else if matches!(surf, Surface::BSpline(_)) {
+                surf.refine(pt, near)
+            } else {
+                surf.project_near(pt, near)
+            };
             if !q.is_finite() {
                 break;
             }

@@ -24,13 +24,13 @@ const REFINE_POINTS: usize = 200_000;
 fn deviation(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3], free_edge: [bool; 3], cos_max: f64) -> f64 {
     let Some(n) = (p[1] - p[0]).cross(p[2] - p[0]).try_normalize() else { return 0.0 };
     let c = (uv[0] + uv[1] + uv[2]) / 3.0;
-    let (su, sv) = surf.first_derivatives(c.x, c.y);
+    let (sp, su, sv) = surf.point_and_tangents(c.x, c.y);
     if let Some(sn) = su.cross(sv).try_normalize() {
         if n.dot(sn) < cos_max {
             return f64::INFINITY;
         }
     }
-    let mut d = (surf.point(c.x, c.y) - p[0]).dot(n).abs();
+    let mut d = (sp - p[0]).dot(n).abs();
     for i in 0..3 {
         if free_edge[i] {
             let m = 0.5 * (uv[i] + uv[(i + 1) % 3]);

@@ -21,6 +21,7 @@ pub struct BSplineSurface {
     points: Vec<DVec3>,
     weights: Option<Vec<f64>>,
     samples: OnceLock<SurfaceSamples>,
+    dom: OnceLock<SurfaceDomain>,
 }
 
 impl BSplineSurface {
@@ -43,7 +44,7 @@ impl BSplineSurface {
         check_knots(degree_v, &knots_v, nv).map_err(|e| format!("v: {e}"))?;
         // all weights equal: polynomial
         let weights = check_points_weights(&points, weights)?;
-        Ok(BSplineSurface { degree: [degree_u, degree_v], knots_u, knots_v, nu, nv, points, weights, samples: OnceLock::new() })
+        Ok(BSplineSurface { degree: [degree_u, degree_v], knots_u, knots_v, nu, nv, points, weights, samples: OnceLock::new(), dom: OnceLock::new() })
     }
 
     /// Degrees in `u` and `v`.
@@ -145,6 +146,11 @@ impl BSplineSurface {
     /// The knot ranges; `u_closed` / `v_closed` when the first and last rows of control points
     /// coincide. Never periodic (parameters are not wrapped).
     pub fn domain(&self) -> SurfaceDomain {
+        // kept: every projection asks, and the closed test compares all control points
+        *self.dom.get_or_init(|| self.domain_uncached())
+    }
+
+    fn domain_uncached(&self) -> SurfaceDomain {
         let [pu, pv] = self.degree;
         SurfaceDomain {
             u: Interval::new(self.knots_u[pu], self.knots_u[self.nu]),
@@ -191,6 +197,7 @@ impl BSplineSurface {
         BSplineSurface {
             points: self.points.iter().map(|&p| t.apply_point(p)).collect(),
             samples: OnceLock::new(),
+            dom: OnceLock::new(),
             ..self.clone()
         }
     }
