@@ -5,7 +5,7 @@
 # seconds (timed inside one Python process, start-up not counted), the ratio, both triangle
 # counts; then totals and the overall ratio fepre / OCC. See tools/ref/occ_tessellate_time.py.
 #
-# Usage: tools/bench_tessellate_occ.sh [--angle RAD] [--parallel] [--warm-up] [--timeout S]
+# Usage: tools/bench_tessellate_occ.sh [--angle RAD] [--parallel] [--repeat N] [--warm-up] [--timeout S]
 #                                      [--json FILE] [CORPUS_DIR]
 #   default corpus: $FEPRE_CORPUS, else ../shared/cad_corpus beside the checkout
 #   Python with cadquery-ocp: $OCP_PYTHON, else /work/main/.venv/bin/python, else python3
@@ -16,7 +16,7 @@ corpus="${FEPRE_CORPUS:-$root/../shared/cad_corpus}"
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --angle|--timeout|--json) args+=("$1" "$2"); shift 2 ;;
+    --angle|--timeout|--json|--repeat) args+=("$1" "$2"); shift 2 ;;
     --parallel|--warm-up) args+=("$1"); shift ;;
     *) corpus="$1"; shift ;;
   esac

@@ -13,9 +13,10 @@ largest tangent turn along an edge segment; OCC's own default is 0.5). A file ei
 fails on is reported, never a crash. Triangles are counted outside the timings.
 
 Usage: python tools/ref/occ_tessellate_time.py FEPRE CORPUS_DIR [--angle RAD] [--parallel]
-         [--timeout S] [--warm-up]
+         [--repeat N] [--timeout S] [--warm-up] [--json FILE]
   (cadquery-ocp 8.0.1, e.g. /work/main/.venv/bin/python). --parallel: BRepMesh in parallel
-  (default off: fepre tessellates on one thread). --warm-up: read and mesh the smallest file
+  (default off: fepre tessellates on one thread). --repeat N: each file N times (fepre, OCC,
+  fepre, OCC, ...), every figure the median of the N (default 1). --warm-up: read and mesh the smallest file
   once, untimed, before the run (OCC's one-time STEP initialisation is otherwise charged to the
   first file). --timeout: seconds per fepre run (default 600).
 """
@@ -141,6 +142,21 @@ def run_occ(path, chord, angle, parallel):
     return r
 
 
+def median_of(runs):
+    """The per-key median of the runs' numbers (a key missing from any run: the first run's
+    value); the statuses joined."""
+    out = dict(runs[0])
+    for k, v in runs[0].items():
+        xs = [r[k] for r in runs]
+        if k == 'status':
+            out[k] = '; '.join(dict.fromkeys(x for x in xs if x))
+        elif all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in xs):
+            xs = sorted(xs)
+            n = len(xs)
+            out[k] = xs[n // 2] if n % 2 else type(xs[0])((xs[n // 2 - 1] + xs[n // 2]) / 2)
+    return out
+
+
 def fmt(x, spec='.3f'):
     return '-' if x is None else format(x, spec)
 
@@ -152,6 +168,7 @@ def main():
     ap.add_argument('--angle', type=float, default=math.radians(20.0))
     ap.add_argument('--parallel', action='store_true')
     ap.add_argument('--timeout', type=float, default=600.0)
+    ap.add_argument('--repeat', type=int, default=1)
     ap.add_argument('--warm-up', action='store_true')
     ap.add_argument('--json', metavar='FILE', help='also write the per-file figures as JSON lines')
     a = ap.parse_args()
@@ -167,6 +184,8 @@ def main():
             pass
     print(f'corpus {a.corpus}: {len(files)} STEP files; fepre {a.fepre}')
     print(f'OCC: STEPControl_Reader + BRepMesh_IncrementalMesh(linear = fepre chord_mm, absolute; angular {a.angle:.4f} rad = {math.degrees(a.angle):.1f} deg; parallel {a.parallel})')
+    if a.repeat > 1:
+        print(f'every figure the median of {a.repeat} runs of the file; totals the sums of the medians')
     print('fepre s = read + tessellate + certify as fepre reports them; wall = the fepre process, start-up and STL write included')
     hdr = f"{'file':<30} {'fepre s':>8} {'read':>6} {'tess':>6} {'cert':>6} {'wall':>6} {'OCC s':>7} {'read':>6} {'mesh':>6} {'ratio':>6} {'fepre tri':>10} {'OCC tri':>10} {'chord mm':>9}  status"
     print(hdr)
@@ -178,8 +197,11 @@ def main():
         out = os.path.join(tmp, 'x.stl')
         for f in files:
             path = os.path.join(a.corpus, f)
-            fr = run_fepre(a.fepre, path, out, a.timeout)
-            orr = run_occ(path, fr['chord'], a.angle, a.parallel)
+            frs, ors = [], []
+            for _ in range(max(1, a.repeat)):
+                frs.append(run_fepre(a.fepre, path, out, a.timeout))
+                ors.append(run_occ(path, frs[-1]['chord'], a.angle, a.parallel))
+            fr, orr = median_of(frs), median_of(ors)
             status = '; '.join(s for s in (fr['status'], orr['status']) if s)
             # the chord fepre used against 2e-4 of OCC's box: a unit or box mismatch shows here
             if fr['chord'] and orr['diag'] and abs(fr['chord'] / (2e-4 * orr['diag']) - 1) > 0.05:
