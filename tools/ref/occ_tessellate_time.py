@@ -111,6 +111,26 @@ def occ_triangles(shape):
     return n, bare
 
 
+class quiet_fds:
+    """OCC's own messages (parse errors of a broken file) written to the C streams are
+    dropped while it runs, so that they do not break the table."""
+
+    def __enter__(self):
+        sys.stdout.flush()
+        sys.stderr.flush()
+        self.saved = [os.dup(1), os.dup(2)]
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, 1)
+        os.dup2(null, 2)
+        os.close(null)
+
+    def __exit__(self, *exc):
+        for fd, saved in zip((1, 2), self.saved):
+            os.dup2(saved, fd)
+            os.close(saved)
+        return False
+
+
 def run_occ(path, chord, angle, parallel):
     """OCC's figures for one file: read and mesh seconds, triangles, status. `chord` None: 2e-4
     of OCC's own bounding-box diagonal (fepre gave none)."""
@@ -190,6 +210,7 @@ def main():
     hdr = f"{'file':<30} {'fepre s':>8} {'read':>6} {'tess':>6} {'cert':>6} {'wall':>6} {'OCC s':>7} {'read':>6} {'mesh':>6} {'ratio':>6} {'fepre tri':>10} {'OCC tri':>10} {'chord mm':>9}  status"
     print(hdr)
     print('-' * len(hdr))
+    per_file = []  # (fepre seconds, file) of the files in the totals
     tot = dict(fp=0.0, fw=0.0, fr=0.0, ft=0.0, fc=0.0, occ=0.0, orr=0.0, om=0.0, ftri=0, otri=0, n=0)
     failed = []
     log = open(a.json, 'w') if a.json else None
@@ -200,7 +221,8 @@ def main():
             frs, ors = [], []
             for _ in range(max(1, a.repeat)):
                 frs.append(run_fepre(a.fepre, path, out, a.timeout))
-                ors.append(run_occ(path, frs[-1]['chord'], a.angle, a.parallel))
+                with quiet_fds():
+                    ors.append(run_occ(path, frs[-1]['chord'], a.angle, a.parallel))
             fr, orr = median_of(frs), median_of(ors)
             status = '; '.join(s for s in (fr['status'], orr['status']) if s)
             # the chord fepre used against 2e-4 of OCC's box: a unit or box mismatch shows here
@@ -216,6 +238,7 @@ def main():
                 failed.append(f)
                 continue
             tot['n'] += 1
+            per_file.append((fr['phases'], f, fr['tess'], fr['cert']))
             tot['fp'] += fr['phases']
             tot['fw'] += fr['wall']
             tot['fr'] += fr['read']
@@ -234,6 +257,9 @@ def main():
     print(f"fepre read+tessellate+certify {tot['fp']:.3f} s (process wall {tot['fw']:.3f} s), OCC read+BRepMesh {tot['occ']:.3f} s: "
           f"ratio {tot['fp'] / tot['occ'] if tot['occ'] else float('nan'):.2f} (wall {tot['fw'] / tot['occ'] if tot['occ'] else float('nan'):.2f}); "
           f"triangles fepre {tot['ftri']}, OCC {tot['otri']}")
+    if per_file and tot['fp'] > 0:
+        top = sorted(per_file, reverse=True)[:5]
+        print('slowest in fepre: ' + ', '.join(f"{f} {t:.3f} s ({100 * t / tot['fp']:.0f} %: tessellate {ts:.3f}, certify {c:.3f})" for t, f, ts, c in top))
     if failed:
         print(f"left out of the totals (failed or tessellated-only in either tool): {', '.join(failed)}")
 
