@@ -8,7 +8,7 @@
 # Usage: tools/bench_tessellate_occ.sh [--angle RAD] [--parallel] [--repeat N] [--warm-up] [--timeout S]
 #                                      [--json FILE] [CORPUS_DIR]
 #   default corpus: $FEPRE_CORPUS, else ../shared/cad_corpus beside the checkout
-#   Python with cadquery-ocp: $OCP_PYTHON, else /work/main/.venv/bin/python, else python3
+#   Python with cadquery-ocp: $OCP_PYTHON, else .venv/bin/python in the checkout, else python3
 #   cargo's target folder: $CARGO_TARGET_DIR, else target/ in the checkout
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -24,7 +24,7 @@ done
 [ -d "$corpus" ] || { echo "no corpus at $corpus (set FEPRE_CORPUS or pass the folder)"; exit 1; }
 py="${OCP_PYTHON:-}"
 if [ -z "$py" ]; then
-  if [ -x /work/main/.venv/bin/python ]; then py=/work/main/.venv/bin/python; else py=python3; fi
+  if [ -x "$root/.venv/bin/python" ]; then py="$root/.venv/bin/python"; else py=python3; fi
 fi
 "$py" -c 'import OCP' 2>/dev/null || { echo "$py cannot import OCP (pip install cadquery-ocp; or set OCP_PYTHON)"; exit 1; }
 target="${CARGO_TARGET_DIR:-$root/target}"

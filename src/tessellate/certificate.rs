@@ -55,7 +55,7 @@
 //!   whole surface's is their sum.
 
 use super::Tessellation;
-use super::quadrature::{SegmentIndex, face_integrals};
+use super::quadrature::{FaceIntegrals, SegmentIndex, face_integrals, oriented};
 use super::reached::face_deviation;
 use crate::cad::brep::{EntityRef, Model};
 use crate::core::FaceId;
@@ -64,6 +64,7 @@ use crate::mesh::topology::{ReportOptions, intersecting_pairs, surface_report};
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
 use serde::Serialize;
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// The largest share of a closed group's volume its triangles may be off the B-rep's (the
@@ -384,8 +385,28 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
     let mut g_band = vec![0.0f64; ngroups];
     let mut g_worst: Vec<Option<(f64, f64, FaceId)>> = vec![None; ngroups];
     let mut deviation_max: f64 = 0.0;
+    // the quadrature and the deviation reached, face by face on every core (the sums below
+    // run in face order: the same bits for any thread count)
+    let measured: Vec<Option<(FaceIntegrals, f64)>> = t
+        .domains
+        .par_iter()
+        .enumerate()
+        .map(|(f, dom)| {
+            let dom = dom.as_ref()?;
+            let fid = FaceId::from_index(f);
+            let tris = s.triangles.get(dom.triangles.clone()).unwrap_or(&[]);
+            // the volume check's where it made them for this tessellation (about the same
+            // centre), else here
+            let q = match t.quadrature.get(f).copied().flatten() {
+                Some(q) => oriented(model, fid, q),
+                None => face_integrals(model, fid, dom, &t.edges, &index, centre),
+            };
+            let corners: Vec<[DVec3; 3]> = tris.iter().map(|tr| tr.map(|i| s.vertices.get(i as usize).copied().unwrap_or(DVec3::NAN))).collect();
+            Some((q, face_deviation(model, fid, dom, &corners, &t.edges, &index)))
+        })
+        .collect();
     for (f, dom) in t.domains.iter().enumerate() {
-        let Some(dom) = dom else { continue };
+        let (Some(dom), Some((q, dev))) = (dom, measured[f]) else { continue };
         let fid = FaceId::from_index(f);
         let g = group[f] as usize;
         let tris = s.triangles.get(dom.triangles.clone()).unwrap_or(&[]);
@@ -395,9 +416,6 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             a_mesh += (b - a).cross(c - a).length() / 2.0;
             v_mesh += a.dot(b.cross(c)) / 6.0;
         }
-        let q = face_integrals(model, fid, dom, &t.edges, &index, centre);
-        let corners: Vec<[DVec3; 3]> = tris.iter().map(|tr| tr.map(|i| s.vertices.get(i as usize).copied().unwrap_or(DVec3::NAN))).collect();
-        let dev = face_deviation(model, fid, dom, &corners, &t.edges, &index);
         deviation_max = deviation_max.max(dev);
         let band = q.area.abs() * dev;
         g_band[g] += band;

@@ -5,6 +5,7 @@
 
 use super::TessellateOptions;
 use super::edge_points::EdgePoints;
+use super::face_vertices::FaceVertices;
 use super::seams::{is_pole, open_poles, seam_sides, unwrap_through_poles};
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
@@ -55,7 +56,7 @@ struct Mapped {
 }
 
 /// The loops of face `fid` in `(u, v)`.
-fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3]) -> Result<Vec<Mapped>, String> {
+fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVertices) -> Result<Vec<Mapped>, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let dom = surf.domain();
@@ -149,7 +150,7 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &[DVec3
 /// The boundary of a face without edge loops (a whole sphere or torus): the rectangle of the
 /// surface's bounded domain, its periodic sides sharing vertices and its collapsed sides
 /// (poles) a single vertex, so the mesh closes on itself.
-fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut Vec<DVec3>) -> Result<UvLoop, String> {
+fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut FaceVertices) -> Result<UvLoop, String> {
     let surf = model.surface(model.face(fid).surface);
     let dom = surf.domain();
     if !(dom.u.is_bounded() && dom.v.is_bounded()) {
@@ -167,7 +168,7 @@ fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut Vec<DVe
     };
     let (pole0, pole1) = (collapsed(0), collapsed(nv));
     let mut ids: std::collections::HashMap<(usize, usize), u32> = std::collections::HashMap::new();
-    let mut id_of = |i: usize, j: usize, vertices: &mut Vec<DVec3>| -> u32 {
+    let mut id_of = |i: usize, j: usize, vertices: &mut FaceVertices| -> u32 {
         let mut key = (i, j);
         if dom.u_period.is_some() && key.0 == nu {
             key.0 = 0;
@@ -184,8 +185,7 @@ fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut Vec<DVe
             match model.vertices.iter().position(|v| (v.point - p).length() <= 1e-9 * (1.0 + p.length())) {
                 Some(k) => k as u32,
                 None => {
-                    vertices.push(p);
-                    vertices.len() as u32 - 1
+                    vertices.push(p)
                 }
             }
         })
@@ -252,7 +252,7 @@ fn signed_area(p: &[DVec2]) -> f64 {
 /// its apex, a spherical cap). The cut runs between existing boundary vertices, so no vertex
 /// is added on an edge and the surface stays watertight.
 #[allow(clippy::too_many_arguments)]
-fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<Vec<UvLoop>, String> {
+fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut FaceVertices) -> Result<Vec<UvLoop>, String> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let dom = surf.domain();
@@ -328,8 +328,7 @@ fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_stra
             let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, b0, tol, max_straight, size)
                 .into_iter()
                 .map(|uv| {
-                    vertices.push(surf.point(uv.x, uv.y));
-                    (uv, vertices.len() as u32 - 1)
+                    (uv, vertices.push(surf.point(uv.x, uv.y)))
                 })
                 .collect();
             let mut poly = pa.clone();
@@ -378,16 +377,14 @@ fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_stra
             let pid = match model.vertices.iter().position(|v| (v.point - pole).length() <= 1e-9 * (1.0 + pole.length())) {
                 Some(k) => k as u32,
                 None => {
-                    vertices.push(pole);
-                    vertices.len() as u32 - 1
+                    vertices.push(pole)
                 }
             };
             // points along the cut from a0 to the pole, shared by its two sides
             let cut: Vec<(DVec2, u32)> = iso_points(surf, a0.0, DVec2::new(a0.0.x, vp), tol, max_straight, size)
                 .into_iter()
                 .map(|uv| {
-                    vertices.push(surf.point(uv.x, uv.y));
-                    (uv, vertices.len() as u32 - 1)
+                    (uv, vertices.push(surf.point(uv.x, uv.y)))
                 })
                 .collect();
             let mut poly = a.pts.clone();
@@ -531,12 +528,12 @@ impl std::fmt::Display for FaceError {
 }
 
 /// The triangles of one face, with global vertex indices (new interior vertices appended to
-/// `vertices`), oriented outward by the face's sense.
+/// `vertices`, the face's own), oriented outward by the face's sense.
 ///
 /// # Errors
 /// Why the face could not be meshed: crossing boundary segments, or a message.
 #[allow(clippy::too_many_arguments)]
-pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Result<FaceMesh, FaceError> {
+pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut FaceVertices) -> Result<FaceMesh, FaceError> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let loops = uv_loops(model, fid, edges, tol, max_straight, size, vertices)?;
@@ -640,8 +637,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
         ids.push(match d.id {
             Some(id) => id,
             None => {
-                vertices.push(d.p3);
-                vertices.len() as u32 - 1
+                vertices.push(d.p3)
             }
         });
     }

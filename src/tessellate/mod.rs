@@ -26,6 +26,7 @@ pub mod certificate;
 mod crossings;
 pub mod edge_points;
 pub mod face_mesh;
+mod face_vertices;
 pub mod orient;
 mod seams;
 mod feature_size;
@@ -45,6 +46,8 @@ use crate::core::{FaceId, FaceNames, SizeField};
 use crate::mesh::TriSurface;
 use edge_points::EdgePoints;
 use glam::DVec3;
+use face_vertices::FaceVertices;
+use rayon::prelude::*;
 
 /// Tessellation criteria.
 #[derive(Clone, Debug, PartialEq)]
@@ -135,6 +138,10 @@ pub struct Tessellation {
     /// The chord asked of each face (index `FaceId - 1`), mm: `chord`, or less on slender
     /// and thin solids ([`TessellateOptions::volume_relative`]).
     pub face_chords: Vec<f64>,
+    /// Per face (index `FaceId - 1`), the B-rep's own area and volume term over its domain
+    /// ([`quadrature::surface_integrals`] about the centre of the model's bounds) where the
+    /// volume check computed them for this tessellation; the certificate computes the rest.
+    pub quadrature: Vec<Option<quadrature::FaceIntegrals>>,
 }
 
 /// Tessellates every face of `model` by the chord and angle criteria: triangles follow the
@@ -166,7 +173,11 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
     let mut t = tessellate_chords(model, opts, size, tol, &chords);
     let mut prev_loss = Vec::new();
     for _ in 0..volume_chord::ROUNDS {
-        let Some(next) = volume_chord::shrink_chords(model, &t, &chords, tol, opts.volume_relative, aim, &mut prev_loss) else { break };
+        let (next, quadrature) = volume_chord::shrink_chords(model, &t, &chords, tol, opts.volume_relative, aim, &mut prev_loss);
+        let Some(next) = next else {
+            t.quadrature = quadrature;
+            break;
+        };
         chords = next;
         t = tessellate_chords(model, opts, size, tol, &chords);
     }
@@ -225,7 +236,7 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         let mut meshed = mesh_faces(model, &edges, tol, face_chord, max_straight, opts, size, &mut vertices);
         if meshed.split.iter().all(Vec::is_empty) || round == SPLIT_ROUNDS {
             let Meshed { triangles, face_tags, face_names, failed, domains, .. } = meshed;
-            return Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol, face_chords: face_chord.to_vec() };
+            return Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol, face_chords: face_chord.to_vec(), quadrature: vec![None; model.faces.len()] };
         }
         // the faces' interior vertices go: the next round makes them again
         vertices.truncate(edge_vertices);
@@ -265,10 +276,35 @@ fn mesh_faces(model: &Model, edges: &[EdgePoints], tol: f64, face_chord: &[f64],
         }
     }
     let mut out = Meshed { triangles: Vec::new(), face_tags: Vec::new(), face_names: FaceNames::new(), failed: Vec::new(), domains: Vec::with_capacity(model.faces.len()), split: vec![Vec::new(); edges.len()] };
-    for fid in model.face_ids() {
+    // the faces side by side, each on the shared edge points with its own new points; then
+    // gathered in face order, own points numbered after the points before them: the same
+    // ids, and bits, as one face after the other
+    let shared = vertices.len();
+    let faces: Vec<FaceId> = model.face_ids().collect();
+    let meshes: Vec<(Result<face_mesh::FaceMesh, face_mesh::FaceError>, Vec<DVec3>)> = faces
+        .par_iter()
+        .map(|&fid| {
+            let chord = fid.index().and_then(|k| face_chord.get(k)).copied().unwrap_or(tol);
+            let mut own = FaceVertices::new(vertices);
+            let r = face_mesh::mesh_face(model, fid, edges, chord, max_straight, opts, size, &mut own);
+            (r, own.into_own())
+        })
+        .collect();
+    for (&fid, (r, own)) in faces.iter().zip(meshes) {
         let face = model.face(fid);
-        let chord = fid.index().and_then(|k| face_chord.get(k)).copied().unwrap_or(tol);
-        match face_mesh::mesh_face(model, fid, edges, chord, max_straight, opts, size, vertices) {
+        let start = vertices.len();
+        let id = |i: u32| FaceVertices::renumber(i, shared, start);
+        vertices.extend(own);
+        let r = r.map(|mut fm| {
+            for t in &mut fm.triangles {
+                *t = t.map(id);
+            }
+            for (ab, _) in &mut fm.boundary {
+                *ab = ab.map(id);
+            }
+            fm
+        });
+        match r {
             Ok(fm) => {
                 let start = out.triangles.len();
                 out.face_tags.extend(std::iter::repeat_n(fid, fm.triangles.len()));
@@ -281,6 +317,7 @@ fn mesh_faces(model: &Model, edges: &[EdgePoints], tol: f64, face_chord: &[f64],
             Err(why) => {
                 if let face_mesh::FaceError::Crossing(segs) = &why {
                     for &[a, b] in segs {
+                        let (a, b) = (id(a), id(b));
                         if let Some(&(e, k)) = segment.get(&(a.min(b), a.max(b))) {
                             out.split[e].push(k);
                         }

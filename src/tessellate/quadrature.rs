@@ -103,6 +103,19 @@ fn triangle(surf: &Surface, t: [DVec2; 3], c: DVec3, acc: &mut FaceIntegrals) {
 /// The area and volume term of face `fid` over its domain triangulation, the volume term
 /// relative to the point `c`.
 pub fn face_integrals(model: &Model, fid: FaceId, domain: &FaceDomain, edges: &[EdgePoints], index: &SegmentIndex, c: DVec3) -> FaceIntegrals {
+    oriented(model, fid, surface_integrals(model, fid, domain, edges, index, c))
+}
+
+/// Integrals of [`surface_integrals`] with the face's sense: the volume term negated where
+/// the face is reversed on its surface.
+pub fn oriented(model: &Model, fid: FaceId, q: FaceIntegrals) -> FaceIntegrals {
+    let sign = if model.face(fid).same_sense { 1.0 } else { -1.0 };
+    FaceIntegrals { area: q.area, volume: sign * q.volume }
+}
+
+/// [`face_integrals`] with the surface's normal, whatever the face's sense (what the
+/// tessellator keeps: turning a shell inside out changes the sense, not these).
+pub fn surface_integrals(model: &Model, fid: FaceId, domain: &FaceDomain, edges: &[EdgePoints], index: &SegmentIndex, c: DVec3) -> FaceIntegrals {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let mut acc = FaceIntegrals::default();
@@ -140,6 +153,5 @@ pub fn face_integrals(model: &Model, fid: FaceId, domain: &FaceDomain, edges: &[
             prev = q;
         }
     }
-    let sign = if face.same_sense { 1.0 } else { -1.0 };
-    FaceIntegrals { area: acc.area, volume: sign * acc.volume }
+    acc
 }

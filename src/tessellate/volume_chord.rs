@@ -26,10 +26,11 @@
 
 use super::Tessellation;
 use super::certificate::face_groups;
-use super::quadrature::{SegmentIndex, face_integrals};
+use super::quadrature::{FaceIntegrals, SegmentIndex, oriented, surface_integrals};
 use crate::cad::brep::Model;
 use crate::core::FaceId;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Tessellations again at most (after the first).
 pub(super) const ROUNDS: usize = 2;
@@ -44,10 +45,11 @@ pub(super) const MAX_LOSS: f64 = 0.2;
 /// within `eta` of its B-rep volume, or no chord can shrink further (module docs).
 ///
 /// `aim` is the share of `eta` aimed at (0.75; 0.9 before a size field); `prev_loss` holds
-/// each group's volume error in the last round (empty before the first).
-pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol: f64, eta: f64, aim: f64, prev_loss: &mut Vec<Option<f64>>) -> Option<Vec<f64>> {
+/// each group's volume error in the last round (empty before the first). Also the faces'
+/// integrals it computed for `t` ([`Tessellation::quadrature`]; `None` elsewhere).
+pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol: f64, eta: f64, aim: f64, prev_loss: &mut Vec<Option<f64>>) -> (Option<Vec<f64>>, Vec<Option<FaceIntegrals>>) {
     if !(eta > 0.0 && tol > 0.0) || chords.len() != model.faces.len() {
-        return None;
+        return (None, vec![None; model.faces.len()]);
     }
     let (group, ngroups) = face_groups(model);
     let mut closed = vec![false; ngroups];
@@ -84,13 +86,21 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
     // the B-rep's volume by quadrature, only where the band could cut more than `eta` (or
     // is not a number)
     let suspect: Vec<bool> = (0..ngroups).map(|g| !(band[g] <= eta * volume[g][0].abs())).collect();
-    for (f, dom) in t.domains.iter().enumerate() {
-        let Some(dom) = dom else { continue };
-        let g = group[f] as usize;
-        if !(closed[g] && meshed[g] && suspect[g]) {
-            continue;
+    // face by face on every core, summed in face order (the same bits for any thread count)
+    let quadrature: Vec<Option<FaceIntegrals>> = t
+        .domains
+        .par_iter()
+        .enumerate()
+        .map(|(f, dom)| {
+            let g = group[f] as usize;
+            let dom = dom.as_ref().filter(|_| closed[g] && meshed[g] && suspect[g])?;
+            Some(surface_integrals(model, FaceId::from_index(f), dom, &t.edges, &index, centre))
+        })
+        .collect();
+    for (f, q) in quadrature.iter().enumerate() {
+        if let Some(q) = q {
+            volume[group[f] as usize][1] += oriented(model, FaceId::from_index(f), *q).volume;
         }
-        volume[g][1] += face_integrals(model, FaceId::from_index(f), dom, &t.edges, &index, centre).volume;
     }
     prev_loss.resize(ngroups, None);
     let floor = tol / MAX_SHRINK;
@@ -110,7 +120,7 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
         })
         .collect();
     let next: Vec<f64> = chords.iter().enumerate().map(|(f, &d)| (d * factor[group[f] as usize]).max(floor).min(d)).collect();
-    next.iter().zip(chords).any(|(n, d)| n < d).then_some(next)
+    (next.iter().zip(chords).any(|(n, d)| n < d).then_some(next), quadrature)
 }
 
 /// The chord of every edge: the smallest of the faces that use it, `tol` for an edge no face
