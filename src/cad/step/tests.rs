@@ -95,10 +95,10 @@ fn square_face_in_metres_is_scaled_to_mm() {
 
 #[test]
 fn unsupported_surface_is_reported_not_silent() {
-    let text = square("$").replace("#5=PLANE('',#4);", "#5=CURVE_BOUNDED_SURFACE('',#4,(),.F.);");
+    let text = square("$").replace("#5=PLANE('',#4);", "#5=RECTANGULAR_COMPOSITE_SURFACE('',());");
     let e = read_bytes(Path::new("sq.stp"), text.as_bytes()).unwrap_err();
     assert!(matches!(e, StepError::NoShape { .. }), "{e}");
-    assert!(e.to_string().contains("#62") && e.to_string().contains("CURVE_BOUNDED_SURFACE"), "{e}");
+    assert!(e.to_string().contains("#62") && e.to_string().contains("RECTANGULAR_COMPOSITE_SURFACE"), "{e}");
 }
 
 #[test]
