@@ -134,3 +134,21 @@ fn strings_decode_the_control_directives() {
         assert_eq!(f.get(1).unwrap().records[0].params[0], Param::Str(want.clone().into()), "{raw}");
     }
 }
+
+#[test]
+fn odd_headers_are_read_with_a_note() {
+    let data = "#1 = PRODUCT('a','b','c',());\nENDSEC;\nEND-ISO-10303-21;\n";
+    let ok = parse(&format!("{HEAD}{data}")).unwrap();
+    assert!(ok.notes.is_empty(), "{:?}", ok.notes);
+    let cases = [
+        (HEAD.replace("FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\n", ""), "lacks FILE_SCHEMA"),
+        (HEAD.replace("HEADER;\nFILE_DESCRIPTION((''),'2;1');\n", "HEADER;\n"), "lacks FILE_DESCRIPTION"),
+        (HEAD.replace("'sys','');", "'sys','','extra');"), "FILE_NAME has 8 parameters"),
+        ("ISO-10303-21;\nDATA;\n".to_string(), "no HEADER section"),
+    ];
+    for (head, want) in cases {
+        let f = parse(&format!("{head}{data}")).unwrap_or_else(|e| panic!("{want}: {e}"));
+        assert!(f.notes.len() == 1 && f.notes[0].contains(want), "{want}: {:?}", f.notes);
+        assert!(f.get(1).is_some());
+    }
+}
