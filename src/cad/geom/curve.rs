@@ -255,13 +255,29 @@ impl Curve {
 impl Curve {
     /// Samples for a global start of a projection onto a surface swept from this curve:
     /// every knot span of a B-spline, else evenly over its domain (an unbounded one limited
-    /// to `[-1e6, 1e6]` mm).
+    /// to where the curve stays within 1e6 mm of its point at 0).
     pub fn sweep_samples(&self) -> CurveSamples {
         let r = self.domain().range;
         let t = match self {
             Curve::BSpline(b) => span_samples(b.knots(), b.degree(), b.control_points().len(), (b.degree() + 1).max(3), 512),
             _ if r.is_bounded() => even_samples(r.min, r.max, 64),
-            _ => even_samples(r.clamp(-1e6), r.clamp(1e6), 256),
+            _ => {
+                // out to where the curve is 1e6 mm from its point at 0 (a hyperbola's cosh
+                // overflows long before t = 1e6), or to t = ±1e6
+                let p0 = self.point(r.clamp(0.0));
+                let reach = |sign: f64| {
+                    let mut t = 1.0;
+                    while t < 1e6 {
+                        let q = self.point(r.clamp(sign * 2.0 * t));
+                        if !(q.is_finite() && (q - p0).length() < 1e6) {
+                            break;
+                        }
+                        t *= 2.0;
+                    }
+                    r.clamp(sign * t)
+                };
+                even_samples(reach(-1.0), reach(1.0), 256)
+            }
         };
         let p = t.iter().map(|&t| self.point(t)).collect();
         CurveSamples { t, p }

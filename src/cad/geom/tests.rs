@@ -93,6 +93,9 @@ fn surfaces(rng: &mut Rng) -> Vec<(&'static str, Surface, [f64; 4])> {
     ));
     let circle = Curve::Circle(Circle { frame: rng.frame(), radius: 6.0 });
     out.push(("extrusion of a circle", Surface::Extrusion(Extrusion::new(circle, rng.vec(3.0) + DVec3::splat(4.0)).unwrap()), [angle[0], angle[1], -3.0, 3.0]));
+    // unbounded: the sweep's samples stop where cosh would overflow
+    let hyperbola = Curve::Hyperbola(Hyperbola { frame: rng.frame(), a: 4.0, b: 3.0 });
+    out.push(("extrusion of a hyperbola", Surface::Extrusion(Extrusion::new(hyperbola, DVec3::new(0.5, 1.0, 6.0)).unwrap()), [-1.5, 1.5, -3.0, 3.0]));
     out.push(("extrusion of a bspline", Surface::Extrusion(Extrusion::new(profile_curve(), DVec3::new(1.0, 7.0, 0.5)).unwrap()), [0.0, 1.0, -3.0, 3.0]));
     out.push((
         "offset of a cylinder",
@@ -305,4 +308,18 @@ fn self_intersecting_full_torus_projects_onto_its_lemon() {
         let q = t.project(p);
         assert!((t.point(q.x, q.y) - p).length() < 1e-9, "({u}, {v}) -> {q:?}");
     }
+}
+
+#[test]
+fn unbounded_curves_sweep_samples_stay_finite() {
+    // a hyperbola's cosh overflows at |t| ≈ 710: its samples stop before, reaching 1e6 mm
+    let h = Curve::Hyperbola(Hyperbola { frame: Frame::WORLD, a: 4.0, b: 3.0 });
+    let s = h.sweep_samples();
+    assert!(s.p.iter().all(|p| p.is_finite()), "non-finite samples");
+    let (lo, hi) = (s.t[0], s.t[s.t.len() - 1]);
+    assert!(lo < -5.0 && hi > 5.0 && hi < 20.0, "{lo}..{hi}");
+    // a line: out to about 1e6 mm either way, as before
+    let l = Curve::Line(Line { origin: DVec3::ZERO, direction: DVec3::X });
+    let s = l.sweep_samples();
+    assert!(s.t[0] <= -5e5 && s.t[s.t.len() - 1] >= 5e5);
 }
