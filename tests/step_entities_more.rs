@@ -27,6 +27,9 @@ type CurveAt = Box<dyn Fn(&mut Writer, f64) -> usize>;
 /// normal points out of the prism (`ADVANCED_FACE`'s `same_sense`).
 type SideSurface = Box<dyn Fn(&mut Writer, usize) -> (usize, bool)>;
 
+/// The top face's surface, given the plane's id (`None`: the plane).
+type TopSurface<'a> = Option<&'a dyn Fn(&mut Writer, usize) -> usize>;
+
 /// One side of a prism's profile, from `from` to `to` (counter-clockwise seen from +z).
 struct Side {
     from: [f64; 2],
@@ -61,7 +64,7 @@ fn line(w: &mut Writer, from: [f64; 3], to: [f64; 3]) -> usize {
 
 /// The closed shell of the prism over `sides` (the top face's surface `top` of the plane's
 /// id where given); returns the shell's id.
-fn prism(w: &mut Writer, sides: &[Side], top: Option<&dyn Fn(&mut Writer, usize) -> usize>) -> usize {
+fn prism(w: &mut Writer, sides: &[Side], top: TopSurface) -> usize {
     let n = sides.len();
     let at = |k: usize, z: f64| [sides[k].from[0], sides[k].from[1], z];
     let vertex = |w: &mut Writer, p: [f64; 3]| {
@@ -132,7 +135,7 @@ fn face(w: &mut Writer, oriented: &[usize], surface: usize, sense: bool) -> usiz
 }
 
 /// The file of the prism over `sides`.
-fn prism_file(name: &str, sides: &[Side], top: Option<&dyn Fn(&mut Writer, usize) -> usize>) -> String {
+fn prism_file(name: &str, sides: &[Side], top: TopSurface) -> String {
     step_file(name, |w| {
         let shell = prism(w, sides, top);
         w.add(format!("MANIFOLD_SOLID_BREP('{name}',#{shell})"))

@@ -35,7 +35,7 @@ impl OffsetCurve {
         let b = self.basis.derivs(t);
         let w = self.direction.cross(b.d1);
         let len = w.length();
-        if !(len > 0.0) {
+        if !len.is_normal() {
             // the tangent along the reference direction: no offset direction there
             return (b.p, b.d1);
         }
