@@ -188,6 +188,24 @@ fn onto(w: &mut Writer, z: f64) -> usize {
     operator(w, [Z, X, Y], [-PARENT[1], -PARENT[2], z - PARENT[0]], 1.0)
 }
 
+/// The prism over the upper half of the `OFFSET_CURVE_3D` of the ellipse (8 cos t, 5 sin t)
+/// across z by -1 (ISO 10303-42: C + d (V × T)/|V × T|, V × T pointing into the ellipse):
+/// 1 mm outside it, from (9, 0) to (-9, 0), closed by the x axis; and its exact volume and
+/// area (the profile's area is half the ellipse's widened by 1, (πab + perimeter + π)/2).
+fn offset_curve_file() -> (String, [f64; 2]) {
+    let offset: CurveAt = Box::new(|w, z| {
+        let p = placement(w, [0.0, 0.0, z], Z, X);
+        let e = w.add(format!("ELLIPSE('',#{p},8.,5.)"));
+        let v = w.direction(Z);
+        w.add(format!("OFFSET_CURVE_3D('',#{e},-1.,.F.,#{v})"))
+    });
+    let perimeter = integral(0.0, 2.0 * PI, |t| (64.0 * t.sin().powi(2) + 25.0 * t.cos().powi(2)).sqrt());
+    let offset_area = (PI * 40.0 + perimeter + PI) / 2.0;
+    let text = prism_file("offset_curve_3d", &[line_side([-9.0, 0.0], [9.0, 0.0]), curve_side([9.0, 0.0], [-9.0, 0.0], offset, true, None)], None);
+    let half_perimeter = (perimeter + 2.0 * PI) / 2.0;
+    (text, [offset_area * H, 2.0 * offset_area + (18.0 + half_perimeter) * H])
+}
+
 #[test]
 fn conics_and_offset_curves_as_edge_curves_agree_with_opencascade() {
     // PARABOLA (focal 2.5: (2.5 t², 5 t)) from t = -2 to 2, closed by the line x = 10
@@ -205,23 +223,11 @@ fn conics_and_offset_curves_as_edge_curves_agree_with_opencascade() {
     });
     let hyperbola_area = integral(-hy, hy, |y| hx - 4.0 * (1.0 + y * y / 9.0).sqrt());
     let hyperbola = prism_file("hyperbola", &[line_side([hx, -hy], [hx, hy]), curve_side([hx, hy], [hx, -hy], hyperbola, false, None)], None);
-    // OFFSET_CURVE_3D of the ellipse (8 cos t, 5 sin t) across z by -1 (ISO 10303-42:
-    // C + d (V × T)/|V × T|, V × T pointing into the ellipse): 1 mm outside it; its upper
-    // half from (9, 0) to (-9, 0), closed by the x axis. The area is half the ellipse's
-    // widened by 1: (πab + perimeter + π)/2.
-    let offset: CurveAt = Box::new(|w, z| {
-        let p = placement(w, [0.0, 0.0, z], Z, X);
-        let e = w.add(format!("ELLIPSE('',#{p},8.,5.)"));
-        let v = w.direction(Z);
-        w.add(format!("OFFSET_CURVE_3D('',#{e},-1.,.F.,#{v})"))
-    });
-    let perimeter = integral(0.0, 2.0 * PI, |t| (64.0 * t.sin().powi(2) + 25.0 * t.cos().powi(2)).sqrt());
-    let offset_area = (PI * 40.0 + perimeter + PI) / 2.0;
-    let offset = prism_file("offset_curve_3d", &[line_side([-9.0, 0.0], [9.0, 0.0]), curve_side([9.0, 0.0], [-9.0, 0.0], offset, true, None)], None);
+    let (offset, [offset_volume, _]) = offset_curve_file();
     let files = [
         ("parabola".to_string(), parabola, 0, around(parabola_area * H)),
         ("hyperbola".to_string(), hyperbola, 0, around(hyperbola_area * H)),
-        ("offset_curve_3d".to_string(), offset, 0, around(offset_area * H)),
+        ("offset_curve_3d".to_string(), offset, 0, around(offset_volume)),
     ];
     agrees_with_opencascade("step_entities_conics", &files);
 }
@@ -255,14 +261,9 @@ fn replicas_agree_with_opencascade() {
     agrees_with_opencascade("step_entities_replicas", &files);
 }
 
-#[test]
-fn scaled_and_reflected_replicas_have_the_exact_volume() {
-    // OpenCASCADE's cartesian operator (StepToGeom's MakeTransformation3d) ignores the scale
-    // and axis2, so a scaled or left-handed replica is read there as a rigid motion; fepre
-    // follows ISO 10303-42 and the check is the exact volume and area. The operator: scale
-    // 2, axes (x, -y, z): the circle of radius 3 becomes one of 6 run clockwise, so the half
-    // circle from (6, 0) at 0 to (-6, 0) at π is the lower one, and the cylinder's
-    // parametric normal points into it (same_sense .F.).
+/// The half-disc prism of radius 6 below the x axis, its arc and curved side replicas of a
+/// circle and a cylinder of radius 3 under the operator (x, -y, z), scale 2 (see below).
+fn scaled_replica_file() -> String {
     let arc: CurveAt = Box::new(|w, z| {
         let p = placement(w, [0.0; 3], Z, X);
         let parent = w.add(format!("CIRCLE('',#{p},3.)"));
@@ -276,7 +277,18 @@ fn scaled_and_reflected_replicas_have_the_exact_volume() {
         (w.add(format!("SURFACE_REPLICA('',#{parent},#{op})")), false)
     });
     let sides = [line_side([6.0, 0.0], [-6.0, 0.0]), curve_side([-6.0, 0.0], [6.0, 0.0], arc, false, Some(cylinder))];
-    agrees_with_exact("step_entities_scaled_replica", "scaled_replica", &prism_file("scaled_replica", &sides, None), HALF_DISC);
+    prism_file("scaled_replica", &sides, None)
+}
+
+#[test]
+fn scaled_and_reflected_replicas_have_the_exact_volume() {
+    // OpenCASCADE's cartesian operator (StepToGeom's MakeTransformation3d) ignores the scale
+    // and axis2, so a scaled or left-handed replica is read there as a rigid motion; fepre
+    // follows ISO 10303-42 and the check is the exact volume and area. The operator: scale
+    // 2, axes (x, -y, z): the circle of radius 3 becomes one of 6 run clockwise, so the half
+    // circle from (6, 0) at 0 to (-6, 0) at π is the lower one, and the cylinder's
+    // parametric normal points into it (same_sense .F.).
+    agrees_with_exact("step_entities_scaled_replica", "scaled_replica", &scaled_replica_file(), HALF_DISC);
 }
 
 /// The volume and area of the half-disc prism of radius 6.
@@ -448,5 +460,21 @@ fn odd_headers_are_read_with_a_note_and_agree_with_opencascade() {
         let j = tessellate(&write_file("step_entities_headers", &format!("{name}_again"), text)).unwrap_or_else(|e| panic!("{name}: {e}"));
         let notes = j["notes"].as_array().cloned().unwrap_or_default();
         assert!(notes.len() == 1 && notes[0].as_str().is_some_and(|n| n.contains(want)), "{name}: notes {notes:?}");
+    }
+}
+
+#[test]
+fn replicas_and_offset_curves_survive_our_writer() {
+    // what fepre reads it writes back as the same entities (a scaled, reflected replica stays
+    // a replica, with its operator; an offset curve an OFFSET_CURVE_3D), and reads again as
+    // the same solid
+    let (offset, offset_exact) = offset_curve_file();
+    let cases = [("scaled_replica", scaled_replica_file(), HALF_DISC, ["CURVE_REPLICA(", "SURFACE_REPLICA("]), ("offset_curve_3d", offset, offset_exact, ["OFFSET_CURVE_3D(", "OFFSET_CURVE_3D("])];
+    for (name, text, exact, entities) in cases {
+        let model = fepre::cad::step::read_bytes(std::path::Path::new(name), text.as_bytes()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let written = fepre::cad::step::writer::to_string(&model, name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(entities.iter().all(|e| written.contains(e)), "{name}: {entities:?} not written");
+        assert!(!entities[0].contains("REPLICA") || written.contains("CARTESIAN_TRANSFORMATION_OPERATOR_3D('','','',"), "{name}: no operator");
+        agrees_with_exact("step_entities_rewritten", &format!("{name}_rewritten"), &written, exact);
     }
 }
