@@ -24,9 +24,11 @@ fn tessellates_a_cad_part_with_a_json_report() {
     let o = fepre(&["tessellate".as_ref(), screw.as_os_str(), "-o".as_ref(), out.as_os_str(), "--json".as_ref()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
-    for key in ["solids", "faces", "triangles", "watertight", "euler", "volume", "area", "units", "dropped", "failed_faces", "seconds", "certificate"] {
+    for key in ["solids", "faces", "triangles", "watertight", "euler", "volume", "area", "units", "dropped", "notes", "failed_faces", "seconds", "certificate"] {
         assert!(v.get(key).is_some(), "no {key} in {v}");
     }
+    // a well-formed header: nothing to note
+    assert_eq!(v["notes"], serde_json::json!([]), "{}", v["notes"]);
     assert_eq!(v["solids"], 1);
     assert_eq!(v["faces"], 10);
     // the face table: every face with its STEP #id and solid, names unique where given

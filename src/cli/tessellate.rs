@@ -117,6 +117,8 @@ struct Report {
     max_edge: Option<f64>,
     chord_mm: f64,
     dropped: Vec<Dropped>,
+    /// What was odd about the file as written but read anyway ([`Model::notes`]).
+    notes: Vec<String>,
     failed_faces: Vec<FailedFaceEntry>,
     seconds: f64,
     read_seconds: f64,
@@ -232,6 +234,9 @@ pub fn run(args: &Args) -> Result<()> {
             println!("{}", pipeline::failure_message(&args.cad, &r.certificate, &r.dropped));
         }
         println!("dropped      {}", r.dropped.len());
+        for n in &r.notes {
+            println!("note         {n}");
+        }
         println!("seconds      {:.3}", r.seconds);
         println!("wrote        {}", out.display());
     }
@@ -336,6 +341,7 @@ fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Re
         max_edge: args.max_edge,
         chord_mm: c.tessellation.chord,
         dropped: c.model.dropped.clone(),
+        notes: c.model.notes.clone(),
         failed_faces: c.tessellation.failed.iter().map(|f| FailedFaceEntry { face: f.face, step_id: f.source, reason: f.why.clone() }).collect(),
         seconds: t0.elapsed().as_secs_f64(),
         read_seconds: c.seconds[0],

@@ -58,6 +58,8 @@ pub fn corpus_file(name: &str) -> Option<PathBuf> {
     None
 }
 
+/// Hand-written STEP files and their comparison with OpenCASCADE (`step_entities*.rs`).
+pub mod step_writer;
 /// Discovery of the external tools (gmsh, tetgen, Python with meshio) some tests check files with.
 pub mod tools;
 

@@ -177,6 +177,9 @@ pub struct Model {
     pub units: Units,
     /// Items left out, with the reason.
     pub dropped: Vec<Dropped>,
+    /// What was odd about the file as written but read anyway (a STEP HEADER section
+    /// missing or incomplete ...).
+    pub notes: Vec<String>,
     /// What sewing did to the open shells of a surface model ([`Model::sew`]); `None` when
     /// the model has no open shell.
     pub sewing: Option<super::sew::SewReport>,

@@ -10,7 +10,9 @@ use super::ellipse::Ellipse;
 use super::frame::Rigid;
 use super::line::Line;
 use super::newton::{CurveSamples, even_samples, refine_curve, span_samples};
+use super::offset_curve::OffsetCurve;
 use super::polyline::Polyline;
+use super::replica::CurveReplica;
 use glam::DVec3;
 use std::fmt;
 
@@ -34,6 +36,10 @@ pub enum Curve {
     /// `TRIMMED_CURVE`: a basis curve restricted to a parameter interval (the basis curve's
     /// parameters, increasing).
     Trimmed(Box<Curve>, Interval),
+    /// `CURVE_REPLICA`: a parent curve under a similarity.
+    Replica(CurveReplica),
+    /// `OFFSET_CURVE_3D`.
+    Offset(OffsetCurve),
 }
 
 /// The kind of a [`Curve`], for summaries.
@@ -55,10 +61,15 @@ pub enum CurveKind {
     Polyline,
     /// A trimmed curve.
     Trimmed,
+    /// A replica (a transformed parent curve).
+    Replica,
+    /// A 3D offset curve.
+    Offset,
 }
 
 impl CurveKind {
-    /// The name used in reports (`line`, `circle`, `ellipse`, `parabola`, `hyperbola`, `bspline`, `polyline`, `trimmed`).
+    /// The name used in reports (`line`, `circle`, `ellipse`, `parabola`, `hyperbola`, `bspline`, `polyline`, `trimmed`,
+    /// `replica`, `offset`).
     pub fn name(self) -> &'static str {
         match self {
             CurveKind::Line => "line",
@@ -69,6 +80,8 @@ impl CurveKind {
             CurveKind::BSpline => "bspline",
             CurveKind::Polyline => "polyline",
             CurveKind::Trimmed => "trimmed",
+            CurveKind::Replica => "replica",
+            CurveKind::Offset => "offset",
         }
     }
 }
@@ -91,6 +104,8 @@ impl Curve {
             Curve::BSpline(_) => CurveKind::BSpline,
             Curve::Polyline(_) => CurveKind::Polyline,
             Curve::Trimmed(..) => CurveKind::Trimmed,
+            Curve::Replica(_) => CurveKind::Replica,
+            Curve::Offset(_) => CurveKind::Offset,
         }
     }
 
@@ -105,6 +120,8 @@ impl Curve {
             Curve::BSpline(c) => c.derivs(t),
             Curve::Polyline(c) => c.derivs(t),
             Curve::Trimmed(c, _) => c.derivs(t),
+            Curve::Replica(c) => c.derivs(t),
+            Curve::Offset(c) => c.derivs(t),
         }
     }
 
@@ -119,6 +136,8 @@ impl Curve {
             Curve::BSpline(c) => c.point(t),
             Curve::Polyline(c) => c.point(t),
             Curve::Trimmed(c, _) => c.point(t),
+            Curve::Replica(c) => c.point(t),
+            Curve::Offset(c) => c.point(t),
         }
     }
 
@@ -138,6 +157,8 @@ impl Curve {
             Curve::Hyperbola(c) => c.domain(),
             Curve::BSpline(c) => c.domain(),
             Curve::Polyline(c) => c.domain(),
+            Curve::Replica(c) => c.domain(),
+            Curve::Offset(c) => c.domain(),
             Curve::Trimmed(c, range) => {
                 let base = c.domain();
                 let closed = base.period.is_some_and(|p| (range.length() - p).abs() <= 1e-12 * p);
@@ -159,6 +180,8 @@ impl Curve {
             Curve::Hyperbola(c) => c.project(p),
             Curve::BSpline(c) => c.project(p),
             Curve::Polyline(c) => c.project(p),
+            Curve::Replica(c) => c.project(p),
+            Curve::Offset(c) => c.project(p),
             Curve::Trimmed(c, range) => {
                 let t = c.project(p);
                 match c.domain().period {
@@ -209,6 +232,8 @@ impl Curve {
             Curve::BSpline(c) => Curve::BSpline(c.transformed(t)),
             Curve::Polyline(c) => Curve::Polyline(c.transformed(t)),
             Curve::Trimmed(c, r) => Curve::Trimmed(Box::new(c.transformed(t)), *r),
+            Curve::Replica(c) => Curve::Replica(c.transformed(t)),
+            Curve::Offset(c) => Curve::Offset(c.transformed(t)),
         }
     }
 
@@ -230,13 +255,29 @@ impl Curve {
 impl Curve {
     /// Samples for a global start of a projection onto a surface swept from this curve:
     /// every knot span of a B-spline, else evenly over its domain (an unbounded one limited
-    /// to `[-1e6, 1e6]` mm).
+    /// to where the curve stays within 1e6 mm of its point at 0).
     pub fn sweep_samples(&self) -> CurveSamples {
         let r = self.domain().range;
         let t = match self {
             Curve::BSpline(b) => span_samples(b.knots(), b.degree(), b.control_points().len(), (b.degree() + 1).max(3), 512),
             _ if r.is_bounded() => even_samples(r.min, r.max, 64),
-            _ => even_samples(r.clamp(-1e6), r.clamp(1e6), 256),
+            _ => {
+                // out to where the curve is 1e6 mm from its point at 0 (a hyperbola's cosh
+                // overflows long before t = 1e6), or to t = ±1e6
+                let p0 = self.point(r.clamp(0.0));
+                let reach = |sign: f64| {
+                    let mut t = 1.0;
+                    while t < 1e6 {
+                        let q = self.point(r.clamp(sign * 2.0 * t));
+                        if !(q.is_finite() && (q - p0).length() < 1e6) {
+                            break;
+                        }
+                        t *= 2.0;
+                    }
+                    r.clamp(sign * t)
+                };
+                even_samples(reach(-1.0), reach(1.0), 256)
+            }
         };
         let p = t.iter().map(|&t| self.point(t)).collect();
         CurveSamples { t, p }

@@ -11,6 +11,7 @@ use super::frame::Rigid;
 use super::newton::refine_surface;
 use super::offset::Offset;
 use super::plane::Plane;
+use super::replica::SurfaceReplica;
 use super::revolution::Revolution;
 use super::sphere::Sphere;
 use super::torus::{Torus, TorusPart};
@@ -38,6 +39,8 @@ pub enum Surface {
     Extrusion(Extrusion),
     /// `OFFSET_SURFACE`.
     Offset(Offset),
+    /// `SURFACE_REPLICA`: a parent surface under a similarity.
+    Replica(SurfaceReplica),
 }
 
 /// The kind of a [`Surface`], for summaries (`faces_by_surface`).
@@ -63,11 +66,13 @@ pub enum SurfaceKind {
     Extrusion,
     /// Offset surface.
     Offset,
+    /// Replica (a transformed parent surface).
+    Replica,
 }
 
 impl SurfaceKind {
     /// The name used in reports: `plane`, `cylinder`, `cone`, `sphere`, `torus`,
-    /// `degenerate_torus`, `bspline`, `revolution`, `extrusion`, `offset`.
+    /// `degenerate_torus`, `bspline`, `revolution`, `extrusion`, `offset`, `replica`.
     pub fn name(self) -> &'static str {
         match self {
             SurfaceKind::Plane => "plane",
@@ -80,6 +85,7 @@ impl SurfaceKind {
             SurfaceKind::Revolution => "revolution",
             SurfaceKind::Extrusion => "extrusion",
             SurfaceKind::Offset => "offset",
+            SurfaceKind::Replica => "replica",
         }
     }
 }
@@ -104,6 +110,7 @@ impl Surface {
             Surface::Revolution(_) => SurfaceKind::Revolution,
             Surface::Extrusion(_) => SurfaceKind::Extrusion,
             Surface::Offset(_) => SurfaceKind::Offset,
+            Surface::Replica(_) => SurfaceKind::Replica,
         }
     }
 
@@ -119,6 +126,7 @@ impl Surface {
             Surface::Revolution(s) => s.derivs(u, v),
             Surface::Extrusion(s) => s.derivs(u, v),
             Surface::Offset(s) => s.derivs(u, v),
+            Surface::Replica(s) => s.derivs(u, v),
         }
     }
 
@@ -134,6 +142,7 @@ impl Surface {
             Surface::Revolution(s) => s.point(u, v),
             Surface::Extrusion(s) => s.point(u, v),
             Surface::Offset(s) => s.point(u, v),
+            Surface::Replica(s) => s.point(u, v),
         }
     }
 
@@ -164,6 +173,7 @@ impl Surface {
             Surface::Cone(s) => s.normal(u, v),
             Surface::Sphere(s) => Some(s.normal(u, v)),
             Surface::Torus(s) => s.normal(u, v),
+            Surface::Replica(s) => s.normal(u, v),
             _ => {
                 if let Some(n) = self.derivs(u, v).normal() {
                     return Some(n);
@@ -189,6 +199,7 @@ impl Surface {
             Surface::Revolution(s) => s.domain(),
             Surface::Extrusion(s) => s.domain(),
             Surface::Offset(s) => s.domain(),
+            Surface::Replica(s) => s.domain(),
         }
     }
 
@@ -207,6 +218,7 @@ impl Surface {
             Surface::Revolution(s) => s.project(p),
             Surface::Extrusion(s) => s.project(p),
             Surface::Offset(s) => s.project(p),
+            Surface::Replica(s) => s.project(p),
         }
     }
 
@@ -226,6 +238,7 @@ impl Surface {
                     if (s.point(global.x, global.y) - p).length() < dl { global } else { local }
                 }
             }
+            Surface::Replica(s) => s.project_near(p, near),
             _ => self.project(p),
         };
         let d = self.domain();
@@ -259,6 +272,7 @@ impl Surface {
             Surface::Revolution(s) => Surface::Revolution(s.transformed(t)),
             Surface::Extrusion(s) => Surface::Extrusion(s.transformed(t)),
             Surface::Offset(s) => Surface::Offset(s.transformed(t)),
+            Surface::Replica(s) => Surface::Replica(s.transformed(t)),
         }
     }
 }

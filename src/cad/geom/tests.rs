@@ -93,6 +93,9 @@ fn surfaces(rng: &mut Rng) -> Vec<(&'static str, Surface, [f64; 4])> {
     ));
     let circle = Curve::Circle(Circle { frame: rng.frame(), radius: 6.0 });
     out.push(("extrusion of a circle", Surface::Extrusion(Extrusion::new(circle, rng.vec(3.0) + DVec3::splat(4.0)).unwrap()), [angle[0], angle[1], -3.0, 3.0]));
+    // unbounded: the sweep's samples stop where cosh would overflow
+    let hyperbola = Curve::Hyperbola(Hyperbola { frame: rng.frame(), a: 4.0, b: 3.0 });
+    out.push(("extrusion of a hyperbola", Surface::Extrusion(Extrusion::new(hyperbola, DVec3::new(0.5, 1.0, 6.0)).unwrap()), [-1.5, 1.5, -3.0, 3.0]));
     out.push(("extrusion of a bspline", Surface::Extrusion(Extrusion::new(profile_curve(), DVec3::new(1.0, 7.0, 0.5)).unwrap()), [0.0, 1.0, -3.0, 3.0]));
     out.push((
         "offset of a cylinder",
@@ -100,6 +103,13 @@ fn surfaces(rng: &mut Rng) -> Vec<(&'static str, Surface, [f64; 4])> {
         [angle[0], angle[1], -10.0, 10.0],
     ));
     out.push(("offset of a bspline", Surface::Offset(Offset { basis: Box::new(Surface::BSpline(bspline_patch(true))), distance: -0.8 }), [0.05, 0.95, -0.9, 1.9]));
+    // a scaled reflection (left-handed axes) and a scaled rotation
+    let mirror = Similarity::from_operator(Some(rng.vec(1.0)), Some(rng.vec(1.0)), Some(rng.vec(1.0)), rng.vec(20.0), Some(1.7)).unwrap();
+    let m = if mirror.reflects() { mirror } else { Similarity { axes: -mirror.axes, ..mirror } };
+    out.push(("replica of a bspline (reflected)", Surface::Replica(SurfaceReplica { parent: Box::new(Surface::BSpline(bspline_patch(true))), map: m }), [0.0, 1.0, -1.0, 2.0]));
+    let scaled = Similarity { axes: -m.axes, scale: 0.6, ..m };
+    let cylinder = Surface::Cylinder(Cylinder { frame: rng.frame(), radius: 5.0 });
+    out.push(("replica of a cylinder (scaled)", Surface::Replica(SurfaceReplica { parent: Box::new(cylinder), map: scaled }), [angle[0], angle[1], -10.0, 10.0]));
     out
 }
 
@@ -201,6 +211,17 @@ fn curves(rng: &mut Rng) -> Vec<(&'static str, Curve, [f64; 2])> {
         ("rational bspline (half circle)", Curve::BSpline(arc.transformed(&rng.frame().as_rigid())), [0.0, 2.0]),
         ("polyline", Curve::Polyline(Polyline { points: vec![DVec3::ZERO, DVec3::X * 4.0, DVec3::new(4.0, 3.0, 1.0), DVec3::new(9.0, 3.0, 1.0)] }), [0.01, 2.99]),
         ("trimmed circle", Curve::Trimmed(Box::new(Curve::Circle(circle)), Interval::new(5.0, 7.0)), [5.0, 7.0]),
+        (
+            "replica of an ellipse (scaled, reflected)",
+            Curve::Replica(CurveReplica {
+                parent: Box::new(Curve::Ellipse(Ellipse { frame: rng.frame(), a: 9.0, b: 2.5 })),
+                map: Similarity::from_operator(Some(DVec3::Y), Some(DVec3::X), Some(DVec3::new(0.0, 1.0, 1.0)), rng.vec(5.0), Some(2.5)).unwrap(),
+            }),
+            [0.05, TAU - 0.05],
+        ),
+        // V × T of a circle about its own axis points to the centre: a circle of radius 2
+        ("offset of a circle", Curve::Offset(OffsetCurve { basis: Box::new(Curve::Circle(circle)), distance: 1.0, direction: circle.frame.z }), [0.05, TAU - 0.05]),
+        ("offset of a bspline", Curve::Offset(OffsetCurve { basis: Box::new(profile_curve()), distance: -0.3, direction: DVec3::new(0.2, 0.1, 1.0).normalize() }), [0.0, 1.0]),
     ]
 }
 
@@ -238,6 +259,32 @@ fn curve_domains() {
     assert_eq!(dom("polyline").range, Interval::new(0.0, 3.0));
     assert_eq!(dom("trimmed circle").range, Interval::new(5.0, 7.0));
     assert!(!dom("rational bspline (half circle)").closed);
+    assert_eq!(dom("offset of a circle").period, Some(TAU));
+    let offset = &cs.iter().find(|c| c.0 == "offset of a circle").unwrap().1;
+    let Curve::Offset(o) = offset else { unreachable!() };
+    let Curve::Circle(c) = o.basis.as_ref() else { unreachable!() };
+    for t in [0.3, 2.0, 5.0] {
+        assert!(((offset.point(t) - c.frame.origin).length() - 2.0).abs() < 1e-12, "the offset circle's radius at {t}");
+    }
+}
+
+#[test]
+fn cartesian_operators_follow_iso_10303_42_base_axis() {
+    // defaults: the identity
+    let m = Similarity::from_operator(None, None, None, DVec3::ZERO, None).unwrap();
+    assert_eq!((m.axes, m.scale), (glam::DMat3::IDENTITY, 1.0));
+    assert!(m.as_rigid().is_some_and(|r| r.is_identity()));
+    // axis1 not orthogonal to axis3 is projected; axis2 keeps its sign: here a reflection
+    let m = Similarity::from_operator(Some(DVec3::new(1.0, 0.0, 1.0)), Some(DVec3::new(0.0, -3.0, 0.0)), Some(DVec3::Z * 2.0), DVec3::ONE, Some(2.0)).unwrap();
+    assert!((m.axes.x_axis - DVec3::X).length() < 1e-15 && (m.axes.y_axis + DVec3::Y).length() < 1e-15 && m.reflects());
+    assert!(m.as_rigid().is_none());
+    let p = DVec3::new(1.0, 2.0, 3.0);
+    assert!((m.apply_point(p) - DVec3::new(3.0, -3.0, 7.0)).length() < 1e-14);
+    assert!((m.invert_point(m.apply_point(p)) - p).length() < 1e-14);
+    // no axis3: +Z, and axis1 along it is refused, as are a zero axis and a scale ≤ 0
+    assert!(Similarity::from_operator(Some(DVec3::Z), None, None, DVec3::ZERO, None).is_none());
+    assert!(Similarity::from_operator(Some(DVec3::ZERO), None, None, DVec3::ZERO, None).is_none());
+    assert!(Similarity::from_operator(None, None, None, DVec3::ZERO, Some(0.0)).is_none());
 }
 
 #[test]
@@ -261,4 +308,18 @@ fn self_intersecting_full_torus_projects_onto_its_lemon() {
         let q = t.project(p);
         assert!((t.point(q.x, q.y) - p).length() < 1e-9, "({u}, {v}) -> {q:?}");
     }
+}
+
+#[test]
+fn unbounded_curves_sweep_samples_stay_finite() {
+    // a hyperbola's cosh overflows at |t| ≈ 710: its samples stop before, reaching 1e6 mm
+    let h = Curve::Hyperbola(Hyperbola { frame: Frame::WORLD, a: 4.0, b: 3.0 });
+    let s = h.sweep_samples();
+    assert!(s.p.iter().all(|p| p.is_finite()), "non-finite samples");
+    let (lo, hi) = (s.t[0], s.t[s.t.len() - 1]);
+    assert!(lo < -5.0 && hi > 5.0 && hi < 20.0, "{lo}..{hi}");
+    // a line: out to about 1e6 mm either way, as before
+    let l = Curve::Line(Line { origin: DVec3::ZERO, direction: DVec3::X });
+    let s = l.sweep_samples();
+    assert!(s.t[0] <= -5e5 && s.t[s.t.len() - 1] >= 5e5);
 }

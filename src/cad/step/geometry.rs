@@ -5,8 +5,8 @@ use super::convert::{Args, Converter, Fail, R, drop_entity};
 use super::param::Param;
 use crate::cad::geom::basis::expand_knots;
 use crate::cad::geom::{
-    BSplineCurve, BSplineSurface, Circle, Cone, Curve, Cylinder, Ellipse, Extrusion, Frame, Hyperbola, Interval, Line, Offset, Parabola, Plane, Polyline,
-    Revolution, Sphere, Surface, Torus, TorusPart, wrap_into,
+    BSplineCurve, BSplineSurface, Circle, Cone, Curve, CurveReplica, Cylinder, Ellipse, Extrusion, Frame, Hyperbola, Interval, Line, Offset, OffsetCurve,
+    Parabola, Plane, Polyline, Revolution, Similarity, Sphere, Surface, SurfaceReplica, Torus, TorusPart, wrap_into,
 };
 use glam::DVec3;
 
@@ -153,6 +153,26 @@ impl Converter<'_> {
                 self.curve(a.id(1)?)
             }
             "TRIMMED_CURVE" => self.trimmed_curve(id),
+            "CURVE_REPLICA" => {
+                let a = Args::of(e, name)?;
+                let (parent, rev) = self.curve(a.id(1)?)?;
+                let map = self.operator(a.id(2)?)?;
+                // a rigid motion keeps the kind (a replica of a line is a line ...)
+                let c = match map.as_rigid() {
+                    Some(t) => parent.transformed(&t),
+                    None => Curve::Replica(CurveReplica { parent: Box::new(parent), map }),
+                };
+                Ok((c, rev))
+            }
+            "OFFSET_CURVE_3D" => {
+                let a = Args::of(e, name)?;
+                let (basis, rev) = self.curve(a.id(1)?)?;
+                let distance = a.f64(2)? * s;
+                let direction = self.direction(a.id(4)?)?.try_normalize().ok_or_else(|| drop_entity(e, "zero ref_direction"))?;
+                // the offset is across the STEP curve's tangent: ours runs the other way when `rev`
+                let distance = if rev { -distance } else { distance };
+                Ok((Curve::Offset(OffsetCurve { basis: Box::new(basis), distance, direction }), rev))
+            }
             _ => Err(drop_entity(e, "unsupported curve type")),
         }
     }
@@ -320,13 +340,40 @@ impl Converter<'_> {
                 let basis = self.surface(a.id(1)?)?;
                 Ok(Surface::Offset(Offset { basis: Box::new(basis), distance: a.f64(2)? * s }))
             }
-            "RECTANGULAR_TRIMMED_SURFACE" => {
+            "RECTANGULAR_TRIMMED_SURFACE" | "CURVE_BOUNDED_SURFACE" => {
                 // the face's own bounds trim it; the basis surface is what matters here
                 let a = Args::of(e, name)?;
                 self.surface(a.id(1)?)
             }
+            "SURFACE_REPLICA" => {
+                let a = Args::of(e, name)?;
+                let parent = self.surface(a.id(1)?)?;
+                let map = self.operator(a.id(2)?)?;
+                Ok(match map.as_rigid() {
+                    Some(t) => parent.transformed(&t),
+                    None => Surface::Replica(SurfaceReplica { parent: Box::new(parent), map }),
+                })
+            }
             _ => Err(drop_entity(e, "unsupported surface type")),
         }
+    }
+
+    /// `CARTESIAN_TRANSFORMATION_OPERATOR_3D`: (name, name, description, axis1, axis2,
+    /// local_origin, scale, axis3), the two names of its two supertypes both written.
+    fn operator(&self, id: u64) -> R<Similarity> {
+        let e = self.entity(id)?;
+        let a = Args::of(e, "CARTESIAN_TRANSFORMATION_OPERATOR_3D")?;
+        if a.params.len() != 8 {
+            return Err(drop_entity(e, format!("{} parameters, expected 8", a.params.len())));
+        }
+        let axis = |k: usize| a.opt_id(k)?.map(|d| self.direction(d)).transpose();
+        let (axis1, axis2, axis3) = (axis(3)?, axis(4)?, axis(7)?);
+        let origin = self.point(a.id(5)?)?;
+        let scale = match a.params.get(6) {
+            Some(Param::Unset) | None => None,
+            Some(_) => Some(a.f64(6)?),
+        };
+        Similarity::from_operator(axis1, axis2, axis3, origin, scale).ok_or_else(|| drop_entity(e, "zero or dependent axes, or a scale that is not positive"))
     }
 
     fn bspline_surface(&mut self, id: u64) -> R<BSplineSurface> {

@@ -122,6 +122,7 @@ pub fn to_shape(file: &StepFile) -> Result<Shape, StepError> {
     for (id, kind) in &tess.roots {
         model.dropped.push(Dropped { kind: kind.clone(), id: *id, why: "tessellated geometry beside the B-rep: fepre reads the B-rep".into() });
     }
+    model.notes.extend(file.notes.iter().cloned());
     model.mark_edges();
     // surface models: free edges that are the same curve become one edge
     model.sewing = model.sew();

@@ -158,6 +158,8 @@ impl<'a> Parser<'a> {
         self.finish(r)?;
         let mut schemas = Vec::new();
         let mut system = None;
+        let mut notes = Vec::new();
+        let mut headers = 0;
         let mut entities = Vec::new();
         let mut data_sections = 0;
         loop {
@@ -174,8 +176,9 @@ impl<'a> Parser<'a> {
             let kw = self.finish(r)?;
             match kw.as_str() {
                 "HEADER" => {
-                    let r = self.header(&mut schemas, &mut system);
+                    let r = self.header(&mut schemas, &mut system, &mut notes);
                     self.finish(r)?;
+                    headers += 1;
                 }
                 "DATA" => {
                     self.set_context("in the DATA section header".into());
@@ -210,7 +213,12 @@ impl<'a> Parser<'a> {
         if data_sections == 0 {
             return Err(StepError::Truncated { path: self.path.to_path_buf(), line: self.line, inside: "before any DATA section".into() });
         }
-        StepFile::new(self.path, schemas, system, entities)
+        if headers == 0 {
+            notes.push("no HEADER section (ISO 10303-21 requires one): read without it, the schema unknown".to_string());
+        }
+        let mut file = StepFile::new(self.path, schemas, system, entities)?;
+        file.notes = notes;
+        Ok(file)
     }
 
     fn word_or_none(&mut self) -> R<Option<String>> {
@@ -224,13 +232,20 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn header(&mut self, schemas: &mut Vec<String>, system: &mut Option<String>) -> R<()> {
+    /// The HEADER section: the schema names and originating system; a note for each of the
+    /// three required entities missing and for a `FILE_NAME` of other than seven parameters.
+    fn header(&mut self, schemas: &mut Vec<String>, system: &mut Option<String>, notes: &mut Vec<String>) -> R<()> {
         self.expect(b';', "after HEADER")?;
+        let mut seen = Vec::new();
         loop {
             self.set_context("inside the HEADER section".into());
             let name = self.word()?;
             if name == "ENDSEC" {
                 self.expect(b';', "after ENDSEC")?;
+                let missing: Vec<&str> = ["FILE_DESCRIPTION", "FILE_NAME", "FILE_SCHEMA"].into_iter().filter(|n| !seen.iter().any(|s| s == n)).collect();
+                if !missing.is_empty() {
+                    notes.push(format!("the HEADER section lacks {} (ISO 10303-21 requires it): read without", missing.join(", ")));
+                }
                 return Ok(());
             }
             self.expect(b'(', &format!("after {name}"))?;
@@ -242,9 +257,15 @@ impl<'a> Parser<'a> {
                         schemas.extend(list.iter().filter_map(Param::as_str).map(|s| s.trim().to_ascii_uppercase()));
                     }
                 }
-                "FILE_NAME" => *system = params.get(5).and_then(Param::as_str).map(str::to_string),
+                "FILE_NAME" => {
+                    if params.len() != 7 {
+                        notes.push(format!("FILE_NAME has {} parameters, not 7: its originating system read from the 6th", params.len()));
+                    }
+                    *system = params.get(5).and_then(Param::as_str).map(str::to_string);
+                }
                 _ => {}
             }
+            seen.push(name);
         }
     }
 

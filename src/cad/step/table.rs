@@ -71,6 +71,9 @@ pub struct StepFile {
     pub schemas: Vec<String>,
     /// `FILE_NAME`'s originating system, if given.
     pub originating_system: Option<String>,
+    /// What was odd about the file as written but read anyway (a HEADER section missing or
+    /// incomplete, a `FILE_NAME` of other than seven parameters).
+    pub notes: Vec<String>,
     entities: Vec<Entity>,
     index: FxHashMap<u64, u32>,
 }
@@ -84,7 +87,7 @@ impl StepFile {
                 return Err(StepError::DuplicateId { path: path.to_path_buf(), id: e.id, line: e.line, first_line: entities[first as usize].line });
             }
         }
-        Ok(StepFile { path: path.to_path_buf(), schemas, originating_system, entities, index })
+        Ok(StepFile { path: path.to_path_buf(), schemas, originating_system, notes: Vec::new(), entities, index })
     }
 
     /// The instance `#id`.

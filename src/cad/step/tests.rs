@@ -95,10 +95,10 @@ fn square_face_in_metres_is_scaled_to_mm() {
 
 #[test]
 fn unsupported_surface_is_reported_not_silent() {
-    let text = square("$").replace("#5=PLANE('',#4);", "#5=CURVE_BOUNDED_SURFACE('',#4,(),.F.);");
+    let text = square("$").replace("#5=PLANE('',#4);", "#5=RECTANGULAR_COMPOSITE_SURFACE('',());");
     let e = read_bytes(Path::new("sq.stp"), text.as_bytes()).unwrap_err();
     assert!(matches!(e, StepError::NoShape { .. }), "{e}");
-    assert!(e.to_string().contains("#62") && e.to_string().contains("CURVE_BOUNDED_SURFACE"), "{e}");
+    assert!(e.to_string().contains("#62") && e.to_string().contains("RECTANGULAR_COMPOSITE_SURFACE"), "{e}");
 }
 
 #[test]
@@ -132,5 +132,23 @@ fn strings_decode_the_control_directives() {
         let text = format!("{HEAD}#1 = PRODUCT({raw},'b','c',());\nENDSEC;\nEND-ISO-10303-21;\n");
         let f = parse(&text).unwrap_or_else(|e| panic!("{raw}: {e}"));
         assert_eq!(f.get(1).unwrap().records[0].params[0], Param::Str(want.clone().into()), "{raw}");
+    }
+}
+
+#[test]
+fn odd_headers_are_read_with_a_note() {
+    let data = "#1 = PRODUCT('a','b','c',());\nENDSEC;\nEND-ISO-10303-21;\n";
+    let ok = parse(&format!("{HEAD}{data}")).unwrap();
+    assert!(ok.notes.is_empty(), "{:?}", ok.notes);
+    let cases = [
+        (HEAD.replace("FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\n", ""), "lacks FILE_SCHEMA"),
+        (HEAD.replace("HEADER;\nFILE_DESCRIPTION((''),'2;1');\n", "HEADER;\n"), "lacks FILE_DESCRIPTION"),
+        (HEAD.replace("'sys','');", "'sys','','extra');"), "FILE_NAME has 8 parameters"),
+        ("ISO-10303-21;\nDATA;\n".to_string(), "no HEADER section"),
+    ];
+    for (head, want) in cases {
+        let f = parse(&format!("{head}{data}")).unwrap_or_else(|e| panic!("{want}: {e}"));
+        assert!(f.notes.len() == 1 && f.notes[0].contains(want), "{want}: {:?}", f.notes);
+        assert!(f.get(1).is_some());
     }
 }

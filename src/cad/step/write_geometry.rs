@@ -2,7 +2,7 @@
 //! of [`crate::cad::geom`] as ISO 10303-42 entities, in millimetres and radians.
 
 use super::writer::{StepWriteError, Writer};
-use crate::cad::geom::{BSplineCurve, BSplineSurface, Curve, Frame, Surface, TorusPart};
+use crate::cad::geom::{BSplineCurve, BSplineSurface, Curve, Frame, Similarity, Surface, TorusPart};
 use glam::DVec3;
 
 /// A STEP real: Rust's shortest round-trip form with the exponent as `E` and a decimal point
@@ -115,7 +115,26 @@ impl Writer {
                     real(range.max)
                 ))
             }
+            Curve::Replica(r) => {
+                let parent = self.curve(&r.parent)?;
+                let op = self.operator(&r.map)?;
+                self.add(format!("CURVE_REPLICA('',#{parent},#{op})"))
+            }
+            Curve::Offset(o) => {
+                let b = self.curve(&o.basis)?;
+                self.finite("an offset curve's distance", &[o.distance])?;
+                let d = self.direction(o.direction)?;
+                self.add(format!("OFFSET_CURVE_3D('',#{b},{},.F.,#{d})", real(o.distance)))
+            }
         })
+    }
+
+    /// `CARTESIAN_TRANSFORMATION_OPERATOR_3D` of a similarity (all three axes given).
+    fn operator(&mut self, m: &Similarity) -> Result<u64, StepWriteError> {
+        self.finite("a transformation's scale", &[m.scale])?;
+        let (a1, a2, a3) = (self.direction(m.axes.x_axis)?, self.direction(m.axes.y_axis)?, self.direction(m.axes.z_axis)?);
+        let o = self.point(m.origin)?;
+        Ok(self.add(format!("CARTESIAN_TRANSFORMATION_OPERATOR_3D('','','',#{a1},#{a2},#{o},{},#{a3})", real(m.scale))))
     }
 
     fn bspline_curve(&mut self, b: &BSplineCurve) -> Result<u64, StepWriteError> {
@@ -177,6 +196,11 @@ impl Writer {
             Surface::Offset(o) => {
                 let b = self.surface(&o.basis)?;
                 self.add(format!("OFFSET_SURFACE('',#{b},{},.F.)", real(o.distance)))
+            }
+            Surface::Replica(r) => {
+                let parent = self.surface(&r.parent)?;
+                let op = self.operator(&r.map)?;
+                self.add(format!("SURFACE_REPLICA('',#{parent},#{op})"))
             }
         })
     }
