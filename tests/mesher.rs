@@ -175,12 +175,8 @@ fn plc_boundary_split_keeps_tags() {
     }
 }
 
-/// A closed corpus part meshes, validates and keeps its surface volume.
-fn corpus_part(name: &str) {
-    corpus_part_report(name);
-}
-
-/// [`corpus_part`], giving the mesh and the mesher's report.
+/// A closed corpus part meshes, validates and keeps its surface volume: the mesh and the
+/// mesher's report.
 fn corpus_part_report(name: &str) -> Option<(TetMesh, fepre::mesh3d::mesher::MeshReport)> {
     let Some(path) = corpus_file(name) else { return None };
     let loaded = read(&path, &ReadOptions::default()).expect("read");

@@ -206,7 +206,7 @@ impl Part {
     /// tessellation of its B-rep).
     pub fn catalogue(&self) -> &FaceCatalogue {
         self.catalogue.get_or_init(|| match (&self.model, &self.surface) {
-            (Some(m), _) => FaceCatalogue::from_model(m, &tessellate(m, &TessellateOptions::default().with_chord_relative(CATALOGUE_DEVIATION))),
+            (Some(m), _) => FaceCatalogue::from_model(m, &tessellate(m, &TessellateOptions::default().with_chord_relative(CATALOGUE_DEVIATION).with_volume_relative(0.0))),
             (None, Some(s)) => FaceCatalogue::from_surface(s),
             _ => FaceCatalogue::default(),
         })
@@ -258,7 +258,9 @@ impl Part {
         let Some(model) = &mut self.model else {
             return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
         };
-        let (c, [tessellate_s, certify_s]) = certified_tessellation(model, opts, Some(size), &CertifyOptions::default());
+        // the boundary of a volume mesh: its volume against the CAD solids' is the mesh
+        // summary's to report (and `--require-volume-error`'s to demand)
+        let (c, [tessellate_s, certify_s]) = certified_tessellation(model, opts, Some(size), &CertifyOptions::default().with_volume_cap(false));
         if !c.certificate.reoriented.is_empty() {
             // faces turned: what the catalogue says of their normals is built again on use
             self.catalogue = OnceLock::new();
@@ -311,7 +313,7 @@ impl Part {
             // the size by the mesher, as a surface mesh is
             if let Some(model) = &self.model {
                 // the model's shells are turned already (by the first tessellation)
-                let (chords, _) = certified_tessellation(&mut model.clone(), tess, None, &CertifyOptions::default());
+                let (chords, _) = certified_tessellation(&mut model.clone(), tess, None, &CertifyOptions::default().with_volume_cap(false));
                 if chords.certificate.passed {
                     let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true));
                     if retry.is_ok() {

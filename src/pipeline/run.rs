@@ -43,8 +43,11 @@ impl Plan {
     /// The tessellation options of a CAD part: the density's deviation (default
     /// [`Part::mesh_deviation`]) and at least 8 segments per circle.
     pub fn tessellate_options(&self, part: &Part) -> TessellateOptions {
+        // the deviation and the sizes as asked: no finer chords on solids that lose volume
+        // (on a slender part at a coarse size they made needles and millions of tets); the
+        // mesh summary says what a solid loses, and `--require-volume-error` demands less
         let deviation = self.density.deviation.map_or_else(|| part.mesh_deviation(), |d| d.0);
-        TessellateOptions::default().with_chord_relative(deviation).with_max_angle_deg(MESH_MAX_ANGLE_DEG)
+        TessellateOptions::default().with_chord_relative(deviation).with_max_angle_deg(MESH_MAX_ANGLE_DEG).with_volume_relative(0.0)
     }
 }
 

@@ -79,15 +79,26 @@ pub struct CertifyOptions {
     pub self_intersections: bool,
     /// Most failures listed (default 20).
     pub max_listed: usize,
+    /// The volume tolerance is at most 0.5 % of the volume (default `true`). Off, it is the
+    /// band `Σ A_f δ_f` alone: the triangles as far from the B-rep as the deviation they
+    /// reached allows, for a boundary meshed to a size (`fepre mesh`), whose volume against
+    /// the CAD solids' the mesh summary reports, warns of and can require.
+    pub volume_cap: bool,
 }
 
 impl Default for CertifyOptions {
     fn default() -> Self {
-        CertifyOptions { self_intersections: true, max_listed: 20 }
+        CertifyOptions { self_intersections: true, max_listed: 20, volume_cap: true }
     }
 }
 
 impl CertifyOptions {
+    /// Sets [`CertifyOptions::volume_cap`].
+    pub fn with_volume_cap(mut self, on: bool) -> Self {
+        self.volume_cap = on;
+        self
+    }
+
     /// Sets [`CertifyOptions::self_intersections`].
     pub fn with_self_intersections(mut self, on: bool) -> Self {
         self.self_intersections = on;
@@ -571,7 +582,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
                 outward_ok = false;
                 failures.push(CheckFailure { check: "outward", face: None, step_id: shell_ref, message: format!("shell group {:?} encloses volume {:.6e} (void: {})", x.brep_shells, x.volume_mesh, x.void) });
             }
-            let cap = VOLUME_RELATIVE * x.volume_brep.abs();
+            let cap = if opts.volume_cap { VOLUME_RELATIVE * x.volume_brep.abs() } else { f64::INFINITY };
             let tol = g_band[g].min(cap) + 1e-9 * x.volume_brep.abs();
             vol_total[0] += x.volume_mesh;
             vol_total[1] += x.volume_brep;
