@@ -15,7 +15,7 @@
 
 mod common;
 
-use common::step_writer::{Form, agrees_with_opencascade, box_shell, step_file};
+use common::step_writer::{Form, agrees_with_opencascade, box_shell, bspline_box_files, step_file};
 
 const FORMS: [Form; 5] = [
     Form {
@@ -63,16 +63,7 @@ const FORMS: [Form; 5] = [
 #[test]
 fn every_implied_knot_bspline_form_agrees_with_opencascade() {
     // the bump is 3 % to 10 % of the box: OpenCASCADE reads it there
-    let files: Vec<_> = FORMS
-        .iter()
-        .map(|f| {
-            let text = step_file(f.name, |w| {
-                let shell = box_shell(w, [0.0; 3], 10.0, Some(f), true);
-                w.add(format!("MANIFOLD_SOLID_BREP('box',#{shell})"))
-            });
-            (format!("box_{}", f.name), text, 0, [1015.0, 1200.0])
-        })
-        .collect();
+    let files = bspline_box_files(&FORMS);
     agrees_with_opencascade("step_entities_forms", &files);
 }
 

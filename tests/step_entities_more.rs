@@ -14,7 +14,7 @@
 
 mod common;
 
-use common::step_writer::{Form, HEAD, Writer, agrees_with_opencascade, box_shell, box_shell_written, refs, step_file, tessellate, write_file};
+use common::step_writer::{Form, HEAD, Writer, agrees_with_opencascade, box_shell, bspline_box_files, box_shell_written, refs, step_file, tessellate, write_file};
 use std::f64::consts::PI;
 
 /// The prisms' height.
@@ -373,16 +373,7 @@ const KNOT_TYPES: [Form; 4] = [
 
 #[test]
 fn bspline_knot_types_agree_with_opencascade() {
-    let files: Vec<_> = KNOT_TYPES
-        .iter()
-        .map(|f| {
-            let text = step_file(f.name, |w| {
-                let shell = box_shell(w, [0.0; 3], 10.0, Some(f), true);
-                w.add(format!("MANIFOLD_SOLID_BREP('box',#{shell})"))
-            });
-            (format!("box_{}", f.name), text, 0, [1015.0, 1200.0])
-        })
-        .collect();
+    let files = bspline_box_files(&KNOT_TYPES);
     agrees_with_opencascade("step_entities_knot_types", &files);
 }
 

@@ -50,7 +50,7 @@ fn header(token: &str) -> Result<bool, String> {
 /// or a file shorter than its counts say: each names its line.
 pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
     let mut tok = Tokens::new(path, bytes, Some(b'#'));
-    let first = tok.expect("the 'OFF' header")?;
+    let first = tok.next_or_error("the 'OFF' header")?;
     let mut notes = Vec::new();
     let has_header = header(first)
         .map_err(|message| IoError::Unsupported { path: path.to_path_buf(), at: Location::Line(tok.line()), message })?;
@@ -61,8 +61,8 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
             return Err(IoError::Unsupported { path: path.to_path_buf(), at: Location::Line(tok.line()), message: "binary OFF".into() });
         }
         if rest.is_empty() {
-            let nv = tok.expect("the vertex count")?;
-            let nf = tok.expect("the face count")?;
+            let nv = tok.next_or_error("the vertex count")?;
+            let nf = tok.next_or_error("the face count")?;
             let mut c = vec![nv, nf];
             c.extend(tok.rest_of_line());
             c
@@ -113,7 +113,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
         let n: usize = tok.parse("the corner count of a face (a non-negative integer)")?;
         corners.clear();
         for _ in 0..n {
-            let t = tok.expect("a vertex index")?;
+            let t = tok.next_or_error("a vertex index")?;
             let i = t.parse::<i64>().map_err(|_| tok.error(format!("expected a vertex index, found '{t}'")))?;
             match u32::try_from(i) {
                 Ok(i) if (i as usize) < nv => corners.push(i),

@@ -97,7 +97,7 @@ fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
             s.face_names.insert(FaceId(solid), name);
         }
         loop {
-            let t = tok.expect("'facet' or 'endsolid'")?;
+            let t = tok.next_or_error("'facet' or 'endsolid'")?;
             if t.eq_ignore_ascii_case("endsolid") {
                 tok.rest_of_line();
                 break;
@@ -114,7 +114,7 @@ fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
                 tok.keyword("vertex")?;
                 s.vertices.push(tok.point3("vertex coordinate")?);
             }
-            let t = tok.expect("'endloop'")?;
+            let t = tok.next_or_error("'endloop'")?;
             if t.eq_ignore_ascii_case("vertex") {
                 return Err(tok.error("facet has more than three vertices; STL facets are triangles"));
             }

@@ -124,7 +124,7 @@ impl<'a> Tokens<'a> {
     }
 
     /// The next token; at the end of the file an error saying what was expected.
-    pub fn expect(&mut self, what: &str) -> Result<&'a str, IoError> {
+    pub fn next_or_error(&mut self, what: &str) -> Result<&'a str, IoError> {
         match self.next() {
             Some(t) => Ok(t),
             None => Err(self.error(format!("unexpected end of file: expected {what} (is the file truncated?)"))),
@@ -133,13 +133,13 @@ impl<'a> Tokens<'a> {
 
     /// The next token, which must equal `keyword` (ASCII case-insensitive).
     pub fn keyword(&mut self, keyword: &str) -> Result<(), IoError> {
-        let t = self.expect(&format!("'{keyword}'"))?;
+        let t = self.next_or_error(&format!("'{keyword}'"))?;
         if t.eq_ignore_ascii_case(keyword) { Ok(()) } else { Err(self.error(format!("expected '{keyword}', found '{t}'"))) }
     }
 
     /// The next token parsed as `T`.
     pub fn parse<T: FromStr>(&mut self, what: &str) -> Result<T, IoError> {
-        let t = self.expect(what)?;
+        let t = self.next_or_error(what)?;
         t.parse::<T>().map_err(|_| self.error(format!("expected {what}, found '{}'", shorten(t))))
     }
 

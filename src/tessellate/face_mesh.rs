@@ -241,7 +241,7 @@ fn iso_points(surf: &Surface, a: DVec2, b: DVec2, tol: f64, max_straight: f64, s
 }
 
 /// Signed area of a polygon (positive counter-clockwise).
-fn signed_area(p: &[DVec2]) -> f64 {
+pub(super) fn signed_area(p: &[DVec2]) -> f64 {
     let n = p.len();
     (0..n).map(|i| p[i].perp_dot(p[(i + 1) % n])).sum::<f64>() / 2.0
 }

@@ -106,8 +106,7 @@ pub(super) fn unwrap_through_poles(surf: &Surface, pts: &mut UvLoop, per: f64, f
                 pt.0.x += shift;
             }
             let poly: Vec<DVec2> = open_poles(surf, c).iter().map(|p| p.0).collect();
-            let n = poly.len();
-            (0..n).map(|k| poly[k].perp_dot(poly[(k + 1) % n])).sum::<f64>() / 2.0
+            super::face_mesh::signed_area(&poly)
         };
         let best = [0.0, per, -per]
             .into_iter()

@@ -249,3 +249,19 @@ pub fn write_file(test: &str, name: &str, text: &str) -> PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+
+/// A box of side 10 whose top is a B-spline in each form, one file each, with the volume
+/// range OpenCASCADE should give (the bump is 3 % to 10 % of the box), as
+/// [`agrees_with_opencascade`] takes them.
+pub fn bspline_box_files(forms: &[Form]) -> Vec<(String, String, usize, [f64; 2])> {
+    forms
+        .iter()
+        .map(|f| {
+            let text = step_file(f.name, |w| {
+                let shell = box_shell(w, [0.0; 3], 10.0, Some(f), true);
+                w.add(format!("MANIFOLD_SOLID_BREP('box',#{shell})"))
+            });
+            (format!("box_{}", f.name), text, 0, [1015.0, 1200.0])
+        })
+        .collect()
+}

@@ -221,7 +221,7 @@ impl<'a> Reader<'a> {
     }
 
     fn mesh_format(&mut self) -> Result<(), IoError> {
-        let version = self.tok.expect("the version number")?;
+        let version = self.tok.next_or_error("the version number")?;
         let file_type: u32 = self.tok.parse("the file type (0 for ASCII, 1 for binary)")?;
         let data_size: u32 = self.tok.parse("the data size")?;
         self.binary = match file_type {
