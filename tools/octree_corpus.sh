@@ -4,9 +4,10 @@
 # judge's min/max dihedral (shared/tools/cgal_ref/tetquality), the volume against the input's
 # (divergence theorem on the surface meshed; for a STEP part the certified tessellation's),
 # the sampled Hausdorff distance and its upper bound against the cell size, unresolved
-# feature edges, seconds.
+# feature edges, seconds. With -g: graded octrees, and the uniform mesh's tet count at the same
+# cell size beside them (`uniform` and `ratio` = graded / uniform).
 #
-# Usage: tools/octree_corpus.sh [-d DIV] [FILE ...]   (default: the files of the issue)
+# Usage: tools/octree_corpus.sh [-d DIV] [-g] [FILE ...]   (default: the files of the issue)
 # Needs: cargo build --release; FEPRE_CORPUS or ../shared/cad_corpus.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -15,10 +16,12 @@ corpus="${FEPRE_CORPUS:-$shared/cad_corpus}"
 fepre="${FEPRE:-${CARGO_TARGET_DIR:-$root/target}/release/fepre}"
 judge="$shared/tools/cgal_ref/tetquality"
 div=100
+graded=0
 files=()
 while [ $# -gt 0 ]; do
   case "$1" in
     -d) div="$2"; shift 2 ;;
+    -g) graded=1; shift ;;
     *) files+=("$1"); shift ;;
   esac
 done
@@ -31,7 +34,12 @@ if [ ${#files[@]} -eq 0 ]; then
 fi
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-printf '%-28s %8s %8s %8s %9s %9s %10s %10s %6s %7s %s\n' file tets min_dih max_dih vol_err% cell hausdorff bound unres seconds status
+grading=(); [ "$graded" = 1 ] && grading=(--octree-grading graded)
+if [ "$graded" = 1 ]; then
+  printf '%-28s %8s %8s %8s %8s %6s %9s %9s %10s %10s %6s %7s %s\n' file tets uniform ratio min_dih max_dih vol_err% cell hausdorff bound unres seconds status
+else
+  printf '%-28s %8s %8s %8s %9s %9s %10s %10s %6s %7s %s\n' file tets min_dih max_dih vol_err% cell hausdorff bound unres seconds status
+fi
 for name in "${files[@]}"; do
   f="$corpus/$name"
   # the cell size: the diagonal over DIV (a first run at the default cell, diagonal / 25)
@@ -42,16 +50,25 @@ for name in "${files[@]}"; do
   diag=$(python3 -c 'import json,sys; print(25 * json.load(open(sys.argv[1]))["octree"]["cell_size"])' "$tmp/a.json")
   size=$(python3 -c "print($diag/$div)")
   start=$(date +%s.%N)
-  if "$fepre" mesh "$f" -o "$tmp/o.mesh" --method octree --size "$size" --json > "$tmp/o.json" 2> "$tmp/o.err"; then
+  if "$fepre" mesh "$f" -o "$tmp/o.mesh" --method octree "${grading[@]}" --size "$size" --json > "$tmp/o.json" 2> "$tmp/o.err"; then
     end=$(date +%s.%N)
+    uniform=""
+    if [ "$graded" = 1 ]; then
+      "$fepre" mesh "$f" -o "$tmp/u.mesh" --method octree --size "$size" --json > "$tmp/u.json" 2> /dev/null
+      uniform=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["octree"]["tets"])' "$tmp/u.json" 2> /dev/null)
+    fi
     read -r tets lo hi < <("$judge" "$tmp/o.mesh" | awk '$1=="tets"{t=$2} $1=="min_dihedral_deg"{a=$2} $1=="max_dihedral_deg"{b=$2} END{print t, a, b}')
-    python3 - "$tmp/o.json" "$name" "$tets" "$lo" "$hi" "$start" "$end" <<'PY'
+    python3 - "$tmp/o.json" "$name" "$tets" "$lo" "$hi" "$start" "$end" "$uniform" <<'PY'
 import json,sys
 j=json.load(open(sys.argv[1])); o=j["octree"]; d=o["deviation"]
-name,tets,lo,hi,s,e=sys.argv[2:8]
+name,tets,lo,hi,s,e,uni=sys.argv[2:9]
 ve=100*(o["volume"]-o["input_volume"])/abs(o["input_volume"])
 ok=float(lo)>=10.7 and float(hi)<=164.8 and abs(ve)<=1.0 and d["hausdorff"]<=o["cell_size"]
-print(f'{name:<28} {tets:>8} {float(lo):8.2f} {float(hi):8.2f} {ve:9.3f} {o["cell_size"]:9.3e} {d["hausdorff"]:10.3e} {d["hausdorff_bound"]:10.3e} {d["unresolved_feature_edges"]:6d} {float(e)-float(s):7.2f} {"ok" if ok else "FAIL"}')
+if uni:
+    name=f'{name:<28} {tets:>8} {uni:>8} {int(tets)/int(uni):6.3f}'
+else:
+    name=f'{name:<28} {tets:>8}'
+print(f'{name} {float(lo):8.2f} {float(hi):8.2f} {ve:9.3f} {o["cell_size"]:9.3e} {d["hausdorff"]:10.3e} {d["hausdorff_bound"]:10.3e} {d["unresolved_feature_edges"]:6d} {float(e)-float(s):7.2f} {"ok" if ok else "FAIL"}')
 PY
   else
     printf '%-28s %s\n' "$name" "error: $(head -c 200 "$tmp/o.err" | tr '\n' ' ')"

@@ -128,7 +128,7 @@ pub struct MeshSection {
     /// The method (default `delaunay`).
     pub method: Option<Spanned<Method>>,
     /// The octree's grading (`method = "octree"` only): `"uniform"` (default) or `"graded"`
-    /// (not built yet: refused).
+    /// (the same boundary, coarser cells inside).
     pub grading: Option<Spanned<crate::mesh3d::octree::Grading>>,
     /// See [`MeshOptions::max_radius_edge`] (at least 1.1; default 1.5).
     pub max_radius_edge: Option<Spanned<f64>>,
@@ -270,9 +270,6 @@ impl JobFile {
         if let Some(g) = &m.grading {
             if self.method() != Method::Octree {
                 return Err(self.error_at(g.span().start, "key `grading`: only for method = \"octree\"".into()));
-            }
-            if *g.get_ref() == crate::mesh3d::octree::Grading::Graded {
-                return Err(self.error_at(g.span().start, "key `grading`: \"graded\" is not built yet; use \"uniform\"".into()));
             }
         }
         if let Some(r) = &m.max_radius_edge {

@@ -348,7 +348,7 @@ impl Part {
     ///
     /// # Errors
     /// A failed certificate; [`PipelineError::Octree`] (a size too fine for the box, nothing
-    /// inside, a tet the warping turned over, graded mode).
+    /// inside, a tet the warping turned over).
     pub fn mesh_octree(&mut self, size: &dyn SizeField, tess: &TessellateOptions, opts: &crate::mesh3d::octree::OctreeOptions) -> Result<&TetMesh, PipelineError> {
         if self.is_cad() && self.certified.is_none() {
             self.tessellate(size, tess)?;

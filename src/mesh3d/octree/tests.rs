@@ -74,10 +74,36 @@ fn same_bytes_for_any_thread_count() {
     assert_eq!(a, b);
 }
 
+/// Graded and uniform at the same cell size: the same boundary triangles and volume, the
+/// same angle bounds, at most a third of the tets, conforming (every face of one tet only is
+/// a boundary triangle), and the same bytes for any thread count.
 #[test]
-fn graded_is_refused_for_now() {
-    let s = cube_surface(1);
+fn graded_keeps_the_boundary_with_a_third_of_the_tets() {
+    let s = sphere(16);
+    let h = 0.04;
+    let (u, ru) = mesh_octree(&s, &UniformSize(h), &OctreeOptions::default()).unwrap();
     let opts = OctreeOptions { grading: Grading::Graded, ..OctreeOptions::default() };
-    assert!(matches!(mesh_octree(&s, &UniformSize(0.2), &opts), Err(OctreeError::GradedNotBuilt)));
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| mesh_octree(&s, &UniformSize(h), &opts).unwrap())
+    };
+    let (g, rg) = run(2);
+    check(&g, &rg);
+    assert_eq!(rg.grading, "graded");
+    assert!(rg.cells_per_level.len() >= 3, "{:?}", rg.cells_per_level);
+    assert!(3 * g.tets.len() <= u.tets.len(), "{} graded against {} uniform", g.tets.len(), u.tets.len());
+    assert!((rg.volume - ru.volume).abs() < 1e-9 * ru.volume, "{} {}", rg.volume, ru.volume);
+    let tris = |m: &TetMesh| {
+        let mut t: Vec<[[u64; 3]; 3]> = m.boundary.iter().map(|f| {
+            let mut c = f.map(|v| m.vertices[v as usize].to_array().map(f64::to_bits));
+            c.sort_unstable();
+            c
+        }).collect();
+        t.sort_unstable();
+        t
+    };
+    assert_eq!(tris(&g), tris(&u));
+    let open = g.faces().iter().filter(|f| f.neighbor.is_none()).count();
+    assert_eq!(open, g.boundary.len());
+    assert_eq!(run(1).0, g);
 }
-

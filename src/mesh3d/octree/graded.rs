@@ -1,0 +1,391 @@
+//! The graded background of isosurface stuffing: a 2:1 balanced octree over the lattice's
+//! cubes, fine (one cube) wherever the surface comes within a cube, coarser inside, and the
+//! tetrahedra that join its cells (Labelle and Shewchuk 2007, section 6, in our own
+//! construction).
+//!
+//! Stage: between the cut points and the stencils of the octree mesher, in graded mode.
+//! Input: the fine [`Lattice`] and the signs after warping. Output: [`Octree`], which gives
+//! the background tets owned by each cube, marked BCC (two fine cells: the stencils cut them)
+//! or graded (a coarser cell: whole, inside).
+//!
+//! # Invariants
+//! - A cell is an aligned block of `2^L` cubes per side (level `L`); its corners and, for
+//!   `L ≥ 1`, its centre are lattice corners, so the octree's vertices are lattice vertices
+//!   and keep their ids, signs and positions.
+//! - A cell coarser than one cube is *deep*: every lattice vertex in it and the centres of
+//!   the cubes beside it are inside (sign `-1`, so never warped), and every background tet
+//!   of a coarse cell has only such vertices: it is kept whole, as the uniform lattice's tets
+//!   over the same region would be. So the surface, its cut points and warping touch only
+//!   tets between two one-cube cells, the uniform lattice's: the stencils and the uniform
+//!   angle bounds apply unchanged there, and the boundary is the uniform mode's.
+//! - Balance: cells sharing a face or an edge differ by at most one level. The
+//!   midpoint of a cell's edge is a vertex exactly when a finer cell touches that edge.
+//! - Background tets: for every face between two cells (the finer cell's face where they
+//!   differ), the fan around the segment joining the two cells' centres over the face's
+//!   boundary (its corners and the midpoints that are vertices). The segment pierces the face
+//!   (through its centre between equal cells, a third of the way from the finer cell's centre
+//!   between unequal ones), so each such bipyramid is the two pyramids from the centres over
+//!   the face; these tile every cell and meet face to face. Their shapes: the BCC tet
+//!   ([60°, 90°]), the BCC tet bisected at a midpoint ([45°, 90°]), and the tets between a
+//!   cell and one twice its size ([30°, 135°]): all within the uniform bounds.
+//! - Deterministic: levels are computed per cube in parallel and collected in index order;
+//!   balancing splits, in rounds, exactly the cells that violate it (the coarsest balanced
+//!   refinement, whatever the order).
+
+use super::lattice::Lattice;
+use crate::core::predicates::orient3d_int;
+use rayon::prelude::*;
+
+/// The coarsest level a cell may take (`2^MAX_LEVEL` cubes per side).
+pub const MAX_LEVEL: u8 = 12;
+
+/// The balanced octree; see the module docs.
+#[derive(Clone, Debug)]
+pub struct Octree {
+    /// Cubes per axis (the lattice's).
+    n: [u32; 3],
+    /// Per cube (lattice centre order): the level of the cell containing it.
+    level: Vec<u8>,
+}
+
+/// A background tet and whether it is one of the uniform lattice's (both cells one cube).
+pub type Background = ([u32; 4], bool);
+
+impl Octree {
+    /// The octree over `lattice` for the vertex signs `sign` (after warping).
+    pub fn build(lattice: &Lattice, sign: &[i8]) -> Octree {
+        let n = lattice.n;
+        let cubes = lattice.num_centres();
+        // a cube is inside when its 8 corners and its centre are
+        let inside: Vec<bool> = (0..cubes)
+            .into_par_iter()
+            .map(|i| {
+                let c = cube_coords(n, i);
+                let centre = lattice.num_corners() as u32 + i as u32;
+                sign[centre as usize] == -1
+                    && (0..8).all(|k| {
+                        let q = [2 * (c[0] + (k & 1)), 2 * (c[1] + ((k >> 1) & 1)), 2 * (c[2] + (k >> 2))];
+                        lattice.id(q.map(|x| x as i32)).is_some_and(|v| sign[v as usize] == -1)
+                    })
+            })
+            .collect();
+        // deep: the cube is inside and so are the centres of the 6 cubes beside it (every
+        // background tet of a coarse cell joins its centre, its corners, the midpoints on its
+        // faces and the centres of the cells beside it)
+        let nc = lattice.num_corners();
+        let deep: Vec<bool> = (0..cubes)
+            .into_par_iter()
+            .map(|i| {
+                let c = cube_coords(n, i).map(|x| x as i64);
+                inside[i]
+                    && neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() == 1).all(|d| {
+                        let q = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
+                        cube_index(n, q).is_some_and(|j| sign[nc + j] == -1)
+                    })
+            })
+            .collect();
+        // the coarsest aligned block of deep cubes holding each cube
+        let mut allowed = deep;
+        let mut level = vec![0u8; cubes];
+        for l in 1..=MAX_LEVEL {
+            let s = 1u32 << l;
+            if n.iter().any(|&x| x < s) {
+                break;
+            }
+            // a block of level l is allowed when its 8 halves (level l - 1) are
+            let half = s / 2;
+            let next: Vec<bool> = (0..cubes)
+                .into_par_iter()
+                .map(|i| {
+                    let c = cube_coords(n, i);
+                    if c.iter().any(|&x| x % s != 0) || c.iter().zip(n).any(|(&x, m)| x + s > m) {
+                        return false;
+                    }
+                    (0..8u32).all(|k| {
+                        let q = [c[0] + half * (k & 1), c[1] + half * ((k >> 1) & 1), c[2] + half * (k >> 2)];
+                        allowed[cube_index(n, q.map(|x| x as i64)).unwrap_or(0)]
+                    })
+                })
+                .collect();
+            if !next.contains(&true) {
+                break;
+            }
+            level.par_iter_mut().enumerate().for_each(|(i, lv)| {
+                let c = cube_coords(n, i).map(|x| x - x % s);
+                if next[cube_index(n, c.map(|x| x as i64)).unwrap_or(0)] {
+                    *lv = l;
+                }
+            });
+            allowed = next;
+        }
+        let mut tree = Octree { n, level };
+        tree.balance();
+        tree
+    }
+
+    /// Splits cells that have a neighbour across a face or an edge two or more levels finer,
+    /// in rounds, until none has. (Cells meeting at a corner only share no face or edge of a
+    /// background tet, so they need no balance.)
+    fn balance(&mut self) {
+        loop {
+            let n = self.n;
+            let level = &self.level;
+            // the origins of the cells to split this round
+            let mut split: Vec<usize> = (0..level.len())
+                .into_par_iter()
+                .filter_map(|i| {
+                    let l = level[i];
+                    if l < 2 {
+                        return None;
+                    }
+                    let c = cube_coords(n, i).map(|x| x as i64);
+                    neighbours18()
+                        .any(|d| cube_index(n, [c[0] + d[0], c[1] + d[1], c[2] + d[2]]).is_some_and(|j| level[j] + 1 < l))
+                        .then(|| self.origin(i).1)
+                })
+                .collect();
+            if split.is_empty() {
+                return;
+            }
+            split.par_sort_unstable();
+            split.dedup();
+            for o in split {
+                let l = self.level[o];
+                let s = 1u32 << l;
+                let c = cube_coords(self.n, o);
+                for z in 0..s {
+                    for y in 0..s {
+                        for x in 0..s {
+                            let q = [c[0] + x, c[1] + y, c[2] + z].map(|v| v as i64);
+                            if let Some(j) = cube_index(self.n, q) {
+                                self.level[j] = l - 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The cell holding cube `i`: its low cube's coordinates and its index.
+    fn origin(&self, i: usize) -> ([u32; 3], usize) {
+        let s = 1u32 << self.level[i];
+        let c = cube_coords(self.n, i).map(|x| x - x % s);
+        (c, cube_index(self.n, c.map(|x| x as i64)).unwrap_or(i))
+    }
+
+    /// Number of cells per level, finest first.
+    pub fn cells_per_level(&self) -> Vec<usize> {
+        let mut out = vec![0usize; MAX_LEVEL as usize + 1];
+        for i in 0..self.level.len() {
+            if self.origin(i).1 == i {
+                out[self.level[i] as usize] += 1;
+            }
+        }
+        while out.len() > 1 && out.last() == Some(&0) {
+            out.pop();
+        }
+        out
+    }
+
+    /// Whether the lattice corner at doubled coordinates `p` is a corner of some cell.
+    fn is_vertex(&self, p: [i64; 3]) -> bool {
+        let q = p.map(|x| x / 2);
+        (0..8).any(|k| {
+            let c = [q[0] - (k & 1), q[1] - ((k >> 1) & 1), q[2] - (k >> 2)];
+            let Some(j) = cube_index(self.n, c) else { return false };
+            let (o, _) = self.origin(j);
+            let s = 1i64 << self.level[j];
+            (0..3).all(|a| q[a] == o[a] as i64 || q[a] == o[a] as i64 + s)
+        })
+    }
+
+    /// Appends the background tets owned by the cell whose low cube is `i` (nothing when
+    /// `i` is not a cell's low cube): one fan per face shared with an equal cell in `+x`,
+    /// `+y`, `+z`, or with a coarser cell on any side. Positively oriented.
+    pub fn tets_of(&self, lattice: &Lattice, i: usize, out: &mut Vec<Background>) {
+        let (o, oi) = self.origin(i);
+        if oi != i {
+            return;
+        }
+        let l = self.level[i];
+        let s = 1i64 << l;
+        let o = o.map(|x| x as i64);
+        let centre = |o: [i64; 3], s: i64| o.map(|x| 2 * x + s);
+        let c = centre(o, s);
+        for axis in 0..3 {
+            for dir in [1i64, -1] {
+                let mut probe = o;
+                probe[axis] += if dir > 0 { s } else { -1 };
+                let Some(j) = cube_index(self.n, probe) else { continue };
+                let lj = self.level[j];
+                let same = lj == l;
+                if !(same && dir > 0 || lj == l + 1) {
+                    continue;
+                }
+                let (oj, _) = self.origin(j);
+                let c2 = centre(oj.map(|x| x as i64), 1i64 << lj);
+                // the face's ring: corners and the midpoints that are vertices
+                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+                let plane = 2 * (o[axis] + if dir > 0 { s } else { 0 });
+                let at = |ua: i64, ub: i64| {
+                    let mut r = [0i64; 3];
+                    r[axis] = plane;
+                    r[a] = 2 * o[a] + ua;
+                    r[b] = 2 * o[b] + ub;
+                    r
+                };
+                let e = 2 * s;
+                let corners = [at(0, 0), at(e, 0), at(e, e), at(0, e)];
+                let mut ring = Vec::with_capacity(8);
+                for k in 0..4 {
+                    let (p, q) = (corners[k], corners[(k + 1) % 4]);
+                    ring.push(p);
+                    if l >= 1 {
+                        let m = [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2];
+                        if self.is_vertex(m) {
+                            ring.push(m);
+                        }
+                    }
+                }
+                let bcc = l == 0 && same;
+                let id = |p: [i64; 3]| lattice.id(p.map(|x| x as i32));
+                let (Some(vc), Some(vc2)) = (id(c), id(c2)) else { continue };
+                let (pc, pc2) = (c.map(|x| x as i32), c2.map(|x| x as i32));
+                for k in 0..ring.len() {
+                    let (r0, r1) = (ring[k], ring[(k + 1) % ring.len()]);
+                    let (Some(v0), Some(v1)) = (id(r0), id(r1)) else { continue };
+                    let (p0, p1) = (r0.map(|x| x as i32), r1.map(|x| x as i32));
+                    let t = if orient3d_int(pc, pc2, p0, p1).is_positive() { [vc, vc2, v0, v1] } else { [vc, vc2, v1, v0] };
+                    out.push((t, bcc));
+                }
+            }
+        }
+    }
+}
+
+/// Coordinates of cube `i` (lattice centre order, `x` fastest).
+fn cube_coords(n: [u32; 3], i: usize) -> [u32; 3] {
+    let (a, b) = (n[0] as usize, n[1] as usize);
+    [(i % a) as u32, ((i / a) % b) as u32, (i / (a * b)) as u32]
+}
+
+/// The index of the cube at `c`, if it is in the lattice.
+fn cube_index(n: [u32; 3], c: [i64; 3]) -> Option<usize> {
+    if c.iter().zip(n).any(|(&x, m)| x < 0 || x >= m as i64) {
+        return None;
+    }
+    let [a, b] = [n[0] as usize, n[1] as usize];
+    Some(c[0] as usize + a * (c[1] as usize + b * c[2] as usize))
+}
+
+/// The 26 offsets to the cubes sharing a face, an edge or a corner.
+fn neighbours26() -> impl Iterator<Item = [i64; 3]> {
+    (0..27).filter(|&k| k != 13).map(|k| [k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1])
+}
+
+/// The 18 offsets to the cubes sharing a face or an edge.
+fn neighbours18() -> impl Iterator<Item = [i64; 3]> {
+    neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() < 3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::Aabb;
+    use crate::quality::tetrahedron::{tet_min_max_dihedral, tet_volume};
+    use glam::DVec3;
+
+    /// Signs of a ball of radius `r` around the box's centre on the lattice (no cuts).
+    fn ball(l: &Lattice, r: f64) -> Vec<i8> {
+        let mid = l.origin + DVec3::new(l.n[0] as f64, l.n[1] as f64, l.n[2] as f64) * (0.5 * l.h);
+        (0..l.num_vertices() as u32).map(|v| if (l.position(v) - mid).length() < r { -1 } else { 1 }).collect()
+    }
+
+    fn lattice(size: f64, h: f64) -> Lattice {
+        Lattice::covering(&Aabb::from_points(&[DVec3::ZERO, DVec3::splat(size)]), h).unwrap()
+    }
+
+    #[test]
+    fn balanced_and_deep() {
+        let l = lattice(1.0, 1.0 / 64.0);
+        let sign = ball(&l, 0.5);
+        let t = Octree::build(&l, &sign);
+        let levels = t.cells_per_level();
+        assert!(levels.len() >= 4, "{levels:?}");
+        // inside, the cells one cube wide are a band along the surface: under a sixth
+        let inside = |i: usize| sign[l.num_corners() + i] == -1;
+        let fine_inside = (0..t.level.len()).filter(|&i| inside(i) && t.level[i] == 0).count();
+        let all_inside = (0..t.level.len()).filter(|&i| inside(i)).count();
+        assert!(6 * fine_inside < all_inside, "{fine_inside} of {all_inside}");
+        for i in 0..t.level.len() {
+            let c = cube_coords(t.n, i).map(|x| x as i64);
+            for d in neighbours18() {
+                if let Some(j) = cube_index(t.n, [c[0] + d[0], c[1] + d[1], c[2] + d[2]]) {
+                    assert!(t.level[i] <= t.level[j] + 1, "{i} {j}");
+                }
+            }
+            if t.level[i] > 0 {
+                // every lattice vertex of a coarse cell is inside, and the centres of the cubes
+                // beside it
+                assert_eq!(sign[l.num_corners() + i], -1);
+                for d in neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() == 1) {
+                    let j = cube_index(t.n, [c[0] + d[0], c[1] + d[1], c[2] + d[2]]).unwrap();
+                    assert_eq!(sign[l.num_corners() + j], -1);
+                }
+            }
+        }
+    }
+
+    /// The background tets tile the lattice's box: positive, their volumes sum to the box's,
+    /// every interior face is shared by two tets, and the shapes are the three of the module
+    /// docs.
+    #[test]
+    fn background_tiles_the_box() {
+        let l = lattice(1.0, 1.0 / 24.0);
+        let sign = ball(&l, 0.45);
+        let t = Octree::build(&l, &sign);
+        assert!(t.cells_per_level().len() >= 3);
+        let mut tets = Vec::new();
+        for i in 0..l.num_centres() {
+            t.tets_of(&l, i, &mut tets);
+        }
+        let mut vol = 0.0;
+        let (mut lo, mut hi) = (180.0f64, 0.0f64);
+        for (tet, _) in &tets {
+            let p = tet.map(|v| l.position(v));
+            let v = tet_volume(&p);
+            assert!(v > 0.0);
+            vol += v;
+            let (a, b) = tet_min_max_dihedral(&p);
+            lo = lo.min(a);
+            hi = hi.max(b);
+        }
+        assert!(lo >= 30.0 - 1e-9 && hi <= 135.0 + 1e-9, "{lo} {hi}");
+        // the box less one pyramid (a sixth of a cube) over each cube face on its boundary
+        let [x, y, z] = l.n.map(|v| v as f64);
+        let want = (x * y * z - (x * y + y * z + z * x) / 3.0) * l.h.powi(3);
+        assert!((vol - want).abs() < 1e-9 * want, "{vol} {want}");
+        // conformity: every face once or twice, twice with opposite senses
+        let mesh = crate::mesh::TetMesh {
+            vertices: (0..l.num_vertices() as u32).map(|v| l.position(v)).collect(),
+            tets: tets.iter().map(|t| t.0).collect(),
+            region_tags: vec![crate::core::RegionId(1); tets.len()],
+            ..Default::default()
+        };
+        mesh.validate().unwrap();
+        // the open faces are the missing pyramids' sides (two corners on the box's boundary),
+        // but for those over the box's edges, between two missing pyramids
+        let faces = mesh.faces();
+        let open: Vec<_> = faces.iter().filter(|f| f.neighbor.is_none()).collect();
+        let [x, y, z] = l.n.map(|v| v as usize);
+        assert_eq!(open.len(), 8 * (x * y + y * z + z * x) - 8 * (x + y + z));
+        for f in open {
+            let on = f.vertices.iter().filter(|&&v| {
+                let c = l.coords(v);
+                (0..3).any(|a| c[a] == 0 || c[a] == 2 * l.n[a] as i32)
+            });
+            assert_eq!(on.count(), 2, "{:?}", f.vertices);
+        }
+    }
+}
