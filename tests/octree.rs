@@ -116,3 +116,46 @@ fn graded_from_the_command_line_and_a_job_file() {
     assert!(o.status.success(), "{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(dir.path().join("j.msh").is_file());
 }
+
+/// A CAD assembly (18 solids): each solid meshed on its own, its own region, the contacts
+/// listed, the volume of every solid kept within 1 % and the boundary within the cell size
+/// of the solids' surfaces (the faces where solids touch included).
+#[test]
+#[ignore = "heavy: run in release with --include-ignored"]
+fn assembly_meshes_solid_by_solid() {
+    let Some(path) = common::corpus_file("as1-tu-203.stp") else { return };
+    let Some((err, o)) = mesh("as1-tu-203.stp", 100.0) else { return };
+    assert_eq!(o.solids, 18);
+    assert!(o.empty_solids.is_empty(), "{:?}", o.empty_solids);
+    assert!(err.abs() < 0.01, "volume {err}");
+    // at a quarter of that resolution the thinner solids are left out, named
+    let mut part = Part::open(&path).unwrap();
+    let mut density = fepre::attributes::Density::default();
+    density.size = fepre::attributes::values::Positive::new(part.diagonal() / 25.0);
+    let plan = Plan { unit: 1.0, density, method: Method::Octree, ..Plan::default() };
+    let report = run_plan(&mut part, &plan, false).unwrap();
+    let o = report.octree.unwrap();
+    let mesh = part.mesh.as_ref().unwrap();
+    let mut regions: Vec<u32> = mesh.region_tags.iter().map(|r| r.0).collect();
+    regions.sort_unstable();
+    regions.dedup();
+    assert_eq!(regions.len() + o.empty_solids.len(), 18, "{regions:?} {:?}", o.empty_solids);
+    assert!(o.empty_solids.iter().all(|e| !regions.contains(&e.solid) && e.volume > 0.0));
+    assert!(!part.contacts.is_empty());
+}
+
+/// A solid thinner than the cell is left out with a warning naming it, not silently.
+#[test]
+fn a_solid_thinner_than_the_cell_is_named() {
+    let Some(path) = common::corpus_file("abc-0000.step") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("a.mesh");
+    let o = Command::new(env!("CARGO_BIN_EXE_fepre"))
+        .args(["mesh".as_ref(), path.as_os_str(), "-o".as_ref(), out.as_os_str(), "--method".as_ref(), "octree".as_ref(), "--size".as_ref(), "12".as_ref()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("solids left out") && err.contains("\"Glass\""), "{err}");
+    assert!(err.contains("volume is"), "{err}");
+}

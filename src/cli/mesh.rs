@@ -191,6 +191,13 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     if let Some(o) = &report.octree {
         let d = &o.deviation;
         println!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
+        if o.solids > 1 {
+            println!("  solids         {} meshed one by one, each its own region", o.solids - o.empty_solids.len());
+        }
+        if !o.empty_solids.is_empty() {
+            let names: Vec<String> = o.empty_solids.iter().map(|e| format!("{}{} ({:.4e})", e.solid, e.name.as_ref().map(|n| format!(" {n:?}")).unwrap_or_default(), e.volume)).collect();
+            eprintln!("WARNING: {} solids left out, thinner than the cell size {:.4e} (no lattice vertex inside; a smaller --size reaches them): {}", o.empty_solids.len(), o.cell_size, names.join(", "));
+        }
         if !o.cells_per_level.is_empty() {
             let cells: Vec<String> = o.cells_per_level.iter().enumerate().map(|(l, n)| format!("{n} of {:.4e}", o.cell_size * (1u64 << l) as f64)).collect();
             println!("  cells          {}", cells.join(", "));

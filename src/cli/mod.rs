@@ -237,7 +237,7 @@ const VOLUME_WARNING: f64 = 0.01;
 pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: &str) {
     if let Some(e) = m.volume_error.filter(|e| e.abs() > VOLUME_WARNING) {
         eprintln!(
-            "WARNING: the mesh's volume is {:+.2}% off the CAD solids' (the tessellation's chords cut the curved faces: give a smaller size, a curvature size or a smaller deviation); --require-volume-error F makes this an error",
+            "WARNING: the mesh's volume is {:+.2}% off the CAD solids' (the tessellation's chords cut the curved faces, and octree cells miss what is thinner than a cell: give a smaller size, a curvature size or a smaller deviation); --require-volume-error F makes this an error",
             100.0 * e
         );
     }

@@ -33,7 +33,7 @@ mod surface_model;
 mod tetra;
 mod ties;
 
-pub use assembly::{Contact, SolidFace, SolidInfo, Solids, assembly_contacts, mesh_solids};
+pub use assembly::{Contact, SolidFace, SolidInfo, Solids, assembly_contacts, merge_solids, mesh_solids, solid_surfaces};
 
 use crate::core::{FaceId, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};

@@ -26,6 +26,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
+/// How many unresolved feature edges a report lists.
+pub const EXAMPLES: usize = 5;
+
 /// The boundary's deviation from the input; see the module docs.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Deviation {
@@ -81,7 +84,7 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
         d.feature_max_distance = d.feature_max_distance.max(dist);
         if dist > h {
             d.unresolved_feature_edges += 1;
-            if d.unresolved_examples.len() < 5 {
+            if d.unresolved_examples.len() < EXAMPLES {
                 d.unresolved_examples.push(e.map(|v| surface.vertices[v as usize].to_array()));
             }
         }

@@ -41,6 +41,7 @@ mod cut;
 mod deviation;
 mod graded;
 mod lattice;
+mod merge;
 mod stencil;
 mod tags;
 mod winding;
@@ -105,6 +106,12 @@ impl Default for OctreeOptions {
 pub struct OctreeReport {
     /// `"uniform"` or `"graded"`.
     pub grading: String,
+    /// Solids meshed one by one (the solids of a CAD assembly; 1 otherwise).
+    pub solids: usize,
+    /// Solids of an assembly left out because no lattice vertex lies inside them (thinner
+    /// than the cell size); their volume is in `input_volume`, not in `volume`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub empty_solids: Vec<EmptySolid>,
     /// The lattice's cell size (long edge).
     pub cell_size: f64,
     /// Lattice vertices (all, inside or not).
@@ -146,6 +153,18 @@ pub struct OctreeReport {
     pub stage_seconds: Vec<(String, f64)>,
 }
 
+/// A solid of an assembly the lattice does not reach into.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct EmptySolid {
+    /// Its number (region tag).
+    pub solid: u32,
+    /// Its name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Its volume (its surface's, by the divergence theorem).
+    pub volume: f64,
+}
+
 /// Why the octree mesher made no mesh.
 #[derive(Debug, thiserror::Error)]
 pub enum OctreeError {
@@ -164,6 +183,16 @@ pub enum OctreeError {
         at: DVec3,
         /// The cell size.
         h: f64,
+    },
+    /// One solid of an assembly could not be meshed.
+    #[error("solid {solid}{}: {source}", name.as_ref().map(|n| format!(" ({n:?})")).unwrap_or_default())]
+    InSolid {
+        /// The solid's number (its region tag).
+        solid: u32,
+        /// Its name.
+        name: Option<String>,
+        /// Why.
+        source: Box<OctreeError>,
     },
     /// Our own bug: the stencils and the cut points disagree.
     #[error("internal error in the octree mesher: {0}")]
@@ -231,6 +260,8 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
     stages.push(("total".to_string(), t_all.elapsed().as_secs_f64()));
     let report = OctreeReport {
         grading: if tree.is_some() { "graded" } else { "uniform" }.into(),
+        solids: 1,
+        empty_solids: Vec::new(),
         cell_size: h,
         lattice_vertices: n,
         cells_per_level: tree.as_ref().map(|t| t.cells_per_level()).unwrap_or_default(),

@@ -167,19 +167,8 @@ pub fn mesh_solids(surface: &TriSurface, solids: &Solids, gap: f64, size: &dyn S
             None => return Err(MeshingError::Internal("a solid was skipped although none before it failed".into())),
         }
     }
-    let tags: Vec<RegionId> = solids.solids.iter().map(|s| s.tag).collect();
-    let names: Vec<Option<String>> = solids.solids.iter().map(|s| s.name.clone()).collect();
     stage("mesh solids", &mut clock);
-    let (mesh, shared) = merge::merge(meshes, &tags, &names);
-    for ((sa, fa), (sb, fb), area) in shared {
-        let ((sa, fa), (sb, fb)) = if sa < sb { ((sa, fa), (sb, fb)) } else { ((sb, fb), (sa, fa)) };
-        let (ta, tb) = (solids.solids[sa].tag, solids.solids[sb].tag);
-        match contacts.iter_mut().find(|c| (c.solid_a, c.face_a, c.solid_b, c.face_b) == (ta, fa, tb, fb)) {
-            Some(c) => c.shared_area += area,
-            None => contacts.push(Contact { solid_a: ta, face_a: fa, solid_b: tb, face_b: fb, area, shared_area: area }),
-        }
-    }
-    contacts.sort_by(|x, y| (x.solid_a, x.face_a, x.solid_b, x.face_b).cmp(&(y.solid_a, y.face_a, y.solid_b, y.face_b)));
+    let mesh = merge_solids(meshes, solids, &mut contacts);
     stage("merge", &mut clock);
     let mut report = merge::merge_reports(&reports);
     // the assembly's own stages, then each solid's summed over the solids
@@ -190,6 +179,33 @@ pub fn mesh_solids(surface: &TriSurface, solids: &Solids, gap: f64, size: &dyn S
     report.regions = count;
     report.seconds = start.elapsed().as_secs_f64();
     Ok((mesh, report, contacts))
+}
+
+/// Each solid of `surface` cut out on its own (vertices renumbered, face tags and names
+/// kept), in the order of `solids`: for a mesher other than [`mesh_solids`]'s to mesh one by
+/// one. `solids` must match the surface (as [`assembly_contacts`] checks).
+pub fn solid_surfaces(surface: &TriSurface, solids: &Solids) -> Vec<TriSurface> {
+    solid::split(surface, &solids.of_triangle, solids.solids.len()).into_iter().map(|p| p.surface).collect()
+}
+
+/// One mesh of the solids' meshes (`meshes[s]` meshes solid `s`): region tag and name per
+/// solid, face tags kept, nodes merged where two solids' boundary triangles coincide exactly;
+/// the area so merged is added to the contacts' `shared_area` (a contact is added where
+/// there was none), and the contacts are sorted by solids and faces.
+pub fn merge_solids(meshes: Vec<TetMesh>, solids: &Solids, contacts: &mut Vec<Contact>) -> TetMesh {
+    let tags: Vec<RegionId> = solids.solids.iter().map(|s| s.tag).collect();
+    let names: Vec<Option<String>> = solids.solids.iter().map(|s| s.name.clone()).collect();
+    let (mesh, shared) = merge::merge(meshes, &tags, &names);
+    for ((sa, fa), (sb, fb), area) in shared {
+        let ((sa, fa), (sb, fb)) = if sa < sb { ((sa, fa), (sb, fb)) } else { ((sb, fb), (sa, fa)) };
+        let (ta, tb) = (solids.solids[sa].tag, solids.solids[sb].tag);
+        match contacts.iter_mut().find(|c| (c.solid_a, c.face_a, c.solid_b, c.face_b) == (ta, fa, tb, fb)) {
+            Some(c) => c.shared_area += area,
+            None => contacts.push(Contact { solid_a: ta, face_a: fa, solid_b: tb, face_b: fb, area, shared_area: area }),
+        }
+    }
+    contacts.sort_by(|x, y| (x.solid_a, x.face_a, x.solid_b, x.face_b).cmp(&(y.solid_a, y.face_a, y.solid_b, y.face_b)));
+    mesh
 }
 
 /// What [`mesh_solids`] checks before meshing, without meshing: each solid's own surface,

@@ -1,0 +1,85 @@
+//! One report for a part whose solids were meshed one by one: counts summed, extremes kept.
+//!
+//! Stage: after the octree mesher ran on each solid of an assembly. Input: the solids'
+//! [`OctreeReport`]s in solid order. Output: one [`OctreeReport`] (seconds summed per stage
+//! name, in the order they first appear).
+
+use super::{Deviation, OctreeReport};
+
+impl OctreeReport {
+    /// The report of several solids meshed one by one; see the module docs. `None` for no
+    /// report.
+    pub fn merged(reports: &[OctreeReport]) -> Option<OctreeReport> {
+        let (first, rest) = reports.split_first()?;
+        let mut out = first.clone();
+        for r in rest {
+            out.cell_size = out.cell_size.min(r.cell_size);
+            out.lattice_vertices += r.lattice_vertices;
+            if out.cells_per_level.len() < r.cells_per_level.len() {
+                out.cells_per_level.resize(r.cells_per_level.len(), 0);
+            }
+            for (o, n) in out.cells_per_level.iter_mut().zip(&r.cells_per_level) {
+                *o += n;
+            }
+            out.crossing_edges += r.crossing_edges;
+            out.cut_points += r.cut_points;
+            out.bisected_cut_points += r.bisected_cut_points;
+            out.warped_vertices += r.warped_vertices;
+            out.all_zero_tets += r.all_zero_tets;
+            out.tets += r.tets;
+            out.nodes += r.nodes;
+            out.boundary_triangles += r.boundary_triangles;
+            out.dihedral = [out.dihedral[0].min(r.dihedral[0]), out.dihedral[1].max(r.dihedral[1])];
+            out.volume += r.volume;
+            out.input_volume += r.input_volume;
+            out.deviation = merged_deviation(&out.deviation, &r.deviation);
+            for (stage, s) in &r.stage_seconds {
+                match out.stage_seconds.iter_mut().find(|(n, _)| n == stage) {
+                    Some((_, t)) => *t += s,
+                    None => out.stage_seconds.push((stage.clone(), *s)),
+                }
+            }
+        }
+        out.solids = reports.len();
+        Some(out)
+    }
+}
+
+/// The deviation of two solids' boundaries together: the larger distances, the counts summed.
+fn merged_deviation(a: &Deviation, b: &Deviation) -> Deviation {
+    let mut examples = a.unresolved_examples.clone();
+    examples.extend(b.unresolved_examples.iter().take(super::deviation::EXAMPLES.saturating_sub(examples.len())));
+    Deviation {
+        mesh_to_input: a.mesh_to_input.max(b.mesh_to_input),
+        input_to_mesh: a.input_to_mesh.max(b.input_to_mesh),
+        hausdorff: a.hausdorff.max(b.hausdorff),
+        hausdorff_bound: a.hausdorff_bound.max(b.hausdorff_bound),
+        samples: a.samples + b.samples,
+        feature_angle_deg: a.feature_angle_deg,
+        feature_edges: a.feature_edges + b.feature_edges,
+        unresolved_feature_edges: a.unresolved_feature_edges + b.unresolved_feature_edges,
+        feature_max_distance: a.feature_max_distance.max(b.feature_max_distance),
+        unresolved_examples: examples,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_add_and_extremes_keep() {
+        let a = OctreeReport { tets: 10, volume: 1.0, input_volume: 1.1, dihedral: [20.0, 140.0], cells_per_level: vec![5, 1], solids: 1, ..OctreeReport::default() };
+        let mut b = OctreeReport { tets: 7, volume: 2.0, input_volume: 2.0, dihedral: [15.0, 130.0], cells_per_level: vec![3, 2, 1], solids: 1, ..OctreeReport::default() };
+        b.deviation.hausdorff = 0.5;
+        b.stage_seconds = vec![("winding".into(), 1.0)];
+        let m = OctreeReport::merged(&[a, b]).unwrap();
+        assert_eq!((m.tets, m.solids), (17, 2));
+        assert_eq!(m.dihedral, [15.0, 140.0]);
+        assert_eq!(m.cells_per_level, vec![8, 3, 1]);
+        assert!((m.volume - 3.0).abs() < 1e-12 && (m.input_volume - 3.1).abs() < 1e-12);
+        assert_eq!(m.deviation.hausdorff, 0.5);
+        assert_eq!(m.stage_seconds, vec![("winding".to_string(), 1.0)]);
+        assert!(OctreeReport::merged(&[]).is_none());
+    }
+}
