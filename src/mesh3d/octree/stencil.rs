@@ -37,9 +37,12 @@
 //! - Not the paper's bound once `0` vertices are *displaced* by warping (each moved by up to
 //!   `α` of one of its 14 lattice edges towards a cut point): there the tests find tets down
 //!   to 9.32° and up to 161.64°, all positive. The shortfall is not the stencils': a `-00+`
-//!   or `-000` background tet has exactly one possible tet, and a planar surface already
-//!   gives a `-00+` tet of 10.2° (test `warped_single_tet_case_falls_short_for_a_plane`). The
-//!   caller measures every mesh and reports its extremes.
+//!   or `-000` background tet has exactly one possible tet, and a surface crossing a
+//!   background tet's edges where one plane does (bending away from the `-` vertex's other
+//!   edges, so that only two vertices warp) gives a `-00+` tet of 10.2° (test
+//!   `warped_single_tet_case_falls_short`). Whether the paper's warping admits fewer
+//!   displacements than ours (`cut.rs`) is not settled here. The caller measures every mesh
+//!   and reports its extremes.
 //! - Every tet produced is non-degenerate and positively oriented in the reference geometry
 //!   (exact integer orientation); whether it stays positive at the warped positions and the
 //!   true cut points is checked by the caller.
@@ -389,8 +392,8 @@ mod tests {
 
     /// The paper's bounds with every cut point anywhere in its allowed range `[α, 1 - α]`
     /// (both ends and three inner points per cut, every combination) and the `0` vertices at
-    /// their lattice positions, for every sign pattern with a `-` and a `+` and every
-    /// orientation and parity of background tet: every tet is positive with dihedral angles
+    /// their lattice positions, for every sign pattern with a `-` and every orientation and
+    /// parity of background tet: every tet is positive with dihedral angles
     /// in [10.7°, 164.8°] (worst found 12.73° and 154.87°).
     #[test]
     fn stencils_keep_the_papers_bounds_at_allowed_cut_points() {
@@ -398,7 +401,7 @@ mod tests {
         let mut worst = (180.0f64, 0.0f64);
         for refs in sample_tets() {
             let p = refs.map(point);
-            for s in patterns().filter(|s| s.contains(&-1) && s.contains(&1)) {
+            for s in patterns().filter(|s| s.contains(&-1)) {
                 let mut out = Vec::new();
                 stuff(s, refs, &mut out);
                 let (lo, hi) = sweep(s, refs, &p, &out, &ts);
@@ -485,13 +488,15 @@ mod tests {
         assert!(worst.0 >= 9.31 && worst.1 <= 161.65, "{worst:?}");
     }
 
-    /// Why the previous test cannot ask for the paper's 10.7°: a planar surface through the
-    /// cut at `0.25` of `AB` from `A` and through points at `0.41` of `CB` and `DB` from `C`
-    /// and `D` (closer than `α_short = 0.41189`, so `C` and `D` warp onto it) leaves the
-    /// `-+00` background tet `(A, B, C, D)` one possible tet, and its smallest dihedral angle
-    /// is 10.2°.
+    /// Why the previous test cannot ask for the paper's 10.7°: a surface that crosses the
+    /// edges of the background tet `(A, B, C, D)` where the plane through the point at `0.25`
+    /// of `AB` from `A` and the points at `0.41` of `CB` and `DB` from `C` and `D` does (and
+    /// bends away from `A`'s other lattice edges, which the plane itself would cut within
+    /// `α_short` of `A`): `C` and `D` are closer than `α_short = 0.41189` to those cut points
+    /// and warp onto them, `A` and `B` are not violated, and the `-+00` background tet has one
+    /// possible tet, whose smallest dihedral angle is 10.2°.
     #[test]
-    fn warped_single_tet_case_falls_short_for_a_plane() {
+    fn warped_single_tet_case_falls_short() {
         let refs = bcc();
         let p = refs.map(point);
         let (a, b, c, d) = (p[0], p[1], p[2], p[3]);
@@ -502,7 +507,7 @@ mod tests {
         let n = if f(b) > 0.0 { n } else { -n };
         let f = |q: DVec3| n.dot(q - x);
         assert!(f(a) < 0.0 && f(b) > 0.0 && f(c) < 0.0 && f(d) < 0.0);
-        // the plane's cut points: C and D are violated, A and B are not
+        // the cut points on the tet's edges: C and D are violated, A and B are not
         let t = |u: DVec3, v: DVec3| f(u) / (f(u) - f(v));
         assert!((t(c, b) - 0.41).abs() < 1e-12 && t(c, b) < ALPHA_SHORT);
         assert!((t(d, b) - 0.41).abs() < 1e-12 && t(a, b) > ALPHA_LONG && 1.0 - t(a, b) > ALPHA_LONG);
