@@ -21,10 +21,14 @@
 //! 7. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
 //!
 //! # Invariants
-//! - Uniform mode: the paper proves every dihedral angle in [[`MIN_DIHEDRAL`],
-//!   [`MAX_DIHEDRAL`]] = [10.7°, 164.8°] with its `α`s and its stencils. Our stencils differ
-//!   in the parity details (see `stencil.rs`): at the extreme cut positions they reach
-//!   6.61°; on real surfaces the report gives the extremes measured, and the callers check
+//! - Uniform mode: the stencils are the paper's, with its quadrilateral rules (the apex rule
+//!   and the parity rule, read off one background face, so the mesh is conforming; see
+//!   `stencil.rs`). Tested: with every cut point anywhere in its allowed range `[α, 1 - α]`
+//!   and the `0` vertices at their lattice positions, every stencil tet has its dihedral
+//!   angles in [[`MIN_DIHEDRAL`], [`MAX_DIHEDRAL`]] = [10.7°, 164.8°], the paper's bounds.
+//!   With warped vertices displaced towards their cut points the tests find [9.32°, 161.64°]
+//!   (all positive): the cases below 10.7° include single-tet stencils, which no choice of
+//!   diagonals changes. The report gives the extremes of every mesh, and the callers check
 //!   them against the paper's bounds.
 //! - Graded mode: the cut, warped and stencilled tets are the uniform lattice's, so they keep
 //!   the uniform mode's angles; the coarser tets are whole and their shapes lie in [30°, 135°]
@@ -339,8 +343,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
                 }
                 local.clear();
                 let refs = t.map(|v| lattice.coords(v));
-                let ranks = [0, 1, 2, 3].map(|k| stencil::parity_rank(refs[k], t[k]));
-                stencil::stuff(s, ranks, refs, &mut local);
+                stencil::stuff(s, refs, &mut local);
                 // `None` where a stencil asks for a cut point its edge lacks (our bug)
                 let global = |local: &[[Local; 4]]| -> Option<Vec<[u32; 4]>> {
                     local
@@ -357,20 +360,10 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
                         })
                         .collect()
                 };
-                let Some(mut chosen) = global(&local) else {
+                let Some(chosen) = global(&local) else {
                     missing.push(lattice.position(t[0]));
                     continue;
                 };
-                if s.iter().filter(|&&x| x == -1).count() == 2 && s.iter().filter(|&&x| x == 1).count() == 2 {
-                    // the surface quadrilateral: the better of its two diagonals
-                    let mut other = Vec::new();
-                    stencil::stuff_variant(s, ranks, refs, &mut other, true);
-                    if let Some(other) = global(&other) {
-                        if margin(&other, lattice, cuts) > margin(&chosen, lattice, cuts) {
-                            chosen = other;
-                        }
-                    }
-                }
                 for g in chosen {
                     push_checked(g, lattice, cuts, &mut out, &mut bad);
                 }
@@ -512,21 +505,6 @@ fn push_checked(t: [u32; 4], lattice: &Lattice, cuts: &Cuts, out: &mut Vec<[u32;
     } else {
         bad.push((p[0] + p[1] + p[2] + p[3]) / 4.0);
     }
-}
-
-/// The worst of `min dihedral` and `180° - max dihedral` over `tets` at the true positions
-/// (negative for an inverted tet).
-fn margin(tets: &[[u32; 4]], lattice: &Lattice, cuts: &Cuts) -> f64 {
-    tets.iter()
-        .map(|t| {
-            let p = t.map(|v| corner_position(v, lattice, cuts));
-            if crate::quality::tetrahedron::tet_volume(&p) <= 0.0 {
-                return -1.0;
-            }
-            let (lo, hi) = tet_min_max_dihedral(&p);
-            lo.min(180.0 - hi)
-        })
-        .fold(180.0, f64::min)
 }
 
 #[cfg(test)]
