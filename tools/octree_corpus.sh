@@ -43,11 +43,16 @@ fi
 for name in "${files[@]}"; do
   f="$corpus/$name"
   # the cell size: the diagonal over DIV (a first run at the default cell, diagonal / 25)
-  if ! "$fepre" mesh "$f" -o "$tmp/a.mesh" --method octree --json > "$tmp/a.json" 2> "$tmp/a.err"; then
+  # (a STEP part whose solids are all thinner than that cell: its tessellation's chord over
+  # its relative deviation)
+  if "$fepre" mesh "$f" -o "$tmp/a.mesh" --method octree --json > "$tmp/a.json" 2> "$tmp/a.err"; then
+    diag=$(python3 -c 'import json,sys; print(25 * json.load(open(sys.argv[1]))["octree"]["cell_size"])' "$tmp/a.json")
+  elif "$fepre" tessellate "$f" -o "$tmp/a.stl" --json > "$tmp/t.json" 2> /dev/null; then
+    diag=$(python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print(j["chord_mm"] / j["deviation"] / j["units"]["to_mm"])' "$tmp/t.json")
+  else
     printf '%-28s %s\n' "$name" "error: $(head -c 300 "$tmp/a.err" | tr '\n' ' ')"
     continue
   fi
-  diag=$(python3 -c 'import json,sys; print(25 * json.load(open(sys.argv[1]))["octree"]["cell_size"])' "$tmp/a.json")
   size=$(python3 -c "print($diag/$div)")
   start=$(date +%s.%N)
   if "$fepre" mesh "$f" -o "$tmp/o.mesh" --method octree "${grading[@]}" --size "$size" --json > "$tmp/o.json" 2> "$tmp/o.err"; then

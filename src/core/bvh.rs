@@ -259,11 +259,19 @@ impl Bvh {
     /// distance: branch and bound over the boxes, ties to the smaller item index, so the
     /// answer depends only on the input. `None` for an empty tree.
     pub fn nearest(&self, p: DVec3, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
+        self.nearest_from(p, None, dist)
+    }
+
+    /// [`Bvh::nearest`], starting from the item `hint` (an item of this tree, such as the
+    /// answer for a point nearby): its distance bounds the search from the start, so far
+    /// branches are never opened. The answer is the same as without a hint.
+    pub fn nearest_from(&self, p: DVec3, hint: Option<u32>, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
         if self.nodes.is_empty() {
             return None;
         }
-        let mut best: Option<(u32, f64)> = None;
-        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
+        let mut best: Option<(u32, f64)> = hint.map(|h| (h, dist(h)));
+        // a stack on the stack: no allocation per query (spills past its size)
+        let mut stack = SmallStack::<(u32, f64)>::new();
         stack.push((0, box_distance(&self.nodes[0].bbox, p)));
         while let Some((n, d)) = stack.pop() {
             if best.is_some_and(|(_, bd)| d > bd) {
@@ -272,7 +280,11 @@ impl Bvh {
             let node = &self.nodes[n as usize];
             if node.is_leaf() {
                 let r = node.first as usize..(node.first + node.count) as usize;
-                for &id in &self.ids[r] {
+                for (&id, b) in self.ids[r.clone()].iter().zip(&self.boxes[r]) {
+                    // an item's distance is no smaller than its box's
+                    if best.is_some_and(|(_, bd)| box_distance(b, p) > bd) {
+                        continue;
+                    }
                     let di = dist(id);
                     let better = match best {
                         None => true,
@@ -511,6 +523,36 @@ pub enum NodeView<'a> {
 }
 
 /// The distance from `p` to the closed box `b` (0 inside).
+/// A LIFO stack of up to 64 entries in place, spilling into a vector beyond.
+struct SmallStack<T: Copy + Default> {
+    items: [T; 64],
+    len: usize,
+    spill: Vec<T>,
+}
+
+impl<T: Copy + Default> SmallStack<T> {
+    fn new() -> Self {
+        SmallStack { items: [T::default(); 64], len: 0, spill: Vec::new() }
+    }
+
+    fn push(&mut self, x: T) {
+        if self.len < self.items.len() {
+            self.items[self.len] = x;
+            self.len += 1;
+        } else {
+            self.spill.push(x);
+        }
+    }
+
+    fn pop(&mut self) -> Option<T> {
+        if let Some(x) = self.spill.pop() {
+            return Some(x);
+        }
+        self.len = self.len.checked_sub(1)?;
+        Some(self.items[self.len])
+    }
+}
+
 fn box_distance(b: &Aabb, p: DVec3) -> f64 {
     let d = (b.min - p).max(p - b.max).max(DVec3::ZERO);
     d.length()

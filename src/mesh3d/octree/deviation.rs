@@ -77,7 +77,15 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
         .map(|&[a, b]| {
             let (pa, pb) = (surface.vertices[a as usize], surface.vertices[b as usize]);
             let k = ((pa.distance(pb) / (0.25 * h)).ceil() as usize).clamp(1, 1024);
-            (0..=k).map(|i| distance_to(&bnd, &bnd_bvh, pa + (pb - pa) * (i as f64 / k as f64))).fold(0.0, f64::max)
+            let mut hint = None;
+            let mut worst: f64 = 0.0;
+            for i in 0..=k {
+                if let Some((t, d)) = nearest_from(&bnd, &bnd_bvh, pa + (pb - pa) * (i as f64 / k as f64), hint) {
+                    worst = worst.max(d);
+                    hint = Some(t);
+                }
+            }
+            worst
         })
         .collect();
     for (e, &dist) in features.iter().zip(&per_edge) {
@@ -92,9 +100,10 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
     d
 }
 
-/// The distance from `p` to the surface `s` (whose BVH is `bvh`); infinite for an empty one.
-fn distance_to(s: &TriSurface, bvh: &Bvh, p: DVec3) -> f64 {
-    bvh.nearest(p, |t| point_triangle_distance(p, s.corners(t as usize))).map_or(f64::INFINITY, |x| x.1)
+/// The nearest triangle of `s` to `p` and its distance, the search bounded from the start by
+/// triangle `hint` (the answer is the same).
+fn nearest_from(s: &TriSurface, bvh: &Bvh, p: DVec3, hint: Option<u32>) -> Option<(u32, f64)> {
+    bvh.nearest_from(p, hint, |t| point_triangle_distance(p, s.corners(t as usize)))
 }
 
 /// Largest sampled distance from `from` to `to`, its upper bound, and the number of samples.
@@ -106,7 +115,8 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64) -> (f64, 
             used[v as usize] = true;
         }
     }
-    let at_vertex: Vec<f64> = from.vertices.par_iter().zip(&used).map(|(&p, &u)| if u { distance_to(to, to_bvh, p) } else { 0.0 }).collect();
+    let at_vertex: Vec<f64> =
+        from.vertices.par_iter().zip(&used).map(|(&p, &u)| if u { nearest_from(to, to_bvh, p, None).map_or(f64::INFINITY, |x| x.1) } else { 0.0 }).collect();
     let corners = used.iter().filter(|&&u| u).count();
     let (worst, bound, n) = (0..from.triangles.len())
         .into_par_iter()
@@ -116,13 +126,18 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64) -> (f64, 
             let k = ((longest / (0.5 * h)).ceil() as usize).clamp(1, 16);
             let mut worst = from.triangles[t].iter().map(|&v| at_vertex[v as usize]).fold(0.0, f64::max);
             let mut n = 0;
+            // neighbouring samples start from the last one's nearest triangle
+            let mut hint = None;
             for i in 0..=k {
                 for j in 0..=k - i {
                     if (i == 0 && (j == 0 || j == k)) || i == k {
                         continue; // a corner
                     }
                     let (u, v) = (i as f64 / k as f64, j as f64 / k as f64);
-                    worst = worst.max(distance_to(to, to_bvh, a + (b - a) * u + (c - a) * v));
+                    if let Some((t, d)) = nearest_from(to, to_bvh, a + (b - a) * u + (c - a) * v, hint) {
+                        worst = worst.max(d);
+                        hint = Some(t);
+                    }
                     n += 1;
                 }
             }

@@ -11,6 +11,7 @@
 //!
 //! Stages, one file each:
 //! 1. `winding.rs`: the fast generalised winding number (BVH, dipoles far, exact near);
+//!    `rows.rs`: for a closed surface, its exact integers counted along the lattice's rows;
 //! 2. `lattice.rs`: the BCC lattice of cell size `h` over the surface's box;
 //! 3. `cut.rs`: signs at the lattice vertices, one cut point per sign-changing edge, the
 //!    warping rule with `α_long = 0.24999`, `α_short = 0.41189`;
@@ -46,6 +47,7 @@ mod deviation;
 mod graded;
 mod lattice;
 mod merge;
+mod rows;
 mod stencil;
 mod tags;
 mod winding;
@@ -453,14 +455,22 @@ use cut::Cuts;
 /// near it.
 const BLOCK: u32 = 4;
 
-/// The winding number at every lattice vertex. In a block of `BLOCK³` cells whose box, grown
-/// by a cell, meets no triangle's box, every vertex takes the value at the block's centre:
-/// exact for a closed surface (the winding number is constant off the surface), a smooth
-/// approximation across the hole of an open one. Elsewhere each vertex is evaluated: with
-/// [`winding::BETA`] where a triangle's box comes within a cell, [`winding::FAR_BETA`]
-/// farther.
+/// The winding number at every lattice vertex. For a closed surface (a cycle), exact
+/// integers counted along the lattice's rows (`rows.rs`). Otherwise: in a block of `BLOCK³`
+/// cells whose box, grown by a cell, meets no triangle's box, every vertex takes the value at
+/// the block's centre, a smooth approximation across the hole of an open surface; elsewhere
+/// each vertex is evaluated, with [`winding::BETA`] where a triangle's box comes within a
+/// cell, [`winding::FAR_BETA`] farther (as the rows' degenerate rows are).
 fn winding_at_lattice(lattice: &Lattice, oracle: &Winding) -> Vec<f64> {
     let h = lattice.h;
+    let one = |v: u32| {
+        let q = lattice.position(v);
+        let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
+        oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
+    };
+    if rows::is_cycle(oracle.surface()) {
+        return rows::winding_by_rows(lattice, oracle, &one);
+    }
     let nb = lattice.n.map(|x| x / BLOCK + 1);
     let blocks: Vec<Option<f64>> = (0..nb[0] * nb[1] * nb[2])
         .into_par_iter()
@@ -482,9 +492,7 @@ fn winding_at_lattice(lattice: &Lattice, oracle: &Winding) -> Vec<f64> {
             if let Some(wb) = blocks[b] {
                 return wb;
             }
-            let q = lattice.position(v);
-            let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
-            oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
+            one(v)
         })
         .collect()
 }
