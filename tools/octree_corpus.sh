@@ -43,12 +43,11 @@ fi
 for name in "${files[@]}"; do
   f="$corpus/$name"
   # the cell size: the diagonal over DIV (a first run at the default cell, diagonal / 25)
-  # (a STEP part whose solids are all thinner than that cell: its tessellation's chord over
-  # its relative deviation)
+  # (a part whose solids are all thinner than that cell: the cell its error names)
   if "$fepre" mesh "$f" -o "$tmp/a.mesh" --method octree --json > "$tmp/a.json" 2> "$tmp/a.err"; then
     diag=$(python3 -c 'import json,sys; print(25 * json.load(open(sys.argv[1]))["octree"]["cell_size"])' "$tmp/a.json")
-  elif "$fepre" tessellate "$f" -o "$tmp/a.stl" --json > "$tmp/t.json" 2> /dev/null; then
-    diag=$(python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); print(j["chord_mm"] / j["deviation"] / j["units"]["to_mm"])' "$tmp/t.json")
+  elif cell=$(grep -o 'solid [0-9]*.*no lattice vertex is inside the surface at cell size [0-9.e+-]*' "$tmp/a.err" | grep -o '[0-9.e+-]*$'); [ -n "$cell" ]; then
+    diag=$(python3 -c "print(25 * $cell)")
   else
     printf '%-28s %s\n' "$name" "error: $(head -c 300 "$tmp/a.err" | tr '\n' ' ')"
     continue
