@@ -182,6 +182,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         octree: report.octree.as_ref(),
         open_surface_faces: part.open_surface_faces,
     };
+    crate::cli::warn_octree(report.octree.as_ref());
     if args.json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
@@ -193,10 +194,6 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         println!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
         if o.solids > 1 {
             println!("  solids         {} meshed one by one, each its own region", o.solids - o.empty_solids.len());
-        }
-        if !o.empty_solids.is_empty() {
-            let names: Vec<String> = o.empty_solids.iter().map(|e| format!("{}{} ({:.4e})", e.solid, e.name.as_ref().map(|n| format!(" {n:?}")).unwrap_or_default(), e.volume)).collect();
-            eprintln!("WARNING: {} solids left out, thinner than the cell size {:.4e} (no lattice vertex inside; a smaller --size reaches them): {}", o.empty_solids.len(), o.cell_size, names.join(", "));
         }
         if !o.cells_per_level.is_empty() {
             let cells: Vec<String> = o.cells_per_level.iter().enumerate().map(|(l, n)| format!("{n} of {:.4e}", o.cell_size * (1u64 << l) as f64)).collect();

@@ -251,6 +251,18 @@ pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: 
     eprintln!("WARNING: {} tets have a dihedral angle under 1°{}; {require} makes this an error", m.tets_under_1_deg, at.unwrap_or_default());
 }
 
+/// Warns on standard error about the solids of an assembly the octree mesher left out.
+pub(crate) fn warn_octree(o: Option<&crate::mesh3d::octree::OctreeReport>) {
+    let Some(o) = o.filter(|o| !o.empty_solids.is_empty()) else { return };
+    let names: Vec<String> = o.empty_solids.iter().map(|e| format!("{}{} ({:.4e})", e.solid, e.name.as_ref().map(|n| format!(" {n:?}")).unwrap_or_default(), e.volume)).collect();
+    eprintln!(
+        "WARNING: {} solids left out, thinner than the cell size {:.4e} (no lattice vertex inside; a smaller size reaches them): {}",
+        o.empty_solids.len(),
+        o.cell_size,
+        names.join(", ")
+    );
+}
+
 /// Parses a finite number `> 0`.
 pub fn positive(s: &str) -> Result<f64, String> {
     let x: f64 = s.parse().map_err(|_| format!("'{s}' is not a number"))?;
