@@ -109,7 +109,8 @@ impl<'a> Parser<'a> {
         self.s.get(self.pos).copied().ok_or(Fail::Eof)
     }
 
-    fn expect(&mut self, c: u8, what: &str) -> R<()> {
+    /// Consumes the byte `c`, or fails naming `what` it should follow and what stands here.
+    fn eat_byte(&mut self, c: u8, what: &str) -> R<()> {
         let b = self.peek()?;
         if b != c {
             return Err(self.syntax(format!("expected '{}' {what}, found {}", c as char, self.describe_here())));
@@ -154,7 +155,7 @@ impl<'a> Parser<'a> {
                 found: first.map_or_else(|| "nothing".to_string(), |w| format!("'{w}'")),
             });
         }
-        let r = self.expect(b';', "after ISO-10303-21");
+        let r = self.eat_byte(b';', "after ISO-10303-21");
         self.finish(r)?;
         let mut schemas = Vec::new();
         let mut system = None;
@@ -235,22 +236,22 @@ impl<'a> Parser<'a> {
     /// The HEADER section: the schema names and originating system; a note for each of the
     /// three required entities missing and for a `FILE_NAME` of other than seven parameters.
     fn header(&mut self, schemas: &mut Vec<String>, system: &mut Option<String>, notes: &mut Vec<String>) -> R<()> {
-        self.expect(b';', "after HEADER")?;
+        self.eat_byte(b';', "after HEADER")?;
         let mut seen = Vec::new();
         loop {
             self.set_context("inside the HEADER section".into());
             let name = self.word()?;
             if name == "ENDSEC" {
-                self.expect(b';', "after ENDSEC")?;
+                self.eat_byte(b';', "after ENDSEC")?;
                 let missing: Vec<&str> = ["FILE_DESCRIPTION", "FILE_NAME", "FILE_SCHEMA"].into_iter().filter(|n| !seen.iter().any(|s| s == n)).collect();
                 if !missing.is_empty() {
                     notes.push(format!("the HEADER section lacks {} (ISO 10303-21 requires it): read without", missing.join(", ")));
                 }
                 return Ok(());
             }
-            self.expect(b'(', &format!("after {name}"))?;
+            self.eat_byte(b'(', &format!("after {name}"))?;
             let params = self.list_body()?;
-            self.expect(b';', &format!("after {name}(...)"))?;
+            self.eat_byte(b';', &format!("after {name}(...)"))?;
             match name.as_str() {
                 "FILE_SCHEMA" => {
                     if let Some(list) = params.first().and_then(Param::as_list) {
@@ -274,7 +275,7 @@ impl<'a> Parser<'a> {
             self.pos += 1;
             self.list_body()?;
         }
-        self.expect(b';', "after DATA")
+        self.eat_byte(b';', "after DATA")
     }
 
     fn skip_section(&mut self) -> R<()> {
@@ -287,7 +288,7 @@ impl<'a> Parser<'a> {
                 }
                 b if is_word(b) => {
                     if self.word()? == "ENDSEC" {
-                        return self.expect(b';', "after ENDSEC");
+                        return self.eat_byte(b';', "after ENDSEC");
                     }
                 }
                 _ => self.pos += 1,
@@ -310,7 +311,7 @@ impl<'a> Parser<'a> {
                 let w = self.word()?;
                 if w == end {
                     if end == "ENDSEC" {
-                        self.expect(b';', "after ENDSEC")?;
+                        self.eat_byte(b';', "after ENDSEC")?;
                     }
                     return Ok(());
                 }
@@ -343,7 +344,7 @@ impl<'a> Parser<'a> {
         let id = self.id()?;
         self.context_line = line;
         self.context = format!("inside instance #{id}");
-        self.expect(b'=', &format!("after #{id}"))?;
+        self.eat_byte(b'=', &format!("after #{id}"))?;
         if self.peek()? == b'&' {
             let w = self.word()?;
             if w != "&SCOPE" {
@@ -373,14 +374,14 @@ impl<'a> Parser<'a> {
         } else {
             records.push(self.record()?);
         }
-        self.expect(b';', &format!("at the end of #{id}"))?;
+        self.eat_byte(b';', &format!("at the end of #{id}"))?;
         out.push(Entity { id, line, records });
         Ok(())
     }
 
     fn record(&mut self) -> R<Record> {
         let name = self.word()?;
-        self.expect(b'(', &format!("after {name}"))?;
+        self.eat_byte(b'(', &format!("after {name}"))?;
         let params = self.list_body()?;
         Ok(Record { name: name.into_boxed_str(), params })
     }
@@ -463,7 +464,7 @@ impl<'a> Parser<'a> {
             b'-' | b'+' | b'.' | b'0'..=b'9' => self.number(),
             b if b.is_ascii_alphabetic() || b == b'_' => {
                 let name = self.word()?;
-                self.expect(b'(', &format!("after the type name {name}"))?;
+                self.eat_byte(b'(', &format!("after the type name {name}"))?;
                 Ok(Param::Typed(name.into_boxed_str(), self.list_body()?))
             }
             _ => Err(self.syntax(format!("unexpected {} in a parameter list", self.describe_here()))),
