@@ -270,11 +270,16 @@ impl Bvh {
             return None;
         }
         let mut best: Option<(u32, f64)> = hint.map(|h| (h, dist(h)));
+        // boxes are compared by squared distance against the best distance squared, grown a
+        // little so that rounding never prunes a box at exactly the best distance (pruning
+        // stays conservative: the answer is the one the unsquared comparison gives)
+        let limit = |bd: f64| bd * bd * (1.0 + 8.0 * f64::EPSILON);
+        let mut best_sq = best.map_or(f64::INFINITY, |(_, bd)| limit(bd));
         // a stack on the stack: no allocation per query (spills past its size)
         let mut stack = SmallStack::<(u32, f64)>::new();
-        stack.push((0, box_distance(&self.nodes[0].bbox, p)));
+        stack.push((0, box_distance_sq(&self.nodes[0].bbox, p)));
         while let Some((n, d)) = stack.pop() {
-            if best.is_some_and(|(_, bd)| d > bd) {
+            if d > best_sq {
                 continue;
             }
             let node = &self.nodes[n as usize];
@@ -282,7 +287,7 @@ impl Bvh {
                 let r = node.first as usize..(node.first + node.count) as usize;
                 for (&id, b) in self.ids[r.clone()].iter().zip(&self.boxes[r]) {
                     // an item's distance is no smaller than its box's
-                    if best.is_some_and(|(_, bd)| box_distance(b, p) > bd) {
+                    if box_distance_sq(b, p) > best_sq {
                         continue;
                     }
                     let di = dist(id);
@@ -292,11 +297,12 @@ impl Bvh {
                     };
                     if better {
                         best = Some((id, di));
+                        best_sq = limit(di);
                     }
                 }
             } else {
                 let (l, r) = self.children(n);
-                let (dl, dr) = (box_distance(&self.nodes[l as usize].bbox, p), box_distance(&self.nodes[r as usize].bbox, p));
+                let (dl, dr) = (box_distance_sq(&self.nodes[l as usize].bbox, p), box_distance_sq(&self.nodes[r as usize].bbox, p));
                 // the nearer child is popped first
                 if dl <= dr {
                     stack.push((r, dr));
@@ -553,9 +559,9 @@ impl<T: Copy + Default> SmallStack<T> {
     }
 }
 
-fn box_distance(b: &Aabb, p: DVec3) -> f64 {
+fn box_distance_sq(b: &Aabb, p: DVec3) -> f64 {
     let d = (b.min - p).max(p - b.max).max(DVec3::ZERO);
-    d.length()
+    d.length_squared()
 }
 
 /// A segment prepared for conservative slab tests against boxes.

@@ -1,11 +1,61 @@
 //! Small helpers shared by the volume formats (Medit, TetGen, MSH, VTU): number formatting
-//! that reads back exactly, repair of tet orientation after reading, and integer tags parsed
+//! that reads back exactly, integer lines written fast, repair of tet orientation after reading, and integer tags parsed
 //! from the text of a file.
 
 use crate::core::Sign;
 use crate::core::predicates::orient3d;
 use crate::mesh::TetMesh;
 use std::fmt;
+use std::io::{self, Write};
+
+/// Writes one text line per item, formatted by `line(buffer, index, item)` in parallel (in batches of at most
+/// `LINES_PER_TASK × 64` lines, so the text held at once stays bounded) and written in order:
+/// the bytes are those of formatting the items one after the other.
+pub(crate) fn write_lines<T: Sync>(w: &mut impl Write, items: &[T], line: impl Fn(&mut Vec<u8>, usize, &T) -> io::Result<()> + Sync) -> io::Result<()> {
+    use rayon::prelude::*;
+    const LINES_PER_TASK: usize = 4096;
+    const BATCH: usize = LINES_PER_TASK * 64;
+    for (b, batch) in items.chunks(BATCH).enumerate() {
+        let texts: Vec<io::Result<Vec<u8>>> = batch
+            .par_chunks(LINES_PER_TASK)
+            .enumerate()
+            .map(|(c, chunk)| {
+                let mut buf = Vec::with_capacity(chunk.len() * 32);
+                for (k, x) in chunk.iter().enumerate() {
+                    line(&mut buf, b * BATCH + c * LINES_PER_TASK + k, x)?;
+                }
+                Ok(buf)
+            })
+            .collect();
+        for t in texts {
+            w.write_all(&t?)?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes `values` as one line of decimal integers separated by single spaces (what
+/// `writeln!` with `{}` gives, without the formatting machinery: a mesh has millions).
+pub(crate) fn write_int_line(w: &mut impl Write, values: &[u64]) -> io::Result<()> {
+    let mut line = [0u8; 8 * 21];
+    let mut n = 0;
+    let mut buf = itoa::Buffer::new();
+    for (i, &v) in values.iter().enumerate() {
+        if n + 22 > line.len() {
+            w.write_all(&line[..n])?;
+            n = 0;
+        }
+        if i > 0 {
+            line[n] = b' ';
+            n += 1;
+        }
+        let digits = buf.format(v).as_bytes();
+        line[n..n + digits.len()].copy_from_slice(digits);
+        n += digits.len();
+    }
+    line[n] = b'\n';
+    w.write_all(&line[..n + 1])
+}
 
 /// Displays an `f64` so that parsing the text gives back the same value: plain decimals for
 /// ordinary magnitudes (`0.25`, `-3`, `1234.5`), scientific notation (`1.5e-9`, `2e20`) for

@@ -17,7 +17,7 @@
 
 use crate::core::{FaceId, RegionId};
 use crate::io::atomic::{write_atomic, write_err};
-use crate::io::common::{Num, orient_tets, unused_vertices_note};
+use crate::io::common::{Num, orient_tets, unused_vertices_note, write_int_line, write_lines};
 use crate::io::text::Tokens;
 use crate::io::{Format, IoError, Loaded, Location, MeshData};
 use crate::mesh::{TetMesh, TriSurface};
@@ -241,20 +241,16 @@ fn write_mesh(
     write_atomic(path, |w| {
         let e = write_err(path);
         writeln!(w, "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n{}", vertices.len()).map_err(&e)?;
-        for p in vertices {
-            writeln!(w, "{} {} {} 0", Num(p.x), Num(p.y), Num(p.z)).map_err(&e)?;
-        }
+        write_lines(w, vertices, |b, _, p| writeln!(b, "{} {} {} 0", Num(p.x), Num(p.y), Num(p.z))).map_err(&e)?;
         if !tris.is_empty() {
             writeln!(w, "\nTriangles\n{}", tris.len()).map_err(&e)?;
-            for (t, tag) in tris.iter().zip(tri_tags) {
-                writeln!(w, "{} {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1, tag.0).map_err(&e)?;
-            }
+            let tri_tags = |i: usize| tri_tags.get(i).map_or(0, |t| t.0 as u64);
+            write_lines(w, tris, |b, i, t| write_int_line(b, &[t[0] as u64 + 1, t[1] as u64 + 1, t[2] as u64 + 1, tri_tags(i)])).map_err(&e)?;
         }
         if !tets.is_empty() {
             writeln!(w, "\nTetrahedra\n{}", tets.len()).map_err(&e)?;
-            for (t, tag) in tets.iter().zip(tet_tags) {
-                writeln!(w, "{} {} {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1, tag.0).map_err(&e)?;
-            }
+            let tet_tags = |i: usize| tet_tags.get(i).map_or(0, |t| t.0 as u64);
+            write_lines(w, tets, |b, i, t| write_int_line(b, &[t[0] as u64 + 1, t[1] as u64 + 1, t[2] as u64 + 1, t[3] as u64 + 1, tet_tags(i)])).map_err(&e)?;
         }
         writeln!(w, "\nEnd").map_err(&e)
     })

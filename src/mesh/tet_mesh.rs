@@ -5,6 +5,7 @@ use crate::core::{Aabb, FaceId, FaceNames, RegionId, RegionNames, Sign};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TriSurface};
 use glam::DVec3;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// Local faces of a tetrahedron `(v0, v1, v2, v3)`: face `k` is opposite vertex `k` and, for a
@@ -72,13 +73,17 @@ impl TetMesh {
         }
         check_finite(&self.vertices)?;
         let n = self.vertices.len();
-        for (t, tet) in self.tets.iter().enumerate() {
-            check_simplex(Element::Tet(t), tet, n)?;
+        // in parallel; the first bad tet in order is the one reported
+        let bad_tet = self.tets.par_iter().enumerate().with_min_len(4096).find_map_first(|(t, tet)| {
+            if let Err(e) = check_simplex(Element::Tet(t), tet, n) {
+                return Some(e);
+            }
             let [a, b, c, d] = tet.map(|i| self.vertices[i as usize]);
             let s = orient3d(a, b, c, d);
-            if s != Sign::Positive {
-                return Err(MeshError::BadOrientation { element: Element::Tet(t), vertices: tet.to_vec(), orientation: s });
-            }
+            (s != Sign::Positive).then(|| MeshError::BadOrientation { element: Element::Tet(t), vertices: tet.to_vec(), orientation: s })
+        });
+        if let Some(e) = bad_tet {
+            return Err(e);
         }
         for (t, tri) in self.boundary.iter().enumerate() {
             check_simplex(Element::BoundaryTriangle(t), tri, n)?;
@@ -117,29 +122,39 @@ impl TetMesh {
     /// (sorted face, tet, parity of the outward orientation relative to the sorted order),
     /// sorted by face.
     fn sorted_face_records(&self) -> Vec<([u32; 3], u32, bool)> {
-        let mut faces = Vec::with_capacity(self.tets.len() * 4);
-        for (t, tet) in self.tets.iter().enumerate() {
-            for f in TET_FACES {
-                let (key, parity) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
-                faces.push((key, t as u32, parity));
-            }
-        }
-        // the records are distinct (tet indices differ), so any sort gives the same order
-        rayon::slice::ParallelSliceMut::par_sort_unstable(&mut faces[..]);
-        faces
+        let records = || {
+            self.tets.iter().enumerate().flat_map(|(t, tet)| {
+                TET_FACES.iter().map(move |f| {
+                    let (key, parity) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+                    (key, t as u32, parity)
+                })
+            })
+        };
+        // the records are distinct (tet indices differ), so any sort gives the same order;
+        // every index is in range (checked before)
+        crate::core::bucket_sort::collect_sorted_by_lead(self.vertices.len(), records, |f| f.0[0])
     }
 
     /// Every distinct face once, oriented outward from `tet`, with the neighbouring tet.
     /// Boundary faces (`neighbor == None`) form the mesh's boundary surface.
     pub fn faces(&self) -> Vec<TetFace> {
-        let mut rec = Vec::with_capacity(self.tets.len() * 4);
-        for (t, tet) in self.tets.iter().enumerate() {
-            for f in TET_FACES {
-                let v = [tet[f[0]], tet[f[1]], tet[f[2]]];
-                rec.push((sorted3(v).0, t as u32, v));
-            }
-        }
-        rec.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
+        let records = || {
+            self.tets.iter().enumerate().flat_map(|(t, tet)| {
+                TET_FACES.iter().map(move |f| {
+                    let v = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                    (sorted3(v).0, t as u32, v)
+                })
+            })
+        };
+        // (face, tet) is unique, so the whole tuple's order is the order by face then tet
+        let n = self.vertices.len();
+        let rec: Vec<([u32; 3], u32, [u32; 3])> = if self.tets.iter().flatten().all(|&v| (v as usize) < n) {
+            crate::core::bucket_sort::collect_sorted_by_lead(n, records, |r| r.0[0])
+        } else {
+            let mut rec: Vec<_> = records().collect();
+            rec.sort_unstable();
+            rec
+        };
         let mut out = Vec::with_capacity(rec.len() / 2 + 1);
         let mut i = 0;
         while i < rec.len() {

@@ -6,6 +6,7 @@
 //! refinement or the optimisation stopped at a budget. A requirement that fails is an error
 //! naming the same place.
 
+use rayon::prelude::*;
 use super::PipelineError;
 use super::run::Plan;
 use crate::cad::brep::FaceEntry;
@@ -122,7 +123,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         unexplained(mesh, &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
     let r_bound = plan.mesh.max_radius_edge;
-    let above = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
+    let above = mesh.tets.par_iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
     let opt = report.optimize.as_ref();
     let summary = MeshSummary {
         nodes: mesh.vertices.len(),

@@ -36,6 +36,21 @@ fn unsigned(m: &TetMeasures) -> [f64; 7] {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
+    /// Two arc cosines give bitwise the extremes of the six angles, flat and inverted tets too.
+    #[test]
+    fn min_max_dihedral_is_the_extremes_of_the_six(p in prop::array::uniform4(prop::array::uniform3(-1.0f64..1.0)), flat in any::<bool>()) {
+        let mut p = p.map(DVec3::from_array);
+        if flat {
+            p[3] = p[0] + (p[1] - p[0]) * 0.25 + (p[2] - p[0]) * 0.5;
+        }
+        let want = match tet_dihedral_angles(&p) {
+            Some(a) => a.iter().fold((180.0f64, 0.0f64), |(lo, hi), &x| (lo.min(x), hi.max(x))),
+            None => (0.0, 180.0),
+        };
+        let got = crate::quality::tetrahedron::tet_min_max_dihedral(&p);
+        prop_assert_eq!((got.0.to_bits(), got.1.to_bits()), (want.0.to_bits(), want.1.to_bits()));
+    }
+
     #[test]
     fn tet_measures_invariant_under_similarity(p in decent_tet(), r in rotation(), t in prop::array::uniform3(-100.0f64..100.0), s in 0.01f64..100.0) {
         let t = DVec3::from_array(t);

@@ -147,10 +147,21 @@ pub fn dihedral_from_cosine(c: f64) -> f64 {
     180.0 - c.acos() * 180.0 / PI
 }
 
-/// Smallest and largest dihedral angle in degrees; `(0, 180)` for a degenerate tet.
+/// Smallest and largest dihedral angle in degrees; `(0, 180)` for a degenerate tet. Two arc
+/// cosines, of the extreme cosines ([`dihedral_from_cosine`] is non-decreasing): bitwise the
+/// extremes of [`tet_dihedral_angles`].
 pub fn tet_min_max_dihedral(p: &[DVec3; 4]) -> (f64, f64) {
-    match tet_dihedral_angles(p) {
-        Some(a) => min_max(&a),
+    let det = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+    if det == 0.0 || !det.is_finite() {
+        return (0.0, 180.0);
+    }
+    let n = outward_normals(p);
+    let len = n.map(|v| v.length());
+    match dihedral_cosines(&n, &len) {
+        Some(c) => {
+            let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+            (dihedral_from_cosine(lo).min(180.0), dihedral_from_cosine(hi).max(0.0))
+        }
         None => (0.0, 180.0),
     }
 }
@@ -161,24 +172,8 @@ pub fn tet_min_max_dihedral(p: &[DVec3; 4]) -> (f64, f64) {
 pub fn tet_min_max_dihedral_radius_edge(p: &[DVec3; 4]) -> (f64, f64, f64) {
     let q = parts(p);
     let re = radius_edge(&q);
-    let det = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
-    if det == 0.0 || !det.is_finite() {
-        return (0.0, 180.0, re);
-    }
-    let n = outward_normals(p);
-    let len = n.map(|v| v.length());
-    match dihedral_cosines(&n, &len) {
-        Some(c) => {
-            let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-            (dihedral_from_cosine(lo).min(180.0), dihedral_from_cosine(hi).max(0.0), re)
-        }
-        None => (0.0, 180.0, re),
-    }
-}
-
-#[inline]
-fn min_max(a: &[f64; 6]) -> (f64, f64) {
-    a.iter().fold((180.0f64, 0.0f64), |(lo, hi), &x| (lo.min(x), hi.max(x)))
+    let (lo, hi) = tet_min_max_dihedral(p);
+    (lo, hi, re)
 }
 
 /// Circumradius; `+∞` for a degenerate tet.

@@ -7,11 +7,23 @@
 //! [`Deviation`].
 //!
 //! # Invariants
-//! - Each triangle (of either surface) is sampled on a barycentric grid of `k` steps per
-//!   side, `k` from its longest edge over `h / 2` (1 to 16). The distance to a surface is
-//!   1-Lipschitz, so the true one-sided distance is at most the sampled maximum plus the
-//!   grid's spacing (corners are measured once per vertex) (the longest edge over `k`): `hausdorff_bound` is that upper bound, never
-//!   an estimate below the truth; `hausdorff` is the largest distance actually found.
+//! - Each triangle (of either surface) is measured at its corners (once per vertex) and cut
+//!   by longest-edge bisection, each new midpoint measured, until every piece is *settled*:
+//!   with `r` its covering radius (below) and `m` its largest corner distance,
+//!   `m + r ≤ h / 2`, or `r ≤ h / 8`, or the triangle's budget of [`MAX_SPLITS`] midpoints is
+//!   spent. Every point of a piece lies within `r` of one of its corners, and the distance to
+//!   a surface is 1-Lipschitz, so the true one-sided distance is at most the largest `m + r`
+//!   over the pieces: `hausdorff_bound` is that upper bound, never an estimate below the
+//!   truth; `hausdorff` is the largest distance actually found.
+//! - A piece thinner than `h / 16` (its altitude onto its longest side) is instead sampled
+//!   along that side at spacing `h / 8`: its angles there are acute, so every point of it
+//!   lies within the altitude of the side, and its bound is the side's sampled maximum plus
+//!   half the spacing plus the altitude. Long thin triangles (long STL facets) cost their
+//!   length over `h`, not its square.
+//! - The covering radius (the largest distance from a point of the triangle to its nearest
+//!   corner) is the circumradius of a triangle without an obtuse angle; with an obtuse angle
+//!   at `C`, the farthest points lie on the longest side `AB`, where the perpendicular
+//!   bisectors of `AC` and `BC` meet it, at `|AC| / (2 cos A)` and `|BC| / (2 cos B)`.
 //! - A feature edge is an input edge of exactly two triangles whose normals turn by more
 //!   than the feature angle. It is *resolved* when every sample along it (spacing at most
 //!   `h / 4`) lies within `h` of the mesh's boundary.
@@ -54,13 +66,15 @@ pub struct Deviation {
     pub unresolved_examples: Vec<[[f64; 3]; 2]>,
 }
 
-/// Measures the deviation of `mesh`'s boundary from `surface`; see the module docs.
-pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64) -> Deviation {
+/// Measures the deviation of `mesh`'s boundary from `surface`; see the module docs. Also
+/// returns, per boundary triangle, the input triangle nearest to its centroid (the first
+/// sample of that triangle; ties to the lower index): the tags come from it.
+pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64) -> (Deviation, Vec<Option<u32>>) {
     let bnd = TriSurface::with_single_tag(mesh.vertices.clone(), mesh.boundary.clone(), crate::core::FaceId(1));
     let bnd_boxes: Vec<Aabb> = (0..bnd.triangles.len()).map(|t| Aabb::from_points(&bnd.corners(t))).collect();
     let bnd_bvh = Bvh::from_boxes(&bnd_boxes);
-    let (m2i, m2i_bound, n1) = one_sided(&bnd, surface, surface_bvh, h);
-    let (i2m, i2m_bound, n2) = one_sided(surface, &bnd, &bnd_bvh, h);
+    let (m2i, m2i_bound, n1, nearest) = one_sided(&bnd, surface, surface_bvh, h, true);
+    let (i2m, i2m_bound, n2, _) = one_sided(surface, &bnd, &bnd_bvh, h, false);
     let mut d = Deviation {
         mesh_to_input: m2i,
         input_to_mesh: i2m,
@@ -97,7 +111,7 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
             }
         }
     }
-    d
+    (d, nearest)
 }
 
 /// The nearest triangle of `s` to `p` and its distance, the search bounded from the start by
@@ -106,45 +120,118 @@ fn nearest_from(s: &TriSurface, bvh: &Bvh, p: DVec3, hint: Option<u32>) -> Optio
     bvh.nearest_from(p, hint, |t| point_triangle_distance(p, s.corners(t as usize)))
 }
 
-/// Largest sampled distance from `from` to `to`, its upper bound, and the number of samples.
+/// Most midpoints measured per triangle (its bound stays honest, only looser, past them).
+const MAX_SPLITS: usize = 1 << 16;
+
+/// Largest sampled distance from `from` to `to`, its upper bound, the number of samples, and
+/// with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
 /// The corners are sampled once per vertex (shared by the triangles around it).
-fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64) -> (f64, f64, usize) {
+fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool) -> (f64, f64, usize, Vec<Option<u32>>) {
     let mut used = vec![false; from.vertices.len()];
     for t in &from.triangles {
         for &v in t {
             used[v as usize] = true;
         }
     }
-    let at_vertex: Vec<f64> =
-        from.vertices.par_iter().zip(&used).map(|(&p, &u)| if u { nearest_from(to, to_bvh, p, None).map_or(f64::INFINITY, |x| x.1) } else { 0.0 }).collect();
+    // per vertex: the distance and the nearest triangle (a hint for the pieces around it)
+    let at_vertex: Vec<(f64, Option<u32>)> = from
+        .vertices
+        .par_iter()
+        .zip(&used)
+        .map(|(&p, &u)| if u { nearest_from(to, to_bvh, p, None).map_or((f64::INFINITY, None), |x| (x.1, Some(x.0))) } else { (0.0, None) })
+        .collect();
     let corners = used.iter().filter(|&&u| u).count();
-    let (worst, bound, n) = (0..from.triangles.len())
+    let settled = |m: f64, r: f64| m + r <= 0.5 * h || r <= h / 8.0;
+    let per_triangle: Vec<(f64, f64, usize, Option<u32>)> = (0..from.triangles.len())
         .into_par_iter()
         .map(|t| {
-            let [a, b, c] = from.corners(t);
-            let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
-            let k = ((longest / (0.5 * h)).ceil() as usize).clamp(1, 16);
-            let mut worst = from.triangles[t].iter().map(|&v| at_vertex[v as usize]).fold(0.0, f64::max);
-            let mut n = 0;
-            // neighbouring samples start from the last one's nearest triangle
-            let mut hint = None;
-            for i in 0..=k {
-                for j in 0..=k - i {
-                    if (i == 0 && (j == 0 || j == k)) || i == k {
-                        continue; // a corner
-                    }
-                    let (u, v) = (i as f64 / k as f64, j as f64 / k as f64);
-                    if let Some((t, d)) = nearest_from(to, to_bvh, a + (b - a) * u + (c - a) * v, hint) {
-                        worst = worst.max(d);
-                        hint = Some(t);
-                    }
-                    n += 1;
-                }
+            let tri = from.triangles[t];
+            let centroid = centroids.then(|| {
+                let p = tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0;
+                nearest_from(to, to_bvh, p, None)
+            });
+            let mut n = usize::from(centroid.is_some());
+            let d = tri.map(|v| at_vertex[v as usize].0);
+            let mut worst = d.iter().copied().fold(0.0, f64::max);
+            if let Some(Some((_, dc))) = centroid {
+                worst = worst.max(dc);
             }
-            (worst, worst + longest / k as f64, n)
+            let mut bound: f64 = 0.0;
+            let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
+            // pieces: corners, their distances, a hint for their midpoints
+            let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>)> = vec![(from.corners(t), d, hint)];
+            let mut splits = 0;
+            while let Some((p, d, hint)) = stack.pop() {
+                let len = [p[1].distance(p[2]), p[2].distance(p[0]), p[0].distance(p[1])];
+                // the longest edge is opposite corner `k` (the first of equal lengths)
+                let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
+                let m = d[0].max(d[1]).max(d[2]);
+                let r = covering_radius(&p, len);
+                if settled(m, r) || splits >= MAX_SPLITS {
+                    bound = bound.max(m + r);
+                    continue;
+                }
+                let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+                let altitude = (p[1] - p[0]).cross(p[2] - p[0]).length() / len[k];
+                if altitude <= h / 16.0 {
+                    // thin: every point is within the altitude of a point of the longest side
+                    // (its angles at both ends are acute); sample that side at h / 8
+                    let steps = ((len[k] / (h / 8.0)).ceil() as usize).clamp(1, MAX_SPLITS - splits.min(MAX_SPLITS - 1));
+                    let mut side = d[i].max(d[j]);
+                    let mut hint = hint;
+                    for q in 1..steps {
+                        let at = p[i] + (p[j] - p[i]) * (q as f64 / steps as f64);
+                        let (near, dq) = nearest_from(to, to_bvh, at, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
+                        hint = near;
+                        side = side.max(dq);
+                        n += 1;
+                        splits += 1;
+                    }
+                    worst = worst.max(side);
+                    bound = bound.max((side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9));
+                    continue;
+                }
+                let mid = (p[i] + p[j]) * 0.5;
+                let (near, dm) = nearest_from(to, to_bvh, mid, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
+                splits += 1;
+                n += 1;
+                worst = worst.max(dm);
+                let mut left = (p, d, near);
+                left.0[j] = mid;
+                left.1[j] = dm;
+                let mut right = (p, d, near);
+                right.0[i] = mid;
+                right.1[i] = dm;
+                stack.push(right);
+                stack.push(left);
+            }
+            (worst, bound, n, centroid.flatten().map(|x| x.0))
         })
-        .reduce(|| (0.0, 0.0, 0), |x, y| (x.0.max(y.0), x.1.max(y.1), x.2 + y.2));
-    (worst, bound, n + corners)
+        .collect();
+    let (worst, bound, n) = per_triangle.iter().fold((0.0f64, 0.0f64, corners), |x, y| (x.0.max(y.0), x.1.max(y.1), x.2 + y.2));
+    (worst, bound, n, if centroids { per_triangle.iter().map(|x| x.3).collect() } else { Vec::new() })
+}
+
+/// The largest distance from a point of triangle `p` to its nearest corner (module docs),
+/// `len[k]` the length of the side opposite corner `k`; rounded up a little, so that it stays
+/// an upper bound.
+fn covering_radius(p: &[DVec3; 3], len: [f64; 3]) -> f64 {
+    // c the longest side, opposite corner C; a and b the others
+    let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
+    let (c, a, b) = (len[k], len[(k + 1) % 3], len[(k + 2) % 3]);
+    let r = if a == 0.0 || b == 0.0 {
+        0.5 * c // two corners coincide: a segment
+    } else if a * a + b * b >= c * c {
+        // no obtuse angle: the circumradius abc / (4 area)
+        let twice_area = (p[1] - p[0]).cross(p[2] - p[0]).length();
+        if twice_area > 0.0 { a * b * c / (2.0 * twice_area) } else { 0.5 * c }
+    } else {
+        // obtuse at C: b / (2 cos A) and a / (2 cos B), cos A = (b² + c² − a²) / (2bc)
+        let at_a = b * b * c / (b * b + c * c - a * a);
+        let at_b = a * a * c / (a * a + c * c - b * b);
+        at_a.max(at_b)
+    };
+    r * (1.0 + 1e-9)
 }
 
 /// The input edges of exactly two triangles whose normals turn by more than `angle_deg`.
@@ -178,4 +265,93 @@ pub fn feature_edges(s: &TriSurface, angle_deg: f64) -> Vec<[u32; 2]> {
         i = j;
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::FaceId;
+
+    fn surface(v: Vec<DVec3>, t: Vec<[u32; 3]>) -> (TriSurface, Bvh) {
+        let s = TriSurface::with_single_tag(v, t, FaceId(1));
+        let boxes: Vec<Aabb> = (0..s.triangles.len()).map(|t| Aabb::from_points(&s.corners(t))).collect();
+        let bvh = Bvh::from_boxes(&boxes);
+        (s, bvh)
+    }
+
+    /// A long thin triangle whose farthest point from the target (two small triangles at its
+    /// ends) is in its middle, far from every corner: the samples come near it, the bound
+    /// holds it within the slack, and the thin triangle costs its length over h / 8.
+    #[test]
+    fn the_bound_holds_a_maximum_inside_a_long_thin_triangle() {
+        let (from, _) = surface(vec![DVec3::ZERO, DVec3::new(100.0, 0.0, 0.0), DVec3::new(0.0, 0.01, 0.0)], vec![[0, 1, 2]]);
+        let tv = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(0.5, 0.0, 0.0),
+            DVec3::new(0.0, 0.5, 0.0),
+            DVec3::new(100.0, 0.0, 0.0),
+            DVec3::new(99.5, 0.0, 0.0),
+            DVec3::new(100.0, 0.5, 0.0),
+        ];
+        let (to, to_bvh) = surface(tv, vec![[0, 1, 2], [3, 4, 5]]);
+        let h = 1.0;
+        let (worst, bound, n, _) = one_sided(&from, &to, &to_bvh, h, false);
+        // the truth: the middle of the long edge, (50, 0.005), is this far from the corners
+        // (0.5, 0) and (99.5, 0) of the ends' triangles; every corner is within 0.01 of them
+        let truth = 49.5f64.hypot(0.005);
+        assert!(worst <= truth + 1e-9 && worst >= truth - h / 8.0, "{worst} against {truth}");
+        assert!(bound >= truth && bound <= truth + 0.5 * h, "{truth} {bound}");
+        assert!(n < 2000, "{n} samples for a thin triangle");
+    }
+
+    /// Every point of a triangle is within its covering radius of a corner, and the radius is
+    /// reached (up to the sampling) on acute, right, obtuse and flat triangles.
+    #[test]
+    fn covering_radius_covers() {
+        let mut seed: u64 = 99;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % 1_000_000) as f64 / 1_000_000.0
+        };
+        let mut shapes: Vec<[DVec3; 3]> = vec![
+            [DVec3::ZERO, DVec3::X, DVec3::new(0.5, 0.866, 0.0)],
+            [DVec3::ZERO, DVec3::X, DVec3::Y],
+            [DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(3.0, 0.1, 0.0)],
+            [DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(4.0, 0.0, 0.0)],
+        ];
+        for _ in 0..200 {
+            shapes.push([0, 1, 2].map(|_| DVec3::new(rnd(), rnd(), rnd())));
+        }
+        for p in shapes {
+            let len = [p[1].distance(p[2]), p[2].distance(p[0]), p[0].distance(p[1])];
+            let r = covering_radius(&p, len);
+            let mut reached: f64 = 0.0;
+            for i in 0..=60 {
+                for j in 0..=60 - i {
+                    let q = p[0] + (p[1] - p[0]) * (i as f64 / 60.0) + (p[2] - p[0]) * (j as f64 / 60.0);
+                    let near = p.iter().map(|c| c.distance(q)).fold(f64::INFINITY, f64::min);
+                    assert!(near <= r, "{p:?}: {near} > {r}");
+                    reached = reached.max(near);
+                }
+            }
+            let longest = len.iter().copied().fold(0.0, f64::max);
+            assert!(reached >= r - longest / 30.0, "{p:?}: {reached} far below {r}");
+        }
+    }
+
+    /// Parallel planes one apart: every sample is 1 away, and the bound is within the slack.
+    #[test]
+    fn parallel_planes_one_apart() {
+        let sq = |z: f64| vec![DVec3::new(0.0, 0.0, z), DVec3::new(10.0, 0.0, z), DVec3::new(10.0, 10.0, z), DVec3::new(0.0, 10.0, z)];
+        let (a, a_bvh) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
+        let (b, b_bvh) = surface(sq(1.0), vec![[0, 1, 2], [0, 2, 3]]);
+        for (from, to, bvh) in [(&a, &b, &b_bvh), (&b, &a, &a_bvh)] {
+            let (worst, bound, _, near) = one_sided(from, to, bvh, 0.5, true);
+            assert!((worst - 1.0).abs() < 1e-12, "{worst}");
+            assert!((1.0..=1.0 + 0.5 / 8.0 + 1e-12).contains(&bound), "{bound}");
+            assert_eq!(near.len(), 2);
+        }
+    }
 }

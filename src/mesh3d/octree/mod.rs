@@ -18,7 +18,8 @@
 //! 4. `graded.rs` (graded mode): a 2:1 balanced octree over the lattice's cubes, one cube
 //!    wherever the surface comes within a cube, coarser inside, and its background tets;
 //! 5. `stencil.rs`: the stencils filling each boundary background tet;
-//! 6. `tags.rs`: boundary triangles tagged by the nearest input triangle;
+//! 6. `tags.rs`: boundary triangles tagged by the input triangle nearest to their centroid
+//!    (found by the deviation's first sample of each);
 //! 7. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
 //!
 //! # Invariants
@@ -246,13 +247,13 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
     let (mut mesh, all_zero, inner, minus) = fill(&lattice, tree.as_ref(), &cuts, &oracle)?;
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
-    mesh.face_tags = tags::nearest_tags(surface, oracle.bvh(), &mesh);
+    stage("boundary", &mut t);
+    let (dev, nearest) = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg);
+    mesh.face_tags = tags::tags_of(surface, &nearest);
     mesh.face_names = surface.face_names.clone();
-    stage("boundary_tags", &mut t);
+    stage("deviation_tags", &mut t);
     mesh.validate()?;
     stage("validate", &mut t);
-    let dev = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg);
-    stage("deviation", &mut t);
     let (lo, hi, volume) = mesh
         .tets
         .par_iter()
@@ -298,78 +299,85 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
 fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, Vec<bool>, Vec<bool>), OctreeError> {
     let nl = lattice.num_vertices() as u32;
     // per centre: the output tets as global corner ids (lattice id, or nl + cut index)
-    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>, Vec<bool>, Vec<DVec3>)> = (0..lattice.num_centres())
+    // centres in runs of CENTRES_PER_TASK: one set of buffers per run, results in order
+    const CENTRES_PER_TASK: usize = 512;
+    let centres = lattice.num_centres();
+    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>, Vec<bool>, Vec<DVec3>)> = (0..centres.div_ceil(CENTRES_PER_TASK))
         .into_par_iter()
-        .map(|i| {
+        .map(|run| {
             let mut background: Vec<graded::Background> = Vec::with_capacity(12);
-            match tree {
-                Some(tree) => tree.tets_of(lattice, i, &mut background),
-                None => {
-                    let mut bcc = Vec::with_capacity(12);
-                    lattice.tets_around(i, &mut bcc);
-                    background.extend(bcc.into_iter().map(|t| (t, true)));
-                }
-            }
+            let mut bcc = Vec::with_capacity(12);
             let mut out = Vec::new();
             let mut local = Vec::new();
             let mut zero = 0;
             let mut bad = Vec::new();
             let mut inner = Vec::new();
             let mut missing = Vec::new();
-            for (t, bcc) in background {
-                let s = t.map(|v| cuts.sign[v as usize]);
-                if s == [-1; 4] {
-                    out.push(t);
-                    inner.push(true);
-                    continue;
-                }
-                if !bcc {
-                    // a coarse cell is deep inside (graded.rs): never cut
-                    missing.push(lattice.position(t[0]));
-                    continue;
-                }
-                let before = out.len();
-                if s == [0; 4] {
-                    // four vertices on the surface: kept when inside and not a sliver (flat
-                    // on a flat piece of surface it holds no volume; across an edge it does)
-                    let p = t.map(|v| cuts.position(lattice, v));
-                    let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
-                    let (lo, hi) = if orient3d(p[0], p[1], p[2], p[3]).is_positive() { tet_min_max_dihedral(&p) } else { (0.0, 180.0) };
-                    if lo >= MIN_DIHEDRAL && hi <= MAX_DIHEDRAL && oracle.inside(c) {
-                        zero += 1;
-                        let before = out.len();
-                        push_checked(t, lattice, cuts, &mut out, &mut bad);
-                        inner.resize(inner.len() + out.len() - before, false);
+            for i in run * CENTRES_PER_TASK..((run + 1) * CENTRES_PER_TASK).min(centres) {
+                background.clear();
+                match tree {
+                    Some(tree) => tree.tets_of(lattice, i, &mut background),
+                    None => {
+                        bcc.clear();
+                        lattice.tets_around(i, &mut bcc);
+                        background.extend(bcc.iter().map(|&t| (t, true)));
                     }
-                    continue;
                 }
-                local.clear();
-                let refs = t.map(|v| lattice.coords(v));
-                stencil::stuff(s, refs, &mut local);
-                // `None` where a stencil asks for a cut point its edge lacks (our bug)
-                let global = |local: &[[Local; 4]]| -> Option<Vec<[u32; 4]>> {
-                    local
-                        .iter()
-                        .map(|l| {
-                            let mut g = [0u32; 4];
-                            for (k, c) in l.iter().enumerate() {
-                                g[k] = match *c {
-                                    Local::Vertex(k) => t[k as usize],
-                                    Local::Cut(a, b) => nl + cuts.cut(t[a as usize], t[b as usize])?,
-                                };
-                            }
-                            Some(g)
-                        })
-                        .collect()
-                };
-                let Some(chosen) = global(&local) else {
-                    missing.push(lattice.position(t[0]));
-                    continue;
-                };
-                for g in chosen {
-                    push_checked(g, lattice, cuts, &mut out, &mut bad);
+                for &(t, bcc) in &background {
+                    let s = t.map(|v| cuts.sign[v as usize]);
+                    if s == [-1; 4] {
+                        out.push(t);
+                        inner.push(true);
+                        continue;
+                    }
+                    if !bcc {
+                        // a coarse cell is deep inside (graded.rs): never cut
+                        missing.push(lattice.position(t[0]));
+                        continue;
+                    }
+                    let before = out.len();
+                    if s == [0; 4] {
+                        // four vertices on the surface: kept when inside and not a sliver (flat
+                        // on a flat piece of surface it holds no volume; across an edge it does)
+                        let p = t.map(|v| cuts.position(lattice, v));
+                        let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+                        let (lo, hi) = if orient3d(p[0], p[1], p[2], p[3]).is_positive() { tet_min_max_dihedral(&p) } else { (0.0, 180.0) };
+                        if lo >= MIN_DIHEDRAL && hi <= MAX_DIHEDRAL && oracle.inside(c) {
+                            zero += 1;
+                            let before = out.len();
+                            push_checked(t, lattice, cuts, &mut out, &mut bad);
+                            inner.resize(inner.len() + out.len() - before, false);
+                        }
+                        continue;
+                    }
+                    local.clear();
+                    let refs = t.map(|v| lattice.coords(v));
+                    stencil::stuff(s, refs, &mut local);
+                    // `None` where a stencil asks for a cut point its edge lacks (our bug)
+                    let global = |local: &[[Local; 4]]| -> Option<Vec<[u32; 4]>> {
+                        local
+                            .iter()
+                            .map(|l| {
+                                let mut g = [0u32; 4];
+                                for (k, c) in l.iter().enumerate() {
+                                    g[k] = match *c {
+                                        Local::Vertex(k) => t[k as usize],
+                                        Local::Cut(a, b) => nl + cuts.cut(t[a as usize], t[b as usize])?,
+                                    };
+                                }
+                                Some(g)
+                            })
+                            .collect()
+                    };
+                    let Some(chosen) = global(&local) else {
+                        missing.push(lattice.position(t[0]));
+                        continue;
+                    };
+                    for g in chosen {
+                        push_checked(g, lattice, cuts, &mut out, &mut bad);
+                    }
+                    inner.resize(inner.len() + out.len() - before, false);
                 }
-                inner.resize(inner.len() + out.len() - before, false);
             }
             (out, zero, bad, inner, missing)
         })
@@ -421,19 +429,17 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
 /// them a face of three inside vertices seen once is shared with such a whole tet.
 fn boundary_faces(mesh: &TetMesh, inner: &[bool], minus: &[bool]) -> Vec<[u32; 3]> {
     use crate::mesh::tet_mesh::TET_FACES;
-    let mut rec: Vec<([u32; 3], [u32; 3])> = Vec::new();
-    for (t, tet) in mesh.tets.iter().enumerate() {
-        if inner[t] {
-            continue;
-        }
-        for f in TET_FACES {
-            let v = [tet[f[0]], tet[f[1]], tet[f[2]]];
-            let mut k = v;
-            k.sort_unstable();
-            rec.push((k, v));
-        }
-    }
-    rec.par_sort_unstable();
+    let records = || {
+        mesh.tets.iter().zip(inner).filter(|(_, inner)| !**inner).flat_map(|(tet, _)| {
+            TET_FACES.iter().map(move |f| {
+                let v = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                let mut k = v;
+                k.sort_unstable();
+                (k, v)
+            })
+        })
+    };
+    let rec = crate::core::bucket_sort::collect_sorted_by_lead(mesh.vertices.len(), records, |r| r.0[0]);
     let mut out = Vec::new();
     let mut i = 0;
     while i < rec.len() {
