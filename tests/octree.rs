@@ -158,4 +158,6 @@ fn a_solid_thinner_than_the_cell_is_named() {
     assert!(o.status.success(), "{err}");
     assert!(err.contains("solids left out") && err.contains("\"Glass\""), "{err}");
     assert!(err.contains("volume is"), "{err}");
+    // the left-out pane is input surface far from the mesh: said, with a place
+    assert!(err.contains("WARNING: the boundary strays ") && err.contains("against the cell size 1.2000e1"), "{err}");
 }

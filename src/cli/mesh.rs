@@ -201,7 +201,8 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         }
         println!("  dihedral       [{:.2}°, {:.2}°] measured; the paper's bounds [{}°, {}°] (its stencils; where warping moves vertices our tests find down to 9.3°, so this is measured)", o.dihedral[0], o.dihedral[1], o.promised_dihedral[0], o.promised_dihedral[1]);
         println!("  volume         {:.6e} (input by the divergence theorem {:.6e}, {:+.3} %)", o.volume, o.input_volume, 100.0 * (o.volume - o.input_volume) / o.input_volume.abs().max(f64::MIN_POSITIVE));
-        println!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
+        let [x, y, z] = d.hausdorff_at;
+        println!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}; farthest at ({x:.6}, {y:.6}, {z:.6})), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
         println!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);
     }
     if part.open_surface_faces > 0 {

@@ -251,16 +251,39 @@ pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: 
     eprintln!("WARNING: {} tets have a dihedral angle under 1°{}; {require} makes this an error", m.tets_under_1_deg, at.unwrap_or_default());
 }
 
-/// Warns on standard error about the solids of an assembly the octree mesher left out.
+/// Warns on standard error about the solids of an assembly the octree mesher left out, and
+/// about a boundary farther than a cell from the input.
 pub(crate) fn warn_octree(o: Option<&crate::mesh3d::octree::OctreeReport>) {
-    let Some(o) = o.filter(|o| !o.empty_solids.is_empty()) else { return };
-    let names: Vec<String> = o.empty_solids.iter().map(|e| format!("{}{} ({:.4e})", e.solid, e.name.as_ref().map(|n| format!(" {n:?}")).unwrap_or_default(), e.volume)).collect();
-    eprintln!(
-        "WARNING: {} solids left out, thinner than the cell size {:.4e} (no lattice vertex inside; a smaller size reaches them): {}",
-        o.empty_solids.len(),
-        o.cell_size,
-        names.join(", ")
-    );
+    for line in octree_warnings(o) {
+        eprintln!("{line}");
+    }
+}
+
+/// The warnings of [`warn_octree`]: solids left out, and a boundary farther from the input
+/// than the cell size (where, and the first feature edge it misses).
+fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<String> {
+    let Some(o) = o else { return Vec::new() };
+    let mut out = Vec::new();
+    if !o.empty_solids.is_empty() {
+        let names: Vec<String> = o.empty_solids.iter().map(|e| format!("{}{} ({:.4e})", e.solid, e.name.as_ref().map(|n| format!(" {n:?}")).unwrap_or_default(), e.volume)).collect();
+        out.push(format!(
+            "WARNING: {} solids left out, thinner than the cell size {:.4e} (no lattice vertex inside; a smaller size reaches them): {}",
+            o.empty_solids.len(),
+            o.cell_size,
+            names.join(", ")
+        ));
+    }
+    let d = &o.deviation;
+    if d.hausdorff > o.cell_size || d.unresolved_feature_edges > 0 {
+        use crate::quality::worst_tet::fmt_point;
+        let mut w = format!("WARNING: the boundary strays {:.4e} from the input at {} (sampled), against the cell size {:.4e}", d.hausdorff, fmt_point(d.hausdorff_at), o.cell_size);
+        if let Some([a, b]) = d.unresolved_examples.first() {
+            w += &format!("; {} of {} feature edges are farther than a cell from it, the first from {} to {}", d.unresolved_feature_edges, d.feature_edges, fmt_point(*a), fmt_point(*b));
+        }
+        w += ": walls or features thinner or sharper than a cell; a smaller size follows them closer";
+        out.push(w);
+    }
+    out
 }
 
 /// Parses a finite number `> 0`.
@@ -280,6 +303,24 @@ mod tests {
     use super::*;
     use crate::mesh3d::mesher::RefinementStop;
     use crate::pipeline::run::MeshSummary;
+
+    #[test]
+    fn octree_warnings_name_the_place() {
+        use crate::mesh3d::octree::OctreeReport;
+        let mut o = OctreeReport { cell_size: 1.0, ..OctreeReport::default() };
+        o.deviation.hausdorff = 0.5;
+        assert!(octree_warnings(Some(&o)).is_empty(), "within the cell");
+        assert!(octree_warnings(None).is_empty());
+        o.deviation.hausdorff = 2.5;
+        o.deviation.hausdorff_at = [1.0, 2.0, 3.0];
+        o.deviation.feature_edges = 9;
+        o.deviation.unresolved_feature_edges = 2;
+        o.deviation.unresolved_examples = vec![[[0.0, 0.0, 0.0], [4.0, 0.0, 0.0]]];
+        let w = octree_warnings(Some(&o));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].starts_with("WARNING: the boundary strays 2.5000e0 from the input at (1, 2, 3) (sampled), against the cell size 1.0000e0"), "{}", w[0]);
+        assert!(w[0].contains("2 of 9 feature edges are farther than a cell from it, the first from (0, 0, 0) to (4, 0, 0)"), "{}", w[0]);
+    }
 
     #[test]
     fn the_refinement_line_says_which_budget_stopped_it() {

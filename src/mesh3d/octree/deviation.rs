@@ -50,6 +50,9 @@ pub struct Deviation {
     pub input_to_mesh: f64,
     /// The larger of the two: the sampled Hausdorff distance.
     pub hausdorff: f64,
+    /// Where the sampled Hausdorff distance is reached (a sample of the mesh's boundary or of
+    /// the input; the first such sample in triangle order).
+    pub hausdorff_at: [f64; 3],
     /// An upper bound of the true Hausdorff distance (sampled plus sample spacing).
     pub hausdorff_bound: f64,
     /// Points sampled on both surfaces.
@@ -75,10 +78,12 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
     let bnd_bvh = Bvh::from_boxes(&bnd_boxes);
     let (m2i, m2i_bound, n1, nearest) = one_sided(&bnd, surface, surface_bvh, h, true);
     let (i2m, i2m_bound, n2, _) = one_sided(surface, &bnd, &bnd_bvh, h, false);
+    let ((m2i, m2i_at), (i2m, i2m_at)) = (m2i, i2m);
     let mut d = Deviation {
         mesh_to_input: m2i,
         input_to_mesh: i2m,
         hausdorff: m2i.max(i2m),
+        hausdorff_at: if i2m > m2i { i2m_at } else { m2i_at }.to_array(),
         hausdorff_bound: m2i_bound.max(i2m_bound),
         samples: n1 + n2,
         feature_angle_deg,
@@ -123,10 +128,10 @@ fn nearest_from(s: &TriSurface, bvh: &Bvh, p: DVec3, hint: Option<u32>) -> Optio
 /// Most midpoints measured per triangle (its bound stays honest, only looser, past them).
 const MAX_SPLITS: usize = 1 << 16;
 
-/// Largest sampled distance from `from` to `to`, its upper bound, the number of samples, and
-/// with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
+/// Largest sampled distance from `from` to `to` and where it is reached (the first such
+/// sample in triangle order), its upper bound, the number of samples, and with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
 /// The corners are sampled once per vertex (shared by the triangles around it).
-fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool) -> (f64, f64, usize, Vec<Option<u32>>) {
+fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool) -> ((f64, DVec3), f64, usize, Vec<Option<u32>>) {
     let mut used = vec![false; from.vertices.len()];
     for t in &from.triangles {
         for &v in t {
@@ -142,7 +147,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         .collect();
     let corners = used.iter().filter(|&&u| u).count();
     let settled = |m: f64, r: f64| m + r <= 0.5 * h || r <= h / 8.0;
-    let per_triangle: Vec<(f64, f64, usize, Option<u32>)> = (0..from.triangles.len())
+    let per_triangle: Vec<((f64, DVec3), f64, usize, Option<u32>)> = (0..from.triangles.len())
         .into_par_iter()
         .map(|t| {
             let tri = from.triangles[t];
@@ -152,9 +157,18 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             });
             let mut n = usize::from(centroid.is_some());
             let d = tri.map(|v| at_vertex[v as usize].0);
-            let mut worst = d.iter().copied().fold(0.0, f64::max);
+            // the largest distance and its sample, the first of equal ones
+            let mut worst = (0.0, from.vertices[tri[0] as usize]);
+            let farther = |worst: &mut (f64, DVec3), d: f64, at: DVec3| {
+                if d > worst.0 {
+                    *worst = (d, at);
+                }
+            };
+            for (k, &v) in tri.iter().enumerate() {
+                farther(&mut worst, d[k], from.vertices[v as usize]);
+            }
             if let Some(Some((_, dc))) = centroid {
-                worst = worst.max(dc);
+                farther(&mut worst, dc, tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0);
             }
             let mut bound: f64 = 0.0;
             let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
@@ -184,10 +198,10 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                         let (near, dq) = nearest_from(to, to_bvh, at, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
                         hint = near;
                         side = side.max(dq);
+                        farther(&mut worst, dq, at);
                         n += 1;
                         splits += 1;
                     }
-                    worst = worst.max(side);
                     bound = bound.max((side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9));
                     continue;
                 }
@@ -195,7 +209,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 let (near, dm) = nearest_from(to, to_bvh, mid, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
                 splits += 1;
                 n += 1;
-                worst = worst.max(dm);
+                farther(&mut worst, dm, mid);
                 let mut left = (p, d, near);
                 left.0[j] = mid;
                 left.1[j] = dm;
@@ -208,7 +222,8 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             (worst, bound, n, centroid.flatten().map(|x| x.0))
         })
         .collect();
-    let (worst, bound, n) = per_triangle.iter().fold((0.0f64, 0.0f64, corners), |x, y| (x.0.max(y.0), x.1.max(y.1), x.2 + y.2));
+    let first = (0.0, from.vertices.first().copied().unwrap_or(DVec3::ZERO));
+    let (worst, bound, n) = per_triangle.iter().fold((first, 0.0f64, corners), |x, y| (if y.0.0 > x.0.0 { y.0 } else { x.0 }, x.1.max(y.1), x.2 + y.2));
     (worst, bound, n, if centroids { per_triangle.iter().map(|x| x.3).collect() } else { Vec::new() })
 }
 
@@ -295,7 +310,8 @@ mod tests {
         ];
         let (to, to_bvh) = surface(tv, vec![[0, 1, 2], [3, 4, 5]]);
         let h = 1.0;
-        let (worst, bound, n, _) = one_sided(&from, &to, &to_bvh, h, false);
+        let ((worst, at), bound, n, _) = one_sided(&from, &to, &to_bvh, h, false);
+        assert!((at.x - 50.0).abs() <= h / 8.0, "the farthest sample at {at}");
         // the truth: the middle of the long edge, (50, 0.005), is this far from the corners
         // (0.5, 0) and (99.5, 0) of the ends' triangles; every corner is within 0.01 of them
         let truth = 49.5f64.hypot(0.005);
@@ -348,7 +364,7 @@ mod tests {
         let (a, a_bvh) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
         let (b, b_bvh) = surface(sq(1.0), vec![[0, 1, 2], [0, 2, 3]]);
         for (from, to, bvh) in [(&a, &b, &b_bvh), (&b, &a, &a_bvh)] {
-            let (worst, bound, _, near) = one_sided(from, to, bvh, 0.5, true);
+            let ((worst, _), bound, _, near) = one_sided(from, to, bvh, 0.5, true);
             assert!((worst - 1.0).abs() < 1e-12, "{worst}");
             assert!((1.0..=1.0 + 0.5 / 8.0 + 1e-12).contains(&bound), "{bound}");
             assert_eq!(near.len(), 2);

@@ -53,6 +53,7 @@ fn merged_deviation(a: &Deviation, b: &Deviation) -> Deviation {
         mesh_to_input: a.mesh_to_input.max(b.mesh_to_input),
         input_to_mesh: a.input_to_mesh.max(b.input_to_mesh),
         hausdorff: a.hausdorff.max(b.hausdorff),
+        hausdorff_at: if b.hausdorff > a.hausdorff { b.hausdorff_at } else { a.hausdorff_at },
         hausdorff_bound: a.hausdorff_bound.max(b.hausdorff_bound),
         samples: a.samples + b.samples,
         feature_angle_deg: a.feature_angle_deg,
