@@ -147,84 +147,109 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         .collect();
     let corners = used.iter().filter(|&&u| u).count();
     let settled = |m: f64, r: f64| m + r <= 0.5 * h || r <= h / 8.0;
-    let per_triangle: Vec<((f64, DVec3), f64, usize, Option<u32>)> = (0..from.triangles.len())
-        .into_par_iter()
-        .map(|t| {
-            let tri = from.triangles[t];
-            let centroid = centroids.then(|| {
-                let p = tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0;
-                nearest_from(to, to_bvh, p, None)
-            });
-            let mut n = usize::from(centroid.is_some());
-            let d = tri.map(|v| at_vertex[v as usize].0);
-            // the largest distance and its sample, the first of equal ones
-            let mut worst = (0.0, from.vertices[tri[0] as usize]);
-            let farther = |worst: &mut (f64, DVec3), d: f64, at: DVec3| {
-                if d > worst.0 {
-                    *worst = (d, at);
-                }
-            };
-            for (k, &v) in tri.iter().enumerate() {
-                farther(&mut worst, d[k], from.vertices[v as usize]);
+    let measure = |t: usize| {
+        let tri = from.triangles[t];
+        let centroid = centroids.then(|| {
+            let p = tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0;
+            nearest_from(to, to_bvh, p, None)
+        });
+        let mut n = usize::from(centroid.is_some());
+        let d = tri.map(|v| at_vertex[v as usize].0);
+        // the largest distance and its sample, the first of equal ones
+        let mut worst = (0.0, from.vertices[tri[0] as usize]);
+        let farther = |worst: &mut (f64, DVec3), d: f64, at: DVec3| {
+            if d > worst.0 {
+                *worst = (d, at);
             }
-            if let Some(Some((_, dc))) = centroid {
-                farther(&mut worst, dc, tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0);
+        };
+        for (k, &v) in tri.iter().enumerate() {
+            farther(&mut worst, d[k], from.vertices[v as usize]);
+        }
+        if let Some(Some((_, dc))) = centroid {
+            farther(&mut worst, dc, tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0);
+        }
+        let mut bound: f64 = 0.0;
+        let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
+        // pieces: corners, their distances, a hint for their midpoints
+        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>)> = vec![(from.corners(t), d, hint)];
+        let mut splits = 0;
+        while let Some((p, d, hint)) = stack.pop() {
+            let len = [p[1].distance(p[2]), p[2].distance(p[0]), p[0].distance(p[1])];
+            // the longest edge is opposite corner `k` (the first of equal lengths)
+            let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
+            let m = d[0].max(d[1]).max(d[2]);
+            let r = covering_radius(&p, len);
+            if settled(m, r) || splits >= MAX_SPLITS {
+                bound = bound.max(m + r);
+                continue;
             }
-            let mut bound: f64 = 0.0;
-            let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
-            // pieces: corners, their distances, a hint for their midpoints
-            let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>)> = vec![(from.corners(t), d, hint)];
-            let mut splits = 0;
-            while let Some((p, d, hint)) = stack.pop() {
-                let len = [p[1].distance(p[2]), p[2].distance(p[0]), p[0].distance(p[1])];
-                // the longest edge is opposite corner `k` (the first of equal lengths)
-                let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
-                let m = d[0].max(d[1]).max(d[2]);
-                let r = covering_radius(&p, len);
-                if settled(m, r) || splits >= MAX_SPLITS {
-                    bound = bound.max(m + r);
-                    continue;
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let altitude = (p[1] - p[0]).cross(p[2] - p[0]).length() / len[k];
+            if altitude <= h / 16.0 {
+                // thin: every point is within the altitude of a point of the longest side
+                // (its angles at both ends are acute); sample that side at h / 8
+                let steps = ((len[k] / (h / 8.0)).ceil() as usize).clamp(1, MAX_SPLITS - splits.min(MAX_SPLITS - 1));
+                let mut side = d[i].max(d[j]);
+                let mut hint = hint;
+                for q in 1..steps {
+                    let at = p[i] + (p[j] - p[i]) * (q as f64 / steps as f64);
+                    let (near, dq) = nearest_from(to, to_bvh, at, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
+                    hint = near;
+                    side = side.max(dq);
+                    farther(&mut worst, dq, at);
+                    n += 1;
+                    splits += 1;
                 }
-                let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-                let altitude = (p[1] - p[0]).cross(p[2] - p[0]).length() / len[k];
-                if altitude <= h / 16.0 {
-                    // thin: every point is within the altitude of a point of the longest side
-                    // (its angles at both ends are acute); sample that side at h / 8
-                    let steps = ((len[k] / (h / 8.0)).ceil() as usize).clamp(1, MAX_SPLITS - splits.min(MAX_SPLITS - 1));
-                    let mut side = d[i].max(d[j]);
-                    let mut hint = hint;
-                    for q in 1..steps {
-                        let at = p[i] + (p[j] - p[i]) * (q as f64 / steps as f64);
-                        let (near, dq) = nearest_from(to, to_bvh, at, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
-                        hint = near;
-                        side = side.max(dq);
-                        farther(&mut worst, dq, at);
-                        n += 1;
-                        splits += 1;
-                    }
-                    bound = bound.max((side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9));
-                    continue;
-                }
-                let mid = (p[i] + p[j]) * 0.5;
-                let (near, dm) = nearest_from(to, to_bvh, mid, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
-                splits += 1;
-                n += 1;
-                farther(&mut worst, dm, mid);
-                let mut left = (p, d, near);
-                left.0[j] = mid;
-                left.1[j] = dm;
-                let mut right = (p, d, near);
-                right.0[i] = mid;
-                right.1[i] = dm;
-                stack.push(right);
-                stack.push(left);
+                bound = bound.max((side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9));
+                continue;
             }
-            (worst, bound, n, centroid.flatten().map(|x| x.0))
-        })
-        .collect();
-    let first = (0.0, from.vertices.first().copied().unwrap_or(DVec3::ZERO));
-    let (worst, bound, n) = per_triangle.iter().fold((first, 0.0f64, corners), |x, y| (if y.0.0 > x.0.0 { y.0 } else { x.0 }, x.1.max(y.1), x.2 + y.2));
-    (worst, bound, n, if centroids { per_triangle.iter().map(|x| x.3).collect() } else { Vec::new() })
+            let mid = (p[i] + p[j]) * 0.5;
+            let (near, dm) = nearest_from(to, to_bvh, mid, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
+            splits += 1;
+            n += 1;
+            farther(&mut worst, dm, mid);
+            let mut left = (p, d, near);
+            left.0[j] = mid;
+            left.1[j] = dm;
+            let mut right = (p, d, near);
+            right.0[i] = mid;
+            right.1[i] = dm;
+            stack.push(right);
+            stack.push(left);
+        }
+        ((worst.0, worst.1, t), bound, n, centroid.flatten().map(|x| x.0))
+    };
+    // the larger distance, of equal ones the lower triangle's: associative and commutative,
+    // so the parallel reduction gives the same answer for any split
+    type Stats = ((f64, DVec3, usize), f64, usize);
+    let join = |x: Stats, y: Stats| -> Stats {
+        let far = if y.0.0 > x.0.0 || (y.0.0 == x.0.0 && y.0.2 < x.0.2) { y.0 } else { x.0 };
+        (far, x.1.max(y.1), x.2 + y.2)
+    };
+    let none: Stats = ((0.0, from.vertices.first().copied().unwrap_or(DVec3::ZERO), usize::MAX), 0.0, 0);
+    let triangles = 0..from.triangles.len();
+    let (stats, nearest) = if centroids {
+        // one nearest triangle per triangle is kept (the tags); the rest is reduced
+        let (stats, nearest): (Vec<Stats>, Vec<Option<u32>>) = triangles
+            .into_par_iter()
+            .map(|t| {
+                let (w, b, n, near) = measure(t);
+                ((w, b, n), near)
+            })
+            .unzip();
+        (stats.into_iter().fold(none, join), nearest)
+    } else {
+        let stats = triangles
+            .into_par_iter()
+            .map(|t| {
+                let (w, b, n, _) = measure(t);
+                (w, b, n)
+            })
+            .reduce(|| none, join);
+        (stats, Vec::new())
+    };
+    let ((worst, at, _), bound, n) = stats;
+    ((worst, at), bound, n + corners, nearest)
 }
 
 /// The largest distance from a point of triangle `p` to its nearest corner (module docs),
