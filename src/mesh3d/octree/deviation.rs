@@ -10,8 +10,8 @@
 //! - Each triangle (of either surface) is measured at its corners (once per vertex) and cut
 //!   by longest-edge bisection, each new midpoint measured, until every piece is *settled*:
 //!   with `r` its covering radius (below) and `m` its largest corner distance,
-//!   `m + r ≤ h / 2`, or `r ≤ h / 8`, or the triangle's budget of [`MAX_SPLITS`] midpoints is
-//!   spent. Every point of a piece lies within `r` of one of its corners, and the distance to
+//!   `m + r ≤ h / 2`, or `r ≤ h / 8`, or the triangle's budget of 65,536 midpoints
+//!   (`MAX_SPLITS`) is spent. Every point of a piece lies within `r` of one of its corners, and the distance to
 //!   a surface is 1-Lipschitz, so the true one-sided distance is at most the largest `m + r`
 //!   over the pieces: `hausdorff_bound` is that upper bound, never an estimate below the
 //!   truth; `hausdorff` is the largest distance actually found.
