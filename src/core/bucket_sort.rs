@@ -54,13 +54,8 @@ mod tests {
 
     #[test]
     fn equals_a_full_sort() {
-        let mut s: u64 = 7;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut rng = crate::core::spatial_order::XorShift::new(7);
+        let mut rnd = || rng.next_u64();
         let recs: Vec<([u32; 3], u32)> = (0..5000)
             .map(|i| {
                 let mut k = [(rnd() % 300) as u32, (rnd() % 300) as u32, (rnd() % 300) as u32];

@@ -528,7 +528,6 @@ pub enum NodeView<'a> {
     },
 }
 
-/// The distance from `p` to the closed box `b` (0 inside).
 /// A LIFO stack of up to 64 entries in place, spilling into a vector beyond.
 struct SmallStack<T: Copy + Default> {
     items: [T; 64],
@@ -559,6 +558,7 @@ impl<T: Copy + Default> SmallStack<T> {
     }
 }
 
+/// The squared distance from `p` to the closed box `b` (0 inside).
 fn box_distance_sq(b: &Aabb, p: DVec3) -> f64 {
     let d = (b.min - p).max(p - b.max).max(DVec3::ZERO);
     d.length_squared()

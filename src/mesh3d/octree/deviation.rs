@@ -188,7 +188,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             if altitude <= h / 16.0 {
                 // thin: every point is within the altitude of a point of the longest side
                 // (its angles at both ends are acute); sample that side at h / 8
-                let steps = ((len[k] / (h / 8.0)).ceil() as usize).clamp(1, MAX_SPLITS - splits.min(MAX_SPLITS - 1));
+                let steps = ((len[k] / (h / 8.0)).ceil() as usize).clamp(1, MAX_SPLITS - splits);
                 let mut side = d[i].max(d[j]);
                 let mut hint = hint;
                 for q in 1..steps {
@@ -349,13 +349,8 @@ mod tests {
     /// reached (up to the sampling) on acute, right, obtuse and flat triangles.
     #[test]
     fn covering_radius_covers() {
-        let mut seed: u64 = 99;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % 1_000_000) as f64 / 1_000_000.0
-        };
+        let mut rng = crate::core::spatial_order::XorShift::new(99);
+        let mut rnd = || rng.below(1_000_000) as f64 / 1_000_000.0;
         let mut shapes: Vec<[DVec3; 3]> = vec![
             [DVec3::ZERO, DVec3::X, DVec3::new(0.5, 0.866, 0.0)],
             [DVec3::ZERO, DVec3::X, DVec3::Y],
