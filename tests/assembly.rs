@@ -359,7 +359,8 @@ fn the_corpus_assemblies_touch_where_their_solids_touch() {
 }
 
 /// `fepre mesh` on a corpus assembly: one region per solid with the volume its tessellation
-/// encloses, a valid mesh, the contacts of its solids reported.
+/// encloses (up to what merging nearly flat facets may move, which the report bounds), a
+/// valid mesh, the contacts of its solids reported.
 fn corpus_assembly_meshes(name: &str, solids: usize) {
     let Some((part, spec, _)) = corpus_part(name) else { return };
     let s = part.surface.clone().unwrap();
@@ -380,8 +381,10 @@ fn corpus_assembly_meshes(name: &str, solids: usize) {
     assert_eq!(m.validate(), Ok(()), "{name}");
     let got = region_volumes(&m);
     assert_eq!(got.keys().collect::<Vec<_>>(), expected.keys().collect::<Vec<_>>(), "{name}");
+    // exact but for merged facets that are flat only within 0.1° (the report bounds the change)
+    let moved = v["flattening_volume"].as_f64().unwrap();
     for (r, want) in &expected {
-        assert!((got[r] / want - 1.0).abs() < 1e-9, "{name}: region {} has volume {}, its solid {want}", r.0, got[r]);
+        assert!((got[r] - want).abs() <= 1e-9 * want.abs() + moved, "{name}: region {} has volume {}, its solid {want} (flat facets may move it by {moved})", r.0, got[r]);
     }
     println!("{name}: {} tets, {} regions, {} contacts", m.tets.len(), got.len(), v["contacts"].as_array().unwrap().len());
 }

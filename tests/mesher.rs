@@ -175,8 +175,8 @@ fn plc_boundary_split_keeps_tags() {
     }
 }
 
-/// A closed corpus part meshes, validates and keeps its surface volume: the mesh and the
-/// mesher's report.
+/// A closed corpus part meshes, validates and keeps its surface volume (up to what merging
+/// nearly flat facets may move, which the report bounds): the mesh and the mesher's report.
 fn corpus_part_report(name: &str) -> Option<(TetMesh, fepre::mesh3d::mesher::MeshReport)> {
     let Some(path) = corpus_file(name) else { return None };
     let loaded = read(&path, &ReadOptions::default()).expect("read");
@@ -185,7 +185,9 @@ fn corpus_part_report(name: &str) -> Option<(TetMesh, fepre::mesh3d::mesher::Mes
     println!("{name}: {} tets, {:.2} s", m.tets.len(), report.seconds);
     assert_eq!(m.validate(), Ok(()));
     let vol = surface_volume(&s);
-    assert!((m.volume() - vol).abs() <= 1e-9 * vol.abs(), "{name}: volume {} vs {vol}", m.volume());
+    // exact but for merged facets that are flat only within 0.1°, whose slab bounds the change
+    let moved = report.flattening_volume;
+    assert!((m.volume() - vol).abs() <= 1e-9 * vol.abs() + moved, "{name}: volume {} vs {vol} (flat facets may move it by {moved})", m.volume());
     let q = fepre::quality::tet_mesh_quality(&m);
     assert_eq!(q.inverted, 0, "{name}");
     Some((m, report))

@@ -177,6 +177,9 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
     if m.input_caps_repaired > 0 {
         println!("input caps       {} flat input triangles with a vertex on their long side, each repaired with its neighbour", m.input_caps_repaired);
     }
+    if m.flattening_volume > 1e-9 * m.volume.abs() {
+        println!("flat facets      input triangles flat within 0.1° merged and retriangulated (TetGen's -p rule): the volume moves by at most {} ({:.2e} of it)", fmt_num(m.flattening_volume), m.flattening_volume / m.volume.abs().max(f64::MIN_POSITIVE));
+    }
     if !delaunay {
         return;
     }

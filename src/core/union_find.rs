@@ -55,6 +55,7 @@ impl UnionFind {
     }
 
     /// Number of elements in the set of `x`.
+    #[cfg(test)]
     pub fn size(&mut self, x: u32) -> u32 {
         let r = self.find(x);
         self.size[r as usize]

@@ -88,6 +88,9 @@ pub struct MeshSummary {
     /// Input triangles that were caps (flat up to rounding, a vertex on their long side),
     /// each repaired with its neighbour before meshing.
     pub input_caps_repaired: usize,
+    /// The most the volume can differ from the input's by merging nearly flat input triangles
+    /// into facets (TetGen's `-p` rule, 0.1 degrees); zero for exactly flat ones.
+    pub flattening_volume: f64,
 }
 
 /// The summary of `mesh` (made from `surface` with `plan`, `report` the mesher's), and the
@@ -155,6 +158,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         smallest_input_angle: angles.first().cloned(),
         worst_tet,
         input_caps_repaired: report.input_caps_repaired,
+        flattening_volume: report.flattening_volume,
     };
     Summarised { summary, quality: q, boundary, angles }
 }

@@ -5,12 +5,13 @@
 //! - **dihedral**: at an edge shared by exactly two triangles, the angle between them measured
 //!   inside the solid (90° at a cube's edge, 270° at a re-entrant edge, 3° at a knife edge).
 //!   A tet with a face on each side of a knife edge has a dihedral angle no larger than it.
-//!   Edges between coplanar triangles of one tag (180°) are not features. Edges with one or
+//!   Edges inside one flat piece of one tag ([`crate::mesh::topology::flat_pieces`], the
+//!   mesher's facets) are not features. Edges with one or
 //!   more than two triangles, or whose two triangles run the edge the same way (inconsistent
 //!   orientation), have no inside angle and are left out.
 //! - **corner**: at a vertex, the angle of a flat piece of one face between two feature edges:
-//!   with `merge_flat`, the corner of the region of coplanar, same-tag triangles around it (the
-//!   facets the mesher merges, so the thin triangles of a flat STL face do not count); without
+//!   with `merge_flat`, the corner of the flat piece of one tag around it (the facets the
+//!   mesher merges, so the thin triangles of a flat STL face do not count); without
 //!   (`--keep-surface`: every triangle is kept as it is), each triangle's own corner. A vertex
 //!   inside a flat region (its corners closing round it) has no corner.
 //!
@@ -19,13 +20,10 @@
 
 use crate::core::FaceId;
 use crate::core::union_find::UnionFind;
+use crate::mesh::topology::flat_pieces;
 use crate::mesh::TriSurface;
 use glam::DVec3;
 use serde::Serialize;
-
-/// Two triangles of one tag are one flat piece when the sine of the angle between their normals
-/// is below this (the mesher's rule for merging facets).
-pub const FLAT_SINE: f64 = 1e-6;
 
 /// What kind of input angle.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize)]
@@ -62,8 +60,9 @@ impl InputAngle {
 /// corner, then by place); see the module documentation for what is measured.
 pub fn small_input_angles(surface: &TriSurface, bound_deg: f64, merge_flat: bool) -> Vec<InputAngle> {
     let edges = edge_triangles(surface);
-    let mut out = dihedral_angles(surface, &edges, bound_deg);
-    out.extend(corner_angles(surface, &edges, bound_deg, merge_flat));
+    let pieces = flat_pieces(&surface.vertices, &surface.triangles, &surface.face_tags);
+    let mut out = dihedral_angles(surface, &edges, &pieces, bound_deg);
+    out.extend(corner_angles(surface, &edges, &pieces, bound_deg, merge_flat));
     out.sort_by(|x, y| {
         x.angle_deg
             .total_cmp(&y.angle_deg)
@@ -111,21 +110,11 @@ fn third(s: &TriSurface, t: u32, a: u32, b: u32) -> u32 {
     s.triangles[t as usize].into_iter().find(|&v| v != a && v != b).unwrap_or(a)
 }
 
-/// Triangles `x` and `y` (sharing an edge) are one flat piece of one face.
-fn flat(s: &TriSurface, x: u32, y: u32) -> bool {
-    if s.face_tags.get(x as usize) != s.face_tags.get(y as usize) {
-        return false;
-    }
-    let (nx, ny) = (normal(s, x), normal(s, y));
-    let scale = nx.length() * ny.length();
-    scale > 0.0 && nx.dot(ny) > 0.0 && nx.cross(ny).length() <= FLAT_SINE * scale
-}
-
 fn tag(s: &TriSurface, t: u32) -> FaceId {
     s.face_tags.get(t as usize).copied().unwrap_or_default()
 }
 
-fn dihedral_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], bound_deg: f64) -> Vec<InputAngle> {
+fn dihedral_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], pieces: &[u32], bound_deg: f64) -> Vec<InputAngle> {
     // an inward-oriented surface (negative volume) has its inside on the other side
     let volume: f64 = s.triangles.iter().map(|t| {
         let [a, b, c] = t.map(|i| s.vertices[i as usize]);
@@ -143,7 +132,7 @@ fn dihedral_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], bound_deg: 
         } else {
             continue;
         };
-        if flat(s, x, y) {
+        if pieces[x as usize] == pieces[y as usize] {
             continue;
         }
         let (pa, pb) = (s.vertices[a as usize], s.vertices[b as usize]);
@@ -166,7 +155,7 @@ fn dihedral_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], bound_deg: 
     out
 }
 
-fn corner_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], bound_deg: f64, merge_flat: bool) -> Vec<InputAngle> {
+fn corner_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], pieces: &[u32], bound_deg: f64, merge_flat: bool) -> Vec<InputAngle> {
     let n = s.triangles.len();
     // corner 3 t + k is triangle t's corner at its vertex k
     let corner = |t: u32, v: u32| s.triangles[t as usize].iter().position(|&w| w == v).map(|k| 3 * t + k as u32);
@@ -175,7 +164,7 @@ fn corner_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], bound_deg: f6
     if merge_flat {
         for &((a, b), ref ts) in edges {
             let &[x, y] = ts.as_slice() else { continue };
-            if !flat(s, x, y) {
+            if pieces[x as usize] != pieces[y as usize] {
                 continue;
             }
             for v in [a, b] {

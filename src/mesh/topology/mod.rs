@@ -31,6 +31,7 @@
 
 mod boundary;
 mod edges;
+mod flat_pieces;
 mod nesting;
 mod self_intersection;
 mod shells;
@@ -39,6 +40,7 @@ mod tests;
 
 pub use boundary::boundary_loops;
 pub use edges::{nonmanifold_edges_list, open_edges_list};
+pub use flat_pieces::{FLAT_SINE, MAX_PIECE, flat_pieces};
 pub use self_intersection::intersecting_pairs;
 pub use shells::triangle_shells;
 

@@ -164,6 +164,10 @@ pub struct MeshReport {
     /// Input triangles that were caps (flat, a vertex on their long side), each repaired with
     /// its neighbour ([`crate::mesh::caps::repair_caps`]).
     pub input_caps_repaired: usize,
+    /// The most the enclosed volume can differ from the input's because nearly flat input
+    /// triangles were merged into facets and retriangulated (TetGen's `-p` rule, 0.1 degrees);
+    /// zero when every merged facet is exactly planar, and with `keep_surface`.
+    pub flattening_volume: f64,
 }
 
 /// Which budget stopped refinement early: `"points"` (the mesh reached `max_points`) or
@@ -406,6 +410,7 @@ pub(crate) fn mesh_surface_pinned(
     report.tets = mesh.tets.len();
     report.boundary_steiner_points = sm.boundary_steiner_points();
     report.input_caps_repaired = caps;
+    report.flattening_volume = sm.flattening_volume;
     report.volume_steiner_points = refined.volume_points;
     report.refinement_boundary_points = refined.boundary_points;
     report.refinement_stopped = refined.stopped;

@@ -10,7 +10,7 @@
 
 use crate::core::FaceId;
 use crate::core::cdt;
-use crate::core::union_find::UnionFind;
+use crate::mesh::topology::flat_pieces;
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
@@ -75,22 +75,19 @@ pub(crate) struct SurfaceModel {
     /// Boundary points from this index on were put there by refinement (boundary splits):
     /// merging recovery's points back leaves them.
     pub refined_from: u32,
+    /// The most the enclosed volume can change by merging input triangles that are flat only
+    /// within the tolerance: over every merged facet, twice its area times how far its input
+    /// vertices lie from its plane (every subface stays in that slab over the same polygon).
+    /// Zero when every merged facet is exactly planar.
+    pub flattening_volume: f64,
 }
 
 /// One facet's change by a boundary split: the facet, the subfaces removed, those added.
 pub(crate) type FacetEdit = (u32, Vec<[u32; 3]>, Vec<[u32; 3]>);
 
-/// Two input triangles sharing an edge belong to one merged facet when their tags agree and
-/// the sine of the angle between their normals is below this.
-const COPLANAR_SINE: f64 = 1e-6;
-
-/// The most input triangles in one merged facet (each Steiner point on a facet costs a
-/// retriangulation of the whole facet).
-const MAX_MERGED: u32 = 1024;
-
 impl SurfaceModel {
     /// The model of `triangles` (vertex indices into `points`) with their tags; with `merge`,
-    /// coplanar neighbours with one tag form one facet.
+    /// flat pieces of one tag (coplanar within a tolerance) form one facet each.
     pub fn new(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId], merge: bool) -> Self {
         let n = points.len();
         let normal = |t: &[u32; 3]| {
@@ -105,45 +102,25 @@ impl SurfaceModel {
                 on_edge.entry((a.min(b), a.max(b))).or_default().push(i as u32);
             }
         }
-        let mut uf = UnionFind::new(triangles.len());
-        if merge {
-            let mut edges: Vec<(&(u32, u32), &Vec<u32>)> = on_edge.iter().collect();
-            edges.sort_unstable_by_key(|e| *e.0);
-            for (_, ts) in edges {
-                let &[x, y] = ts.as_slice() else { continue };
-                if tags[x as usize] != tags[y as usize] {
-                    continue;
-                }
-                let (nx, ny) = (normal(&triangles[x as usize]), normal(&triangles[y as usize]));
-                let scale = nx.length() * ny.length();
-                if scale > 0.0 && nx.dot(ny) > 0.0 && nx.cross(ny).length() <= COPLANAR_SINE * scale {
-                    // facets stay small enough to retriangulate at every split cheaply
-                    if uf.find(x) != uf.find(y) && uf.size(x) + uf.size(y) <= MAX_MERGED {
-                        uf.union(x, y);
-                    }
-                }
-            }
-        }
-        let mut facet_of_root: FxHashMap<u32, u32> = FxHashMap::default();
-        let mut facet_of_tri = vec![0u32; triangles.len()];
+        // facets: the flat pieces of the input (see `mesh::topology::flat_pieces`) when
+        // merging, else every triangle alone
+        let piece: Vec<u32> = if merge { flat_pieces(points, triangles, tags) } else { (0..triangles.len() as u32).collect() };
         let mut facets: Vec<Facet> = Vec::new();
-        for i in 0..triangles.len() as u32 {
-            let r = uf.find(i);
-            let f = *facet_of_root.entry(r).or_insert_with(|| {
+        for (i, &f) in piece.iter().enumerate() {
+            if f as usize == facets.len() {
                 facets.push(Facet {
                     triangles: Vec::new(),
-                    tag: tags[i as usize],
+                    tag: tags[i],
                     sides: Vec::new(),
                     loops: Vec::new(),
                     inner: Vec::new(),
                     subfaces: Vec::new(),
                     frame: [DVec3::ZERO; 3],
                 });
-                (facets.len() - 1) as u32
-            });
-            facet_of_tri[i as usize] = f;
-            facets[f as usize].triangles.push(triangles[i as usize]);
+            }
+            facets[f as usize].triangles.push(triangles[i]);
         }
+        let facet_of_tri = piece;
         // segments: edges between different facets
         let mut segments: Vec<Segment> = Vec::new();
         let mut keys: Vec<(u32, u32)> = on_edge.keys().copied().collect();
@@ -165,8 +142,8 @@ impl SurfaceModel {
                 facets[f as usize].sides.push(s);
             }
         }
-        for (f, fc) in facets.iter_mut().enumerate() {
-            let _ = f;
+        let mut flattening_volume = 0.0;
+        for fc in facets.iter_mut() {
             let mut on_side: Vec<u32> = Vec::new();
             for t in &fc.triangles {
                 for k in 0..3 {
@@ -193,6 +170,11 @@ impl SurfaceModel {
                 let nrm = sum.normalize_or_zero();
                 let e1 = (points[t[1] as usize] - o).reject_from_normalized(nrm).normalize_or_zero();
                 fc.frame = [o, e1, nrm.cross(e1)];
+                if fc.triangles.len() > 1 {
+                    let off = fc.triangles.iter().flatten().map(|&v| (points[v as usize] - o).dot(nrm).abs()).fold(0.0, f64::max);
+                    let area: f64 = fc.triangles.iter().map(|t| 0.5 * normal(t).length()).sum();
+                    flattening_volume += 2.0 * area * off;
+                }
             }
         }
         let mut index = FxHashMap::default();
@@ -201,7 +183,7 @@ impl SurfaceModel {
                 index.insert(sorted(*t), f as u32);
             }
         }
-        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: u32::MAX }
+        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: u32::MAX, flattening_volume }
     }
 
     /// Point `p` in facet `f`'s plane coordinates.
@@ -643,5 +625,26 @@ mod tests {
         // a different tag keeps them apart
         let m = SurfaceModel::new(&points[..4], &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(2)], true);
         assert_eq!(m.facets.len(), 2);
+        assert_eq!(m.flattening_volume, 0.0);
+    }
+
+    #[test]
+    fn a_nearly_flat_pair_merges_and_bounds_what_its_diagonal_moves() {
+        // the corner (1, 1) lifted so that the two triangles meet at 179.95 degrees
+        let lift = 0.05f64.to_radians().tan() * 0.5f64.sqrt();
+        let points = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, lift)];
+        let m = SurfaceModel::new(&points, &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(1)], true);
+        assert_eq!(m.facets.len(), 1);
+        // flipping the diagonal moves the volume by the tet on the four corners
+        let [a, b, c, d] = [0, 1, 2, 3].map(|i: usize| points[i]);
+        let moved = (b - a).dot((c - a).cross(d - a)).abs() / 6.0;
+        assert!(moved > 0.0 && m.flattening_volume >= moved, "{} < {moved}", m.flattening_volume);
+        assert!(m.flattening_volume < 4.0 * lift);
+        // exactly flat: nothing moves
+        let flat = SurfaceModel::new(&points[..3].iter().copied().chain([DVec3::new(1.0, 1.0, 0.0)]).collect::<Vec<_>>(), &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(1)], true);
+        assert_eq!(flat.flattening_volume, 0.0);
+        // bent by a degree they stay two facets
+        let bent = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 20.0 * lift)];
+        assert_eq!(SurfaceModel::new(&bent, &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(1)], true).facets.len(), 2);
     }
 }

@@ -128,6 +128,7 @@ pub(crate) fn merge_reports(reports: &[MeshReport]) -> MeshReport {
         out.volume_steiner_points += r.volume_steiner_points;
         out.refinement_boundary_points += r.refinement_boundary_points;
         out.input_caps_repaired += r.input_caps_repaired;
+        out.flattening_volume += r.flattening_volume;
         out.refinement_stopped |= r.refinement_stopped;
         out.refinement_stop = out.refinement_stop.take().or_else(|| r.refinement_stop.clone());
         for (stage, s) in &r.stage_seconds {
