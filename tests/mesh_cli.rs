@@ -27,6 +27,26 @@ fn meshes_the_bundled_part_with_a_json_report() {
 }
 
 #[test]
+fn a_closed_output_pipe_ends_quietly_with_the_file_written() {
+    // `fepre mesh ... --json | head -1`: standard output closed before the report is printed
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plate.mesh");
+    let mut child = fepre()
+        .args(["mesh", "cad_fixtures/plate_with_hole.obj", "--json", "-o"])
+        .arg(&out)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{:?}: {err}", o.status);
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(out.is_file());
+}
+
+#[test]
 fn an_open_surface_is_refused_with_its_edges_and_no_file() {
     let dir = tempfile::tempdir().unwrap();
     let open = dir.path().join("open.obj");

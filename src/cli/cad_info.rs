@@ -93,9 +93,9 @@ pub fn run(args: &Args) -> Result<()> {
     });
     let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds, mesh };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print!("{}", text(&report, args.max_listed));
+        out!("{}", text(&report, args.max_listed));
     }
     Ok(())
 }
@@ -132,7 +132,7 @@ fn tessellated(args: &Args, t: &step::Tessellated, seconds: f64) -> Result<()> {
         seconds,
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        outln!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
     let (s, c) = (&r.summary, &r.certificate);
@@ -154,7 +154,7 @@ fn tessellated(args: &Args, t: &step::Tessellated, seconds: f64) -> Result<()> {
         let _ = writeln!(out, "  {} {}: {}", d.id, d.kind, d.why);
     }
     let _ = writeln!(out, "seconds     {:.3}", seconds);
-    print!("{out}");
+    out!("{out}");
     Ok(())
 }
 

@@ -8,9 +8,9 @@ pub(crate) fn print(contacts: &[ContactReport]) {
         return;
     }
     let conforming = contacts.iter().filter(|c| c.shared_area >= c.area * (1.0 - 1e-9)).count();
-    println!("contacts         {} pairs of touching faces of different solids ({conforming} conforming: nodes shared; the others need a tie)", contacts.len());
+    outln!("contacts         {} pairs of touching faces of different solids ({conforming} conforming: nodes shared; the others need a tie)", contacts.len());
     for c in contacts {
-        println!("  {} | {}: area {:.6}, shared {:.6}", side(&c.a), side(&c.b), c.area, c.shared_area);
+        outln!("  {} | {}: area {:.6}, shared {:.6}", side(&c.a), side(&c.b), c.area, c.shared_area);
     }
 }
 

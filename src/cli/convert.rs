@@ -102,13 +102,13 @@ pub fn run(args: &Args) -> Result<()> {
         notes: loaded.notes,
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        outln!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
         for n in &summary.notes {
             eprintln!("note: {n}");
         }
         let elements = if tets > 0 { format!("{tets} tets, {triangles} boundary triangles") } else { format!("{triangles} triangles") };
-        println!("wrote {} ({}): {} vertices, {}, {} tags", summary.output, summary.format, vertices, elements, tags);
+        outln!("wrote {} ({}): {} vertices, {}, {} tags", summary.output, summary.format, vertices, elements, tags);
     }
     Ok(())
 }

@@ -92,20 +92,20 @@ fn run_in_pool(args: &Args, threads: usize) -> Result<()> {
         timings: d.timings.clone(),
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        println!("points      {}", report.points);
-        println!("tets        {}", report.tets);
-        println!("duplicates  {}", report.duplicates);
+        outln!("points      {}", report.points);
+        outln!("tets        {}", report.tets);
+        outln!("duplicates  {}", report.duplicates);
         for pair in d.duplicates.iter().take(10) {
-            println!("  point {} coincides with point {} (left out)", pair[0], pair[1]);
+            outln!("  point {} coincides with point {} (left out)", pair[0], pair[1]);
         }
-        println!("kernel      {:?}", report.kernel);
-        println!("threads     {threads}");
-        println!("Delaunay seconds: {seconds:.4}");
-        println!("read seconds:     {read_seconds:.4}");
+        outln!("kernel      {:?}", report.kernel);
+        outln!("threads     {threads}");
+        outln!("Delaunay seconds: {seconds:.4}");
+        outln!("read seconds:     {read_seconds:.4}");
         if let Some(o) = &report.output {
-            println!("wrote       {o}");
+            outln!("wrote       {o}");
         }
     }
     let _ = ReadOptions::default();

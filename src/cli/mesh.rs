@@ -184,42 +184,42 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     };
     crate::cli::warn_octree(report.octree.as_ref());
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        outln!("{}", serde_json::to_string_pretty(&r)?);
         crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
         return Ok(());
     }
     crate::cli::print_mesh_summary(&m, report.octree.is_none());
     if let Some(o) = &report.octree {
         let d = &o.deviation;
-        println!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
+        outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
         if o.solids > 1 {
-            println!("  solids         {} meshed one by one, each its own region", o.solids - o.empty_solids.len());
+            outln!("  solids         {} meshed one by one, each its own region", o.solids - o.empty_solids.len());
         }
         if !o.cells_per_level.is_empty() {
             let cells: Vec<String> = o.cells_per_level.iter().enumerate().map(|(l, n)| format!("{n} of {:.4e}", o.cell_size * (1u64 << l) as f64)).collect();
-            println!("  cells          {}", cells.join(", "));
+            outln!("  cells          {}", cells.join(", "));
         }
-        println!("  dihedral       [{:.2}°, {:.2}°] measured; the paper's bounds [{}°, {}°] (its stencils; where warping moves vertices our tests find down to 9.3°, so this is measured)", o.dihedral[0], o.dihedral[1], o.promised_dihedral[0], o.promised_dihedral[1]);
-        println!("  volume         {:.6e} (input by the divergence theorem {:.6e}, {:+.3} %)", o.volume, o.input_volume, 100.0 * (o.volume - o.input_volume) / o.input_volume.abs().max(f64::MIN_POSITIVE));
+        outln!("  dihedral       [{:.2}°, {:.2}°] measured; the paper's bounds [{}°, {}°] (its stencils; where warping moves vertices our tests find down to 9.3°, so this is measured)", o.dihedral[0], o.dihedral[1], o.promised_dihedral[0], o.promised_dihedral[1]);
+        outln!("  volume         {:.6e} (input by the divergence theorem {:.6e}, {:+.3} %)", o.volume, o.input_volume, 100.0 * (o.volume - o.input_volume) / o.input_volume.abs().max(f64::MIN_POSITIVE));
         let [x, y, z] = d.hausdorff_at;
-        println!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}; farthest at ({x:.6}, {y:.6}, {z:.6})), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
-        println!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);
+        outln!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}; farthest at ({x:.6}, {y:.6}, {z:.6})), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
+        outln!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);
     }
     if part.open_surface_faces > 0 {
-        println!("open shells      {} faces of open surface shells beside the solids left out (`fepre tessellate` lists their holes)", part.open_surface_faces);
+        outln!("open shells      {} faces of open surface shells beside the solids left out (`fepre tessellate` lists their holes)", part.open_surface_faces);
     }
     let by_refinement = match mesher.refinement_boundary_points {
         0 => String::new(),
         n => format!(" ({n} by refinement, splitting faces that its points encroached)"),
     };
-    println!("boundary Steiner {}{by_refinement}", r.boundary_steiner_points);
-    println!("size             {:.4} (global)", r.global_size);
-    println!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
+    outln!("boundary Steiner {}{by_refinement}", r.boundary_steiner_points);
+    outln!("size             {:.4} (global)", r.global_size);
+    outln!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
     for (stage, s) in &mesher.stage_seconds {
-        println!("  {stage:<10} {s:.3}");
+        outln!("  {stage:<10} {s:.3}");
     }
     crate::cli::contacts::print(&report.contacts);
-    println!("wrote            {}", r.output);
+    outln!("wrote            {}", r.output);
     crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
     Ok(())
 }

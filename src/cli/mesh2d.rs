@@ -158,19 +158,19 @@ pub fn run(args: &Args) -> Result<()> {
         });
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&rep)?);
+        outln!("{}", serde_json::to_string_pretty(&rep)?);
     } else {
-        println!("faces        {} ({} planar, {} meshed, {} failed)", rep.faces, rep.planar_faces, rep.meshed, rep.failed.len());
+        outln!("faces        {} ({} planar, {} meshed, {} failed)", rep.faces, rep.planar_faces, rep.meshed, rep.failed.len());
         for f in &rep.failed {
-            println!("  failed face {} ({}): {}", f.face.0, f.step_id, f.reason);
+            outln!("  failed face {} ({}): {}", f.face.0, f.step_id, f.reason);
         }
-        println!("size         {:.6}", rep.size);
-        println!("elements     {} triangles, {} quads", rep.triangles, rep.quads);
-        println!("levels       {}..{}, balanced (neighbours differ by at most one level): {}", rep.levels[0], rep.levels[1], rep.balanced);
-        println!("angles       inside {:.2}..{:.2} deg, band {:.2}..{:.2} deg (off the boundary from {:.2}), smallest input angle {:.2}", rep.inside_angles[0], rep.inside_angles[1], rep.band_angles[0], rep.band_angles[1], rep.band_off_boundary_min, rep.input_smallest_angle);
-        println!("seconds      read+tessellate {:.3}, mesh {:.3}, write {:.3} (total {:.3})", rep.seconds[0], rep.seconds[1], rep.seconds[2], t0.elapsed().as_secs_f64());
+        outln!("size         {:.6}", rep.size);
+        outln!("elements     {} triangles, {} quads", rep.triangles, rep.quads);
+        outln!("levels       {}..{}, balanced (neighbours differ by at most one level): {}", rep.levels[0], rep.levels[1], rep.balanced);
+        outln!("angles       inside {:.2}..{:.2} deg, band {:.2}..{:.2} deg (off the boundary from {:.2}), smallest input angle {:.2}", rep.inside_angles[0], rep.inside_angles[1], rep.band_angles[0], rep.band_angles[1], rep.band_off_boundary_min, rep.input_smallest_angle);
+        outln!("seconds      read+tessellate {:.3}, mesh {:.3}, write {:.3} (total {:.3})", rep.seconds[0], rep.seconds[1], rep.seconds[2], t0.elapsed().as_secs_f64());
         if let Some(o) = &rep.output {
-            println!("wrote        {o}");
+            outln!("wrote        {o}");
         }
     }
     Ok(())

@@ -2,6 +2,23 @@
 //! and the mapping of outcomes to exit codes: 0 ok, 1 the input could not be processed,
 //! 2 bad usage.
 
+/// Writes formatted text to standard output, like `print!`, through [`write_out`].
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::cli::write_out(format_args!($($arg)*))
+    };
+}
+
+/// `out!` and a newline, like `println!`.
+macro_rules! outln {
+    () => {
+        $crate::cli::write_out(format_args!("\n"))
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::write_out(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 pub mod cad_info;
 mod contacts;
 pub mod convert;
@@ -16,6 +33,20 @@ pub mod tessellate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
+
+/// Writes to standard output. A closed output (a pipe into `head`) ends the process quietly
+/// with success, as ripgrep and other command-line tools do, instead of a panic; any other
+/// write error ends it with exit 1 and a message. Every output file is in place by then.
+pub(crate) fn write_out(args: std::fmt::Arguments) {
+    use std::io::Write;
+    if let Err(e) = std::io::stdout().lock().write_fmt(args) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("error: writing to standard output: {e}");
+        std::process::exit(1);
+    }
+}
 
 const EXAMPLES: &str = "\
 Examples:
@@ -152,65 +183,65 @@ pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
 /// follow (the octree mesher has neither).
 pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay: bool) {
     use crate::quality::worst_tet::{fmt_num, fmt_point};
-    println!("nodes            {}", m.nodes);
-    println!("tets             {}", m.tets);
-    println!("regions          {}", m.regions);
+    outln!("nodes            {}", m.nodes);
+    outln!("tets             {}", m.tets);
+    outln!("regions          {}", m.regions);
     match (m.cad_volume, m.volume_error) {
-        (Some(v), Some(e)) => println!("volume           {:.9} (CAD solids {v:.9}: {:+.3}%)", m.volume, 100.0 * e),
-        _ => println!("volume           {:.9}", m.volume),
+        (Some(v), Some(e)) => outln!("volume           {:.9} (CAD solids {v:.9}: {:+.3}%)", m.volume, 100.0 * e),
+        _ => outln!("volume           {:.9}", m.volume),
     }
-    println!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°, {} near-degenerate)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg, m.near_degenerate);
+    outln!("dihedral         {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°, {} near-degenerate)", m.min_dihedral_deg, m.max_dihedral_deg, m.tets_under_5_deg, m.tets_under_1_deg, m.near_degenerate);
     if m.tets_under_5_deg > 0 {
-        println!("                 of those under 5°, {} touch no input angle under 5°; of those under 1°, {} touch none under 1°", m.tets_under_5_deg_unexplained, m.tets_under_1_deg_unexplained);
+        outln!("                 of those under 5°, {} touch no input angle under 5°; of those under 1°, {} touch none under 1°", m.tets_under_5_deg_unexplained, m.tets_under_1_deg_unexplained);
     }
     if m.tets_under_bound > 0 {
-        println!("                 {} tets under {}°, {} of them touching no input angle as small; {} under 10°, {} of them touching none under 10°", m.tets_under_bound, m.input_angle_bound_deg, m.tets_under_bound_unexplained, m.tets_under_10_deg, m.tets_under_10_deg_unexplained);
+        outln!("                 {} tets under {}°, {} of them touching no input angle as small; {} under 10°, {} of them touching none under 10°", m.tets_under_bound, m.input_angle_bound_deg, m.tets_under_bound_unexplained, m.tets_under_10_deg, m.tets_under_10_deg_unexplained);
     }
-    println!("max radius-edge  {:.3} ({} tets above the {} aimed at)", m.max_radius_edge, m.tets_above_radius_edge_bound, m.radius_edge_bound);
+    outln!("max radius-edge  {:.3} ({} tets above the {} aimed at)", m.max_radius_edge, m.tets_above_radius_edge_bound, m.radius_edge_bound);
     for (label, text) in m.worst_tet.as_ref().map(|w| w.lines()).unwrap_or_default() {
-        println!("{label:<16} {text}");
+        outln!("{label:<16} {text}");
     }
     match &m.smallest_input_angle {
-        Some(a) => println!("input angles     {} under {}°, the smallest {}° at {}", m.small_input_angles, m.input_angle_bound_deg, fmt_num(a.angle_deg), fmt_point(a.at[0])),
-        None => println!("input angles     none under {}°", m.input_angle_bound_deg),
+        Some(a) => outln!("input angles     {} under {}°, the smallest {}° at {}", m.small_input_angles, m.input_angle_bound_deg, fmt_num(a.angle_deg), fmt_point(a.at[0])),
+        None => outln!("input angles     none under {}°", m.input_angle_bound_deg),
     }
     if m.input_caps_repaired > 0 {
-        println!("input caps       {} flat input triangles with a vertex on their long side, each repaired with its neighbour", m.input_caps_repaired);
+        outln!("input caps       {} flat input triangles with a vertex on their long side, each repaired with its neighbour", m.input_caps_repaired);
     }
     if m.flattening_volume > 1e-9 * m.volume.abs() {
-        println!("flat facets      input triangles flat within 0.1° merged and retriangulated (TetGen's -p rule): the volume moves by at most {} ({:.2e} of it)", fmt_num(m.flattening_volume), m.flattening_volume / m.volume.abs().max(f64::MIN_POSITIVE));
+        outln!("flat facets      input triangles flat within 0.1° merged and retriangulated (TetGen's -p rule): the volume moves by at most {} ({:.2e} of it)", fmt_num(m.flattening_volume), m.flattening_volume / m.volume.abs().max(f64::MIN_POSITIVE));
     }
     if !delaunay {
         return;
     }
-    println!("refinement       {}", refinement_text(m));
+    outln!("refinement       {}", refinement_text(m));
     if m.optimize_out_of_attempts {
-        println!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);
+        outln!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);
     } else {
-        println!("optimisation     ended after {} attempts, within its budget", m.optimize_attempts);
+        outln!("optimisation     ended after {} attempts, within its budget", m.optimize_attempts);
     }
 }
 
 /// Prints what the FE model holds: element kind, counts, second order, each selector's sets,
 /// each solid's material, each step's forces. Shared by `fepre run` and `fepre solve`.
 pub(crate) fn print_fe_summary(fe: &crate::pipeline::fe_model::FeSummary) {
-    println!("FE model         {} nodes, {} {} elements", fe.nodes, fe.elements, fe.element);
+    outln!("FE model         {} nodes, {} {} elements", fe.nodes, fe.elements, fe.element);
     if let Some(c) = &fe.curving {
-        println!("second order     {} mid nodes on CAD faces, {} on CAD edges, {} left on the chord; {} moved back to the chord in {} elements that curving would distort; smallest Jacobian ratio {:.3}", c.on_faces, c.on_edges, c.left_straight, c.straightened, c.straightened_elements, c.min_jacobian_ratio);
+        outln!("second order     {} mid nodes on CAD faces, {} on CAD edges, {} left on the chord; {} moved back to the chord in {} elements that curving would distort; smallest Jacobian ratio {:.3}", c.on_faces, c.on_edges, c.left_straight, c.straightened, c.straightened_elements, c.min_jacobian_ratio);
     }
     for (name, g) in &fe.selectors {
-        println!("sets             {name}: node set {}, surface {} ({} element faces{})", g.node_set, g.surface, g.boundary_faces, if g.interface_faces > 0 { format!(", {} on interfaces", g.interface_faces) } else { String::new() });
+        outln!("sets             {name}: node set {}, surface {} ({} element faces{})", g.node_set, g.surface, g.boundary_faces, if g.interface_faces > 0 { format!(", {} on interfaces", g.interface_faces) } else { String::new() });
     }
     for s in &fe.solids {
-        println!("solid            {} ({} elements): material {}", s.element_set, s.elements, s.material.as_deref().unwrap_or("none"));
+        outln!("solid            {} ({} elements): material {}", s.element_set, s.elements, s.material.as_deref().unwrap_or("none"));
     }
     for t in &fe.ties {
-        println!("tie              {}: {} ({} faces, solid {} face {}) to {} ({} faces, solid {} face {}), area {:.4} not sharing nodes", t.name, t.slave, t.slave_faces, t.slave_side.0, t.slave_side.1.0, t.master, t.master_faces, t.master_side.0, t.master_side.1.0, t.tied_area);
+        outln!("tie              {}: {} ({} faces, solid {} face {}) to {} ({} faces, solid {} face {}), area {:.4} not sharing nodes", t.name, t.slave, t.slave_faces, t.slave_side.0, t.slave_side.1.0, t.master, t.master_faces, t.master_side.0, t.master_side.1.0, t.tied_area);
     }
     for s in &fe.steps {
-        println!("step             {} ({})", s.name, s.analysis);
+        outln!("step             {} ({})", s.name, s.analysis);
         for (sel, f) in &s.forces {
-            println!("  force          {sel}: {:.6e} {:.6e} {:.6e} in consistent nodal loads", f[0], f[1], f[2]);
+            outln!("  force          {sel}: {:.6e} {:.6e} {:.6e} in consistent nodal loads", f[0], f[1], f[2]);
         }
     }
 }

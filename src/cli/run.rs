@@ -54,7 +54,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = run_job(&jf, args.check)?;
     progress.finish();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print(&report, args.check);
     }
@@ -66,8 +66,8 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 fn print(r: &RunReport, check: bool) {
-    println!("input            {}", r.input);
-    println!("faces            {}", r.face_table.len());
+    outln!("input            {}", r.input);
+    outln!("faces            {}", r.face_table.len());
     for (name, faces) in &r.selectors {
         let names: Vec<String> = faces
             .iter()
@@ -76,15 +76,15 @@ fn print(r: &RunReport, check: bool) {
                 None => f.0.to_string(),
             })
             .collect();
-        println!("selector         {name}: {} faces: {}", faces.len(), names.join(", "));
+        outln!("selector         {name}: {} faces: {}", faces.len(), names.join(", "));
     }
-    println!("size             {:.4} (global)", r.global_size);
+    outln!("size             {:.4} (global)", r.global_size);
     if check {
-        println!("check            the job is valid; nothing meshed or written");
+        outln!("check            the job is valid; nothing meshed or written");
         return;
     }
     if let Some(m) = &r.mesh {
-        println!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
+        outln!("surface          {} triangles{}", r.surface_triangles, if r.certificate_passed == Some(true) { ", certificate passed" } else { "" });
         crate::cli::print_mesh_summary(m, r.octree.is_none());
     }
     crate::cli::contacts::print(&r.contacts);
@@ -92,6 +92,6 @@ fn print(r: &RunReport, check: bool) {
         crate::cli::print_fe_summary(fe);
     }
     for o in &r.outputs {
-        println!("wrote            {o}");
+        outln!("wrote            {o}");
     }
 }

@@ -48,7 +48,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = solve_job(&jf)?;
     progress.finish();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print(&report);
     }
@@ -57,31 +57,31 @@ pub fn run(args: &Args) -> Result<()> {
 
 fn print(r: &SolveReport) {
     if let Some(m) = &r.run.mesh {
-        println!("tets             {} (dihedral {:.2}° .. {:.2}°)", m.tets, m.min_dihedral_deg, m.max_dihedral_deg);
+        outln!("tets             {} (dihedral {:.2}° .. {:.2}°)", m.tets, m.min_dihedral_deg, m.max_dihedral_deg);
     }
     if let Some(fe) = &r.run.fe {
         crate::cli::print_fe_summary(fe);
     }
-    println!("deck             {}", r.deck);
+    outln!("deck             {}", r.deck);
     for s in &r.steps {
-        println!("step             {} ({})", s.name, s.analysis);
+        outln!("step             {} ({})", s.name, s.analysis);
         if let Some(d) = &s.max_displacement {
-            println!("  displacement   max {:.6e} at node {} ({:.4}, {:.4}, {:.4})", d.value, d.node, d.at[0], d.at[1], d.at[2]);
+            outln!("  displacement   max {:.6e} at node {} ({:.4}, {:.4}, {:.4})", d.value, d.node, d.at[0], d.at[1], d.at[2]);
         }
         if let Some(v) = &s.max_von_mises {
-            println!("  von Mises      max {:.6e} at node {} ({:.4}, {:.4}, {:.4})", v.value, v.node, v.at[0], v.at[1], v.at[2]);
+            outln!("  von Mises      max {:.6e} at node {} ({:.4}, {:.4}, {:.4})", v.value, v.node, v.at[0], v.at[1], v.at[2]);
         }
         for (set, f) in &s.reactions {
-            println!("  reaction       {set}: {:.6e} {:.6e} {:.6e}", f[0], f[1], f[2]);
+            outln!("  reaction       {set}: {:.6e} {:.6e} {:.6e}", f[0], f[1], f[2]);
         }
         if !s.frequencies.is_empty() {
             let f: Vec<String> = s.frequencies.iter().map(|x| format!("{x:.6}")).collect();
-            println!("  frequencies    {}", f.join(", "));
+            outln!("  frequencies    {}", f.join(", "));
         }
         if let Some([lo, hi]) = s.temperature_range {
-            println!("  temperature    {lo:.6} .. {hi:.6}");
+            outln!("  temperature    {lo:.6} .. {hi:.6}");
         }
     }
-    println!("wrote            {}", r.results);
-    println!("wrote            {}", r.summary);
+    outln!("wrote            {}", r.results);
+    outln!("wrote            {}", r.summary);
 }

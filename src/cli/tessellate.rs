@@ -153,16 +153,16 @@ fn open_surface(m: &Model) -> Option<OpenSurface> {
 fn print_open(r: &Report) {
     if let Some(o) = &r.open_surface {
         let beside = if r.watertight_of == "solids" { " beside the solids (not part of `watertight`)" } else { "" };
-        println!("open shells  {}{beside}: {} free edges in {} hole{}", o.shells, o.free_edges, o.holes.len(), if o.holes.len() == 1 { "" } else { "s" });
+        outln!("open shells  {}{beside}: {} free edges in {} hole{}", o.shells, o.free_edges, o.holes.len(), if o.holes.len() == 1 { "" } else { "s" });
         for h in o.holes.iter().take(10) {
-            println!("  hole       {}", h.describe());
+            outln!("  hole       {}", h.describe());
         }
         if o.holes.len() > 10 {
-            println!("  ... {} more holes (--json lists all)", o.holes.len() - 10);
+            outln!("  ... {} more holes (--json lists all)", o.holes.len() - 10);
         }
     }
     for h in r.certificate.open_solids.iter().take(10) {
-        println!("OPEN SOLID   {}: {}", h.shells.iter().map(|s| format!("shell {s}")).collect::<Vec<_>>().join(", "), h.describe());
+        outln!("OPEN SOLID   {}: {}", h.shells.iter().map(|s| format!("shell {s}")).collect::<Vec<_>>().join(", "), h.describe());
     }
 }
 
@@ -200,45 +200,45 @@ pub fn run(args: &Args) -> Result<()> {
     let passed = c.certificate.passed;
     if !passed && !args.force {
         if args.json {
-            println!("{}", serde_json::to_string_pretty(&report(args, &c, None, t0))?);
+            outln!("{}", serde_json::to_string_pretty(&report(args, &c, None, t0))?);
         }
         anyhow::bail!("{}", pipeline::failure_message(&args.cad, &c.certificate, &c.model.dropped));
     }
     io::write(out, &MeshData::Surface(c.tessellation.surface.clone()), &WriteOptions::default())?;
     let r = report(args, &c, Some(out.display().to_string()), t0);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        outln!("{}", serde_json::to_string_pretty(&r)?);
     } else {
-        println!("solids       {} ({} surface-model shells)", r.solids, r.surface_model_shells);
+        outln!("solids       {} ({} surface-model shells)", r.solids, r.surface_model_shells);
         if let Some(sw) = &r.sewing {
-            println!("sewn         {} edges and {} vertices merged (tolerance {:.3e} mm), free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
+            outln!("sewn         {} edges and {} vertices merged (tolerance {:.3e} mm), free edges {} -> {}", sw.merged_edges, sw.merged_vertices, sw.tolerance, sw.free_edges_before, sw.free_edges_after);
             for x in sw.splits.iter().take(10) {
-                println!("  split      edge {} at vertex {} ({:.6}, {:.6}, {:.6})", x.edge, x.vertex, x.at[0], x.at[1], x.at[2]);
+                outln!("  split      edge {} at vertex {} ({:.6}, {:.6}, {:.6})", x.edge, x.vertex, x.at[0], x.at[1], x.at[2]);
             }
         }
         for x in &r.certificate.reoriented {
             let shells: Vec<String> = x.brep_shells.iter().map(|s| s.to_string()).collect();
             let what = if x.void { "void, enclosed" } else { "enclosed" };
-            println!("reoriented   shell {} ({} faces, {what} {:.6e} mm3 as written): its face senses disagree with its geometry: turned (OpenCASCADE turns it too)", shells.join(" "), x.faces, x.volume_as_written);
+            outln!("reoriented   shell {} ({} faces, {what} {:.6e} mm3 as written): its face senses disagree with its geometry: turned (OpenCASCADE turns it too)", shells.join(" "), x.faces, x.volume_as_written);
         }
-        println!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
-        println!("triangles    {} ({} vertices)", r.triangles, r.vertices);
-        println!("watertight   {} (of the {})", r.watertight, r.watertight_of);
+        outln!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
+        outln!("triangles    {} ({} vertices)", r.triangles, r.vertices);
+        outln!("watertight   {} (of the {})", r.watertight, r.watertight_of);
         print_open(&r);
         let e: Vec<String> = r.euler.iter().map(|e| format!("{}/{}", e.mesh, e.brep)).collect();
-        println!("euler        {} (mesh/B-rep per shell)", e.join(" "));
-        println!("volume mm3   {:.9} (B-rep {:.9})", r.volume, r.certificate.volume[1]);
-        println!("area mm2     {:.9} (B-rep {:.9})", r.area, r.certificate.area[1]);
-        println!("certificate  {}", if passed { "passed" } else { "FAILED (written with --force)" });
+        outln!("euler        {} (mesh/B-rep per shell)", e.join(" "));
+        outln!("volume mm3   {:.9} (B-rep {:.9})", r.volume, r.certificate.volume[1]);
+        outln!("area mm2     {:.9} (B-rep {:.9})", r.area, r.certificate.area[1]);
+        outln!("certificate  {}", if passed { "passed" } else { "FAILED (written with --force)" });
         if !passed {
-            println!("{}", pipeline::failure_message(&args.cad, &r.certificate, &r.dropped));
+            outln!("{}", pipeline::failure_message(&args.cad, &r.certificate, &r.dropped));
         }
-        println!("dropped      {}", r.dropped.len());
+        outln!("dropped      {}", r.dropped.len());
         for n in &r.notes {
-            println!("note         {n}");
+            outln!("note         {n}");
         }
-        println!("seconds      {:.3}", r.seconds);
-        println!("wrote        {}", out.display());
+        outln!("seconds      {:.3}", r.seconds);
+        outln!("wrote        {}", out.display());
     }
     Ok(())
 }
@@ -287,7 +287,7 @@ fn run_tessellated(args: &Args, t: &crate::cad::step::Tessellated, t0: Instant) 
     if !passed && !args.force {
         if args.json {
             r.seconds = t0.elapsed().as_secs_f64();
-            println!("{}", serde_json::to_string_pretty(&r)?);
+            outln!("{}", serde_json::to_string_pretty(&r)?);
         }
         anyhow::bail!("{}", mesh_failure_message(&args.cad, &r.certificate));
     }
@@ -295,24 +295,24 @@ fn run_tessellated(args: &Args, t: &crate::cad::step::Tessellated, t0: Instant) 
     r.output = Some(out.display().to_string());
     r.seconds = t0.elapsed().as_secs_f64();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
+        outln!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
     }
     let (s, c) = (&r.summary, &r.certificate);
-    println!("geometry     tessellated only (AP242): the file's triangles, certified as a mesh (--deviation and --max-edge do not apply)");
-    println!("solids       {} TESSELLATED_SOLID, {} TESSELLATED_SHELL", s.solids, s.shells);
-    println!("faces        {}", s.faces);
-    println!("triangles    {} ({} vertices)", s.triangles, s.vertices);
-    println!("watertight   {}", c.closed && c.manifold && c.oriented && c.outward);
-    println!("volume mm3   {:.9}", c.volume);
-    println!("area mm2     {:.9}", c.area);
-    println!("certificate  {}", if passed { "passed (as a mesh)" } else { "FAILED (written with --force)" });
+    outln!("geometry     tessellated only (AP242): the file's triangles, certified as a mesh (--deviation and --max-edge do not apply)");
+    outln!("solids       {} TESSELLATED_SOLID, {} TESSELLATED_SHELL", s.solids, s.shells);
+    outln!("faces        {}", s.faces);
+    outln!("triangles    {} ({} vertices)", s.triangles, s.vertices);
+    outln!("watertight   {}", c.closed && c.manifold && c.oriented && c.outward);
+    outln!("volume mm3   {:.9}", c.volume);
+    outln!("area mm2     {:.9}", c.area);
+    outln!("certificate  {}", if passed { "passed (as a mesh)" } else { "FAILED (written with --force)" });
     if !passed {
-        println!("{}", mesh_failure_message(&args.cad, c));
+        outln!("{}", mesh_failure_message(&args.cad, c));
     }
-    println!("dropped      {}", r.dropped.len());
-    println!("seconds      {:.3}", r.seconds);
-    println!("wrote        {}", out.display());
+    outln!("dropped      {}", r.dropped.len());
+    outln!("seconds      {:.3}", r.seconds);
+    outln!("wrote        {}", out.display());
     Ok(())
 }
 
