@@ -36,14 +36,13 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
         }
     }
     on_edge.sort_unstable();
+    // the other triangle on edge `e` of `x`, when `e` has exactly two
     let neighbour = |x: u32, e: (u32, u32)| -> Option<u32> {
         let i = on_edge.partition_point(|r| r.0 < e);
-        match on_edge.get(i..i + 3) {
-            Some([p, q, r]) if p.0 == e && q.0 == e && r.0 == e => None,
-            _ => match on_edge.get(i..i + 2) {
-                Some([p, q]) if p.0 == e && q.0 == e => Some(if p.1 == x { q.1 } else { p.1 }),
-                _ => None,
-            },
+        let j = i + on_edge[i..].partition_point(|r| r.0 == e);
+        match &on_edge[i..j] {
+            [p, q] => Some(if p.1 == x { q.1 } else { p.1 }),
+            _ => None,
         }
     };
     let tag = |t: u32| tags.get(t as usize).copied().unwrap_or_default();
@@ -89,7 +88,7 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
 /// thickness, its smallest altitude, when that is more). For well-shaped
 /// triangles the two agree; a cap or a needle, whose own normal means little, is judged by
 /// where its corners lie (TetGen loosens its rule at small angles for the same reason).
-pub fn flat_across(points: &[DVec3], x: [u32; 3], y: [u32; 3], e: (u32, u32)) -> bool {
+fn flat_across(points: &[DVec3], x: [u32; 3], y: [u32; 3], e: (u32, u32)) -> bool {
     let p = |i: u32| points.get(i as usize).copied().unwrap_or(DVec3::NAN);
     let apex = |t: [u32; 3]| t.into_iter().find(|&v| v != e.0 && v != e.1);
     let (Some(c), Some(d)) = (apex(x), apex(y)) else { return false };

@@ -40,7 +40,7 @@ mod tests;
 
 pub use boundary::boundary_loops;
 pub use edges::{nonmanifold_edges_list, open_edges_list};
-pub use flat_pieces::{FLAT_SINE, MAX_PIECE, flat_pieces};
+pub use flat_pieces::flat_pieces;
 pub use self_intersection::intersecting_pairs;
 pub use shells::triangle_shells;
 

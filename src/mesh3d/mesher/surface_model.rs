@@ -104,9 +104,9 @@ impl SurfaceModel {
         }
         // facets: the flat pieces of the input (see `mesh::topology::flat_pieces`) when
         // merging, else every triangle alone
-        let piece: Vec<u32> = if merge { flat_pieces(points, triangles, tags) } else { (0..triangles.len() as u32).collect() };
+        let facet_of_tri: Vec<u32> = if merge { flat_pieces(points, triangles, tags) } else { (0..triangles.len() as u32).collect() };
         let mut facets: Vec<Facet> = Vec::new();
-        for (i, &f) in piece.iter().enumerate() {
+        for (i, &f) in facet_of_tri.iter().enumerate() {
             if f as usize == facets.len() {
                 facets.push(Facet {
                     triangles: Vec::new(),
@@ -120,7 +120,6 @@ impl SurfaceModel {
             }
             facets[f as usize].triangles.push(triangles[i]);
         }
-        let facet_of_tri = piece;
         // segments: edges between different facets
         let mut segments: Vec<Segment> = Vec::new();
         let mut keys: Vec<(u32, u32)> = on_edge.keys().copied().collect();
