@@ -5,6 +5,7 @@
 
 use super::TessellateOptions;
 use super::edge_points::EdgePoints;
+use super::improve::Point;
 use super::face_vertices::FaceVertices;
 use super::seams::{is_pole, open_poles, seam_sides, unwrap_through_poles};
 use crate::cad::brep::Model;
@@ -630,36 +631,49 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
         // centroids make thin triangles that this mends
         super::sizing::refine_face(&mut tri, surf, su, sv, size);
     }
-    // lift and keep the triangles inside the loops
-    let mut ids: Vec<u32> = Vec::with_capacity(tri.num_vertices());
-    for v in tri.vertices() {
-        let d = v.data();
-        ids.push(match d.id {
-            Some(id) => id,
-            None => {
-                vertices.push(d.p3)
-            }
-        });
-    }
-    // inside = an odd number of constraint edges crossed from the outside (exact, unlike a
-    // point-in-polygon test on thin triangles along nearly straight boundaries)
+    // the triangles inside the loops (an odd number of constraint edges crossed from the
+    // outside: exact, unlike a point-in-polygon test on thin triangles along nearly straight
+    // boundaries), their boundary segments, as points and indices
     let inside_faces = constraint_parity(&tri);
-    let mut out = FaceMesh::default();
+    let mut pts: Vec<Point> = tri.vertices().map(|v| {
+        let d = v.data();
+        Point { s: DVec2::new(d.p.x, d.p.y), uv: d.uv, p3: d.p3, id: d.id }
+    }).collect();
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    let mut segments: Vec<[u32; 2]> = Vec::new();
     for f in tri.inner_faces() {
         if !inside_faces[f.fix().index()] {
             continue;
         }
-        let vs = f.vertices();
-        let uv = vs.map(|v| v.data().uv);
         // boundary segments: constraint edges with the outside (or the outer face) beyond
         for e in f.adjacent_edges() {
             let beyond = e.rev().face().as_inner().is_none_or(|g| !inside_faces[g.fix().index()]);
             if e.is_constraint_edge() && beyond {
-                let (a, b) = (e.from(), e.to());
-                out.boundary.push(([ids[a.fix().index()], ids[b.fix().index()]], [a.data().uv, b.data().uv]));
+                segments.push([e.from().fix().index() as u32, e.to().fix().index() as u32]);
             }
         }
-        let [a, b, cc] = vs.map(|v| ids[v.fix().index()]);
+        tris.push(f.vertices().map(|v| v.fix().index() as u32));
+    }
+    let removed = match size {
+        Some(size) => {
+            let cos_max = (2.0 * opts.max_angle_deg).to_radians().cos();
+            super::improve::improve(&mut pts, &mut tris, &segments, surf, su, sv, size, tol, cos_max).removed
+        }
+        None => vec![false; pts.len()],
+    };
+    // lift: boundary points have their global index, the others get one
+    let ids: Vec<u32> = pts.iter().zip(&removed).map(|(p, &gone)| match p.id {
+        Some(id) => id,
+        None if gone => u32::MAX,
+        None => vertices.push(p.p3),
+    }).collect();
+    let mut out = FaceMesh::default();
+    for &[a, b] in &segments {
+        out.boundary.push(([ids[a as usize], ids[b as usize]], [pts[a as usize].uv, pts[b as usize].uv]));
+    }
+    for t in &tris {
+        let uv = t.map(|i| pts[i as usize].uv);
+        let [a, b, cc] = t.map(|i| ids[i as usize]);
         if a == b || b == cc || a == cc {
             // a triangle collapsed in 3D (along a pole line): zero area, but part of the domain
             out.uv.push(uv);

@@ -32,6 +32,7 @@ mod seams;
 mod feature_size;
 pub mod quadrature;
 pub mod reached;
+mod improve;
 mod refine;
 mod sizing;
 mod volume_chord;

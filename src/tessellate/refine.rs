@@ -21,7 +21,7 @@ const REFINE_POINTS: usize = 200_000;
 /// distance of the surface points at its `(u, v)` centroid and at the midpoints of its
 /// unconstrained edges from its plane; infinite when its normal turns more than
 /// `cos_max` away from the surface normal (or against it: a fold).
-fn deviation(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3], free_edge: [bool; 3], cos_max: f64) -> f64 {
+pub(super) fn deviation(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3], free_edge: [bool; 3], cos_max: f64) -> f64 {
     let Some(n) = (p[1] - p[0]).cross(p[2] - p[0]).try_normalize() else { return 0.0 };
     let c = (uv[0] + uv[1] + uv[2]) / 3.0;
     let (sp, su, sv) = surf.point_and_tangents(c.x, c.y);

@@ -371,3 +371,31 @@ fn a_sphere_written_as_two_lunes_meshes_each_on_its_own_side() {
         }
     }
 }
+
+#[test]
+fn a_sized_sphere_has_no_fans_of_needles_at_its_poles() {
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    // the domain refinement is isotropic in scaled (u, v), where a whole period of u shrinks
+    // to each pole: without the shape improvement a valence near 90 and corners of 2° there
+    let m = crate::cad::step::read_bytes(std::path::Path::new("lunes.stp"), sphere_of_two_lunes(0.3, 2.0).as_bytes()).unwrap();
+    let h = 1.4;
+    let t = super::tessellate_sized(&m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(h));
+    assert!(t.failed.is_empty(), "{:?}", t.failed);
+    let cert = certify(&m, &t, &CertifyOptions::default());
+    assert!(cert.passed, "{:?}", cert.failures.iter().take(5).collect::<Vec<_>>());
+    let s = &t.surface;
+    let smallest = s.triangles.iter().flat_map(|tri| corner_angles(tri.map(|i| s.vertices[i as usize]))).fold(180.0, f64::min);
+    assert!(smallest >= 25.0, "smallest corner {smallest}°");
+    let mut valence = vec![0usize; s.vertices.len()];
+    for tri in &s.triangles {
+        for &i in tri {
+            valence[i as usize] += 1;
+        }
+    }
+    for (i, p) in s.vertices.iter().enumerate() {
+        if (p.z.abs() - 10.0).abs() < 1e-9 {
+            assert!(valence[i] <= 12, "valence {} at the pole {p}", valence[i]);
+        }
+    }
+    assert!(longest_edge(s) <= 2.0 * h, "longest edge {}", longest_edge(s));
+}
