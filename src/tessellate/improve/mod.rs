@@ -30,6 +30,8 @@ use crate::core::predicates::{Sign, orient2d};
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashSet;
 
+mod insert;
+
 /// A point of the face's domain triangulation.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Point {
@@ -53,6 +55,8 @@ const SHORT: f64 = 0.6;
 const LONG: f64 = 1.5;
 /// A merge may lower the smallest angle around it down to this (degrees) or its old value.
 const GOOD_DEG: f64 = 30.0;
+/// A bad triangle's longest side is split when it is more than this times its shortest.
+const SPLIT_RATIO: f64 = 2.0;
 /// The least gain of a flip in the shape measure ([`shape`]: minus the largest corner cosine).
 const FLIP_GAIN: f64 = 1e-9;
 /// The least gain of a move in the shape measure: about 0.01° at 30° (smoothing creeps
@@ -70,12 +74,14 @@ pub(super) struct Improved {
 /// Improves the triangles `tris` (indices into `pts`, counter-clockwise in `s`) in place;
 /// `boundary` lists the face's boundary segments (pairs of point indices, either order).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn improve(pts: &mut [Point], tris: &mut Vec<[u32; 3]>, boundary: &[[u32; 2]], surf: &Surface, su: f64, sv: f64, size: &dyn SizeField, tol: f64, cos_max: f64) -> Improved {
+pub(super) fn improve(pts: &mut Vec<Point>, tris: &mut Vec<[u32; 3]>, boundary: &[[u32; 2]], surf: &Surface, su: f64, sv: f64, size: &dyn SizeField, tol: f64, cos_max: f64) -> Improved {
     let mut w = Work::new(pts, tris, boundary, surf, su, sv, size, tol, cos_max);
     for _ in 0..ROUNDS {
         // only where something changed in the round before
         w.active = std::mem::replace(&mut w.dirty, vec![false; w.pts.len()]);
         let mut changed = w.collapse_pass();
+        changed += w.split_pass();
+        changed += w.insert_pass();
         for _ in 0..FLIP_SWEEPS {
             let f = w.flip_pass();
             changed += f;
@@ -94,7 +100,7 @@ pub(super) fn improve(pts: &mut [Point], tris: &mut Vec<[u32; 3]>, boundary: &[[
 }
 
 struct Work<'a> {
-    pts: &'a mut [Point],
+    pts: &'a mut Vec<Point>,
     tris: &'a mut Vec<[u32; 3]>,
     /// Per point, the live triangles that use it.
     star: Vec<Vec<u32>>,
@@ -109,12 +115,23 @@ struct Work<'a> {
     active: Vec<bool>,
     /// Per point: something near it changed in this round.
     dirty: Vec<bool>,
+    /// Points that splits and insertions may still add.
+    split_budget: usize,
+    /// While an insertion is tried: the old contents of the triangles and stars it changed.
+    undo: Option<Undo>,
     surf: &'a Surface,
     su: f64,
     sv: f64,
     size: &'a dyn SizeField,
     tol: f64,
     cos_max: f64,
+}
+
+/// What an insertion changed, to put back when it does not pay.
+#[derive(Default)]
+struct Undo {
+    tris: Vec<(u32, [u32; 3])>,
+    stars: Vec<(u32, Vec<u32>)>,
 }
 
 /// The shape of a 3D triangle: minus the largest cosine of its corners, which grows with its
@@ -134,7 +151,7 @@ fn shape(p: [DVec3; 3]) -> f64 {
 
 impl<'a> Work<'a> {
     #[allow(clippy::too_many_arguments)]
-    fn new(pts: &'a mut [Point], tris: &'a mut Vec<[u32; 3]>, boundary: &[[u32; 2]], surf: &'a Surface, su: f64, sv: f64, size: &'a dyn SizeField, tol: f64, cos_max: f64) -> Work<'a> {
+    fn new(pts: &'a mut Vec<Point>, tris: &'a mut Vec<[u32; 3]>, boundary: &[[u32; 2]], surf: &'a Surface, su: f64, sv: f64, size: &'a dyn SizeField, tol: f64, cos_max: f64) -> Work<'a> {
         let n = pts.len();
         let mut star = vec![Vec::new(); n];
         for (k, t) in tris.iter().enumerate() {
@@ -148,7 +165,7 @@ impl<'a> Work<'a> {
         let twice: FxHashSet<u64> = sorted.windows(2).filter(|w| w[0] == w[1]).map(|w| w[0]).collect();
         let shared = key.iter().map(|k| twice.contains(k)).collect();
         let boundary = boundary.iter().map(|&[a, b]| (a.min(b), a.max(b))).collect();
-        Work { pts, tris, star, boundary, key, shared, removed: vec![false; n], active: vec![true; n], dirty: vec![true; n], surf, su, sv, size, tol, cos_max }
+        Work { pts, tris, star, boundary, key, shared, removed: vec![false; n], active: vec![true; n], dirty: vec![true; n], split_budget: n, undo: None, surf, su, sv, size, tol, cos_max }
     }
 
     fn free(&self, i: u32) -> bool {
@@ -190,6 +207,18 @@ impl<'a> Work<'a> {
         });
         let uv = t.map(|i| self.pts[i as usize].uv);
         deviation(self.surf, self.p3(t), uv, free, self.cos_max) <= self.tol
+    }
+
+    fn save_tri(&mut self, t: u32) {
+        if let Some(u) = &mut self.undo {
+            u.tris.push((t, self.tris[t as usize]));
+        }
+    }
+
+    fn save_star(&mut self, v: u32) {
+        if let Some(u) = &mut self.undo {
+            u.stars.push((v, self.star[v as usize].clone()));
+        }
     }
 
     /// Marks the points of triangles `ts` for the next round.
@@ -357,6 +386,11 @@ impl<'a> Work<'a> {
         if new <= old + FLIP_GAIN || !self.acceptable(n1) || !self.acceptable(n2) {
             return false;
         }
+        for v in [x, y, c, d] {
+            self.save_star(v);
+        }
+        self.save_tri(t);
+        self.save_tri(u);
         self.tris[t as usize] = n1;
         self.tris[u as usize] = n2;
         self.star[x as usize].retain(|&k| k != u);
@@ -417,81 +451,4 @@ impl<'a> Work<'a> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::cad::geom::{Frame, Plane};
-    use crate::core::size_field::UniformSize;
-
-    /// A unit square's boundary (8 fixed points) and a row of 9 interior points close
-    /// together across its middle, triangulated by Delaunay: needles between the row and the
-    /// boundary.
-    fn needles() -> (Vec<Point>, Vec<[u32; 3]>, Vec<[u32; 2]>) {
-        let mut pts = Vec::new();
-        let pt = |x: f64, y: f64, id: Option<u32>| Point { s: DVec2::new(x, y), uv: DVec2::new(x, y), p3: DVec3::new(x, y, 0.0), id };
-        let ring = [(0.0, 0.0), (0.5, 0.0), (1.0, 0.0), (1.0, 0.5), (1.0, 1.0), (0.5, 1.0), (0.0, 1.0), (0.0, 0.5)];
-        for (k, &(x, y)) in ring.iter().enumerate() {
-            pts.push(pt(x, y, Some(k as u32)));
-        }
-        for k in 0..9 {
-            pts.push(pt(0.46 + 0.01 * k as f64, 0.5 + 0.001 * (k % 2) as f64, None));
-        }
-        let mut tris = Vec::new();
-        let inner: Vec<u32> = (8..17).collect();
-        let boundary: Vec<[u32; 2]> = (0..8).map(|k| [k, (k + 1) % 8]).collect();
-        // connect the boundary ring to the row by a constrained Delaunay triangulation
-        let mut cdt: spade::ConstrainedDelaunayTriangulation<spade::Point2<f64>> = spade::ConstrainedDelaunayTriangulation::new();
-        use spade::Triangulation;
-        let hs: Vec<_> = pts.iter().map(|p| cdt.insert(spade::Point2::new(p.s.x, p.s.y)).unwrap()).collect();
-        for &[a, b] in &boundary {
-            cdt.add_constraint(hs[a as usize], hs[b as usize]);
-        }
-        for f in cdt.inner_faces() {
-            tris.push(f.vertices().map(|v| v.fix().index() as u32));
-        }
-        assert!(inner.iter().all(|&i| hs[i as usize].index() == i as usize));
-        (pts, tris, boundary)
-    }
-
-    #[test]
-    fn shape_of_an_equilateral_a_right_and_a_flat_triangle() {
-        let eq = [DVec3::ZERO, DVec3::X, DVec3::new(0.5, 0.75f64.sqrt(), 0.0)];
-        assert!((shape(eq) + 0.5).abs() < 1e-12);
-        let right = [DVec3::ZERO, DVec3::X, DVec3::Y];
-        assert!((shape(right) + std::f64::consts::FRAC_PI_4.cos()).abs() < 1e-12);
-        assert!(shape(right) < shape(eq));
-        assert_eq!(shape([DVec3::ZERO, DVec3::X, DVec3::X]), -1.0);
-        assert!(shape([DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)]) < -1.0 + 1e-12);
-    }
-
-    #[test]
-    fn needles_on_a_plane_become_well_shaped_and_the_boundary_stays() {
-        let (mut pts, mut tris, boundary) = needles();
-        let surf = Surface::Plane(Plane { frame: Frame { origin: DVec3::ZERO, x: DVec3::X, y: DVec3::Y, z: DVec3::Z } });
-        let worst = |pts: &[Point], tris: &[[u32; 3]]| tris.iter().map(|t| shape(t.map(|i| pts[i as usize].p3))).fold(f64::INFINITY, f64::min);
-        let before = worst(&pts, &tris);
-        assert!(before < -(5f64.to_radians().cos()), "the fixture has needles: {before}");
-        let area = |pts: &[Point], tris: &[[u32; 3]]| tris.iter().map(|t| {
-            let p = t.map(|i| pts[i as usize].p3);
-            0.5 * (p[1] - p[0]).cross(p[2] - p[0]).z
-        }).sum::<f64>();
-        let done = improve(&mut pts, &mut tris, &boundary, &surf, 1.0, 1.0, &UniformSize(0.5), 1e-9, 40f64.to_radians().cos());
-        let after = worst(&pts, &tris);
-        assert!(after >= -(30f64.to_radians().cos()), "smallest angle {}°", (-after).acos().to_degrees());
-        assert!(done.removed.iter().filter(|r| **r).count() >= 6, "the row of close points merges");
-        // the domain is still the unit square, every triangle counter-clockwise, every
-        // boundary segment on exactly one triangle, the fixed points where they were
-        assert!((area(&pts, &tris) - 1.0).abs() < 1e-12);
-        for t in &tris {
-            let s = t.map(|i| pts[i as usize].s);
-            assert_eq!(orient2d(s[0], s[1], s[2]), Sign::Positive);
-            assert!(t.iter().all(|&i| !done.removed[i as usize]));
-        }
-        for &[a, b] in &boundary {
-            let n = tris.iter().filter(|t| t.contains(&a) && t.contains(&b)).count();
-            assert_eq!(n, 1, "segment {a} {b}");
-        }
-        for k in 0..8 {
-            assert_eq!(pts[k].id, Some(k as u32));
-        }
-    }
-}
+mod tests;
