@@ -4,6 +4,7 @@
 
 use super::{DEAD, FLIP_GAIN, FLIP_SWEEPS, GOOD_DEG, Point, SPLIT_RATIO, Undo, Work};
 use crate::core::cdt;
+use crate::core::predicates::{Sign, orient2d};
 use glam::DVec2;
 
 impl Work<'_> {
@@ -148,7 +149,12 @@ impl Work<'_> {
         let parts = [[tri[0], tri[1], m], [tri[1], tri[2], m], [tri[2], tri[0], m]];
         self.pts.push(Point { s, uv, p3, id: None });
         self.key.push((1 << 32) + u64::from(m));
-        if !parts.iter().all(|&q| self.acceptable(q)) {
+        // (a part may be thin before the flips, its normal meaningless: the checks that count
+        // are on what the flips leave)
+        if !parts.iter().all(|&q| {
+            let s = q.map(|i| self.pts[i as usize].s);
+            orient2d(s[0], s[1], s[2]) == Sign::Positive
+        }) {
             self.pts.pop();
             self.key.pop();
             return false;
@@ -200,7 +206,7 @@ impl Work<'_> {
             }
         }
         let after = slots.iter().map(|&k| self.angle(self.tris[k as usize])).fold(f64::INFINITY, f64::min);
-        if after > before + FLIP_GAIN {
+        if after > before + FLIP_GAIN && slots.iter().all(|&k| self.acceptable(self.tris[k as usize])) {
             self.touch(&slots);
             return true;
         }
