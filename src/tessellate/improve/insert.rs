@@ -15,24 +15,29 @@ impl Work<'_> {
     /// short CAD edge beside a wide face, which the domain refinement may not split) becomes
     /// graded toward the segment, as longest-edge bisection grades it; flips then mend.
     pub(super) fn split_pass(&mut self) -> usize {
-        let mut done = 0;
-        let good = -GOOD_DEG.to_radians().cos();
-        for t in 0..self.tris.len() as u32 {
-            let tri = self.tris[t as usize];
-            if self.split_budget == 0 {
-                break;
-            }
-            if tri == DEAD || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) || self.angle(tri) >= good {
-                continue;
-            }
-            let p = self.p3(tri);
+        self.bad_triangle_pass(|w, t, tri| {
+            let p = w.p3(tri);
             let len = [0, 1, 2].map(|i| p[i].distance(p[(i + 1) % 3]));
             let i = (0..3).fold(0, |b, k| if len[k] > len[b] { k } else { b });
             let shortest = len.iter().copied().fold(f64::INFINITY, f64::min);
-            if !(len[i] > SPLIT_RATIO * shortest) {
+            len[i] > SPLIT_RATIO * shortest && w.try_split(t, tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3])
+        })
+    }
+
+    /// Calls `add` on each live, real, active triangle under [`GOOD_DEG`] while the budget of
+    /// added points lasts; `add` says whether it added one. Returns how many were added.
+    fn bad_triangle_pass(&mut self, add: impl Fn(&mut Self, u32, [u32; 3]) -> bool) -> usize {
+        let mut done = 0;
+        let good = -GOOD_DEG.to_radians().cos();
+        for t in 0..self.tris.len() as u32 {
+            if self.split_budget == 0 {
+                break;
+            }
+            let tri = self.tris[t as usize];
+            if tri == DEAD || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) || self.angle(tri) >= good {
                 continue;
             }
-            if self.try_split(t, tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]) {
+            if add(self, t, tri) {
                 self.split_budget -= 1;
                 done += 1;
             }
@@ -44,19 +49,7 @@ impl Work<'_> {
     /// `(y, x, d)`, at its `(u, v)` midpoint, if every check passes and the smaller angle of
     /// the two grows.
     fn try_split(&mut self, t: u32, x: u32, y: u32, c: u32) -> bool {
-        if self.boundary.contains(&(x.min(y), x.max(y))) {
-            return false;
-        }
-        let both = self.with_edge(x, y);
-        let Some(&u) = both.iter().find(|&&k| k != t) else { return false };
-        if both.len() != 2 {
-            return false;
-        }
-        let ut = self.tris[u as usize];
-        if !self.real(ut) {
-            return false;
-        }
-        let Some(&d) = ut.iter().find(|&&i| i != x && i != y) else { return false };
+        let Some((u, ut, d)) = self.across(t, x, y) else { return false };
         let uv = 0.5 * (self.pts[x as usize].uv + self.pts[y as usize].uv);
         let s = DVec2::new(cdt::flush(uv.x * self.su), cdt::flush(uv.y * self.sv));
         let p3 = self.surf.point(uv.x, uv.y);
@@ -96,26 +89,11 @@ impl Work<'_> {
 
     /// Inserts the circumcentre of each bad triangle (moved inside it where it lies outside: a
     /// needle over a short boundary segment, its apex far from a short CAD edge, has it near
-    /// the middle of its long sides), lifted onto the surface, then flips around the new point while the smallest angle grows
-    /// (Ruppert's step, restricted to the triangle); kept only when the smallest angle of the
+    /// the middle of its long sides), lifted onto the surface, then flips around the new point
+    /// while the smallest angle grows (Ruppert's step, restricted to the triangle); kept only when the smallest angle of the
     /// triangles it changed grows, else undone. Each round halves such a needle.
     pub(super) fn insert_pass(&mut self) -> usize {
-        let mut done = 0;
-        let good = -GOOD_DEG.to_radians().cos();
-        for t in 0..self.tris.len() as u32 {
-            let tri = self.tris[t as usize];
-            if self.split_budget == 0 {
-                break;
-            }
-            if tri == DEAD || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) || self.angle(tri) >= good {
-                continue;
-            }
-            if self.try_insert(t, tri) {
-                self.split_budget -= 1;
-                done += 1;
-            }
-        }
-        done
+        self.bad_triangle_pass(|w, t, tri| w.try_insert(t, tri))
     }
 
     fn try_insert(&mut self, t: u32, tri: [u32; 3]) -> bool {

@@ -241,6 +241,25 @@ impl<'a> Work<'a> {
         n
     }
 
+    /// The real triangle `(y, x, d)` across interior edge `x y` of triangle `t`: its slot,
+    /// corners and `d`; `None` across a boundary segment or a collapsed triangle.
+    fn across(&self, t: u32, x: u32, y: u32) -> Option<(u32, [u32; 3], u32)> {
+        if self.boundary.contains(&(x.min(y), x.max(y))) {
+            return None;
+        }
+        let both = self.with_edge(x, y);
+        if both.len() != 2 {
+            return None;
+        }
+        let u = *both.iter().find(|&&k| k != t)?;
+        let ut = self.tris[u as usize];
+        if !self.real(ut) {
+            return None;
+        }
+        let d = *ut.iter().find(|&&i| i != x && i != y)?;
+        Some((u, ut, d))
+    }
+
     /// The live triangles with both `a` and `b`.
     fn with_edge(&self, a: u32, b: u32) -> Vec<u32> {
         self.star[a as usize].iter().copied().filter(|&t| self.tris[t as usize].contains(&b)).collect()
@@ -361,19 +380,7 @@ impl<'a> Work<'a> {
     /// Flips edge `x y` of triangle `t = (x, y, c)` with the triangle across it, `(y, x, d)`,
     /// into `(x, d, c)` and `(d, y, c)` if every check passes and the smaller angle grows.
     fn try_flip(&mut self, t: u32, x: u32, y: u32, c: u32) -> bool {
-        if self.boundary.contains(&(x.min(y), x.max(y))) {
-            return false;
-        }
-        let both = self.with_edge(x, y);
-        let Some(&u) = both.iter().find(|&&k| k != t) else { return false };
-        if both.len() != 2 {
-            return false;
-        }
-        let ut = self.tris[u as usize];
-        if !self.real(ut) {
-            return false;
-        }
-        let Some(&d) = ut.iter().find(|&&i| i != x && i != y) else { return false };
+        let Some((u, ut, d)) = self.across(t, x, y) else { return false };
         if self.key[c as usize] == self.key[d as usize] || self.neighbours(c).binary_search(&d).is_ok() {
             return false;
         }
