@@ -42,6 +42,11 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
             let (t0, t1) = (a + (b - a) * k as f64 / n0 as f64, a + (b - a) * (k + 1) as f64 / n0 as f64);
             refine(&|t| curve.point(t), &|t| curve.derivative(t), t0, t1, tol, cos_max, 0, &mut ts);
         }
+        if size.is_some() && !edge.closed {
+            // the first pieces are for the criteria's sake only: a short edge (a line written
+            // as a B-spline, 0.2 mm long) must not keep four pieces of 0.05 beside a size of 2
+            ts = coarsen(&|t| curve.point(t), &|t| curve.derivative(t), &ts, tol, cos_max);
+        }
         let (p0, p1) = (curve.point(a), curve.point(b));
         let on_chord = |t: f64| (curve.point(t) - p0).reject_from(p1 - p0).length() <= tol;
         if max_straight > 0.0 && p0 != p1 && ts.iter().all(|&t| on_chord(t)) {
@@ -114,6 +119,43 @@ fn split_long(p: &dyn Fn(f64) -> DVec3, ts: &[f64], max_len: f64) -> Vec<f64> {
     out
 }
 
+/// The parameters `ts` of an open curve with a point left out wherever the chord across it
+/// still meets the criteria of [`refine`]: the curve within `tol` of the chord at the points
+/// left out and at the quarters of every piece between, and its tangent turning by at most
+/// the angle of `cos_max` from end to end.
+fn coarsen(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &[f64], tol: f64, cos_max: f64) -> Vec<f64> {
+    let Some(&first) = ts.first() else { return Vec::new() };
+    let mut out = vec![first];
+    let mut i = 0;
+    while i + 1 < ts.len() {
+        let mut j = i + 1;
+        while j + 1 < ts.len() && chord_meets(p, d, &ts[i..=j + 1], tol, cos_max) {
+            j += 1;
+        }
+        out.push(ts[j]);
+        i = j;
+    }
+    out
+}
+
+/// True if the chord from the first to the last of `ts` meets the criteria of [`coarsen`].
+fn chord_meets(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &[f64], tol: f64, cos_max: f64) -> bool {
+    let (Some(&t0), Some(&t1)) = (ts.first(), ts.last()) else { return false };
+    let (p0, p1) = (p(t0), p(t1));
+    let chord = p1 - p0;
+    if !(chord.length_squared() > 0.0) {
+        return false;
+    }
+    let turn_ok = match (d(t0).try_normalize(), d(t1).try_normalize()) {
+        (Some(u), Some(v)) => u.dot(v) >= cos_max,
+        _ => true,
+    };
+    turn_ok
+        && ts.windows(2).all(|w| {
+            [0.0, 0.25, 0.5, 0.75].iter().all(|&f| (p(w[0] + (w[1] - w[0]) * f) - p0).reject_from(chord).length() <= tol)
+        })
+}
+
 /// Appends the parameters after `t0` up to and including `t1`, splitting where the midpoint
 /// is farther than `tol` from the chord or the tangent turns too much.
 #[allow(clippy::too_many_arguments)]
@@ -131,5 +173,40 @@ fn refine(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, t0: f64, t1: f64, 
         refine(p, d, tm, t1, tol, cos_max, depth + 1, out);
     } else {
         out.push(t1);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_straight_curve_cut_for_the_criteria_is_one_piece_again() {
+        // a 0.2 mm line written as a curve: refinement starts from four pieces
+        let p = |t: f64| DVec3::new(t, 0.0, 0.0);
+        let d = |_: f64| DVec3::X;
+        let ts = [0.0, 0.05, 0.1, 0.15, 0.2];
+        assert_eq!(coarsen(&p, &d, &ts, 1e-6, 0.9), vec![0.0, 0.2]);
+    }
+
+    #[test]
+    fn a_curved_edge_keeps_the_points_its_chord_needs() {
+        // a quarter circle of radius 1: every piece kept stays within the chord and the turn
+        let p = |t: f64| DVec3::new(t.cos(), t.sin(), 0.0);
+        let d = |t: f64| DVec3::new(-t.sin(), t.cos(), 0.0);
+        let (tol, cos_max) = (1e-3, 10f64.to_radians().cos());
+        let mut ts = vec![0.0];
+        for k in 0..4 {
+            let (t0, t1) = (std::f64::consts::FRAC_PI_2 * k as f64 / 4.0, std::f64::consts::FRAC_PI_2 * (k + 1) as f64 / 4.0);
+            refine(&p, &d, t0, t1, tol, cos_max, 0, &mut ts);
+        }
+        let fewer = coarsen(&p, &d, &ts, tol, cos_max);
+        assert!(fewer.len() <= ts.len() && fewer.len() > 2, "{} of {}", fewer.len(), ts.len());
+        assert_eq!((fewer[0], fewer[fewer.len() - 1]), (ts[0], ts[ts.len() - 1]));
+        for w in fewer.windows(2) {
+            assert!(chord_meets(&p, &d, &[w[0], w[1]], tol, cos_max), "{w:?}");
+            let mid = p(0.5 * (w[0] + w[1]));
+            assert!((mid - p(w[0])).reject_from(p(w[1]) - p(w[0])).length() <= tol);
+        }
     }
 }

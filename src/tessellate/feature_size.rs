@@ -25,6 +25,10 @@ const WIDTH_FACTOR: f64 = 1.5;
 /// thousand small ones.
 const FLOOR: f64 = 1.0 / 64.0;
 
+/// A short edge's size never falls under this share of the size asked for (a CAD edge of
+/// rounding length, 1e-6 of the part, keeps its needles rather than a cascade of points).
+const SHORT_FLOOR: f64 = 1.0 / 1024.0;
+
 /// Bisections of an edge piece at most when looking for its narrowest place.
 const MAX_DEPTH: u32 = 14;
 
@@ -134,6 +138,18 @@ impl<'a> FeatureSize<'a> {
                     samples.push((last, s));
                 }
             }
+            // a short open edge asks for its own length at its points (Netgen restricts its
+            // local size to every edge's length likewise): the edges and faces beside it grade
+            // down to it instead of fanning needles from its ends
+            if !model.edges[e].closed && pts.len() >= 2 {
+                let len: f64 = pts.windows(2).map(|w| w[0].distance(w[1])).sum();
+                for &x in &pts {
+                    let h = inner.size_at(x);
+                    if h.is_finite() && h > 0.0 && len < h {
+                        samples.push((x, len.max(SHORT_FLOOR * h)));
+                    }
+                }
+            }
         }
         samples.sort_by(|x, y| x.0.x.total_cmp(&y.0.x).then(x.0.y.total_cmp(&y.0.y)).then(x.0.z.total_cmp(&y.0.z)).then(x.1.total_cmp(&y.1)));
         samples.dedup();
@@ -190,5 +206,26 @@ mod tests {
         let t = super::super::tessellate(&plain, &super::super::TessellateOptions::default());
         let f = FeatureSize::new(&plain, &t.edges, &t.surface.vertices, &inner);
         assert_eq!(f.samples(), 0);
+    }
+
+    #[test]
+    fn a_short_edge_asks_for_its_length_and_the_size_grows_from_it() {
+        // a slab 0.3 thick at size 5: its vertical edges are 0.3 long, its sides strips 0.3 wide
+        let slab = crate::cad::parts::Block::new(40.0, 10.0, 0.3).build().unwrap();
+        let t = super::super::tessellate(&slab, &super::super::TessellateOptions::default());
+        let inner = UniformSize(5.0);
+        let f = FeatureSize::new(&slab, &t.edges, &t.surface.vertices, &inner);
+        // at a corner: the edge's length, under the strips' 1.5 times their width
+        let h = f.size_at(DVec3::new(0.0, 0.0, 0.0));
+        assert!((h - 0.3).abs() < 1e-9, "{h}");
+        // 2 along the long edge from the corner: the strip's width (1.5 x 0.3, plus the way to
+        // its nearest sample) asks for less than the corner's 0.3 grown by 2
+        let h = f.size_at(DVec3::new(2.0, 0.0, 0.0));
+        assert!((0.45..0.6).contains(&h), "{h}");
+        // edges as long as the size ask for nothing
+        let block = crate::cad::parts::Block::new(40.0, 10.0, 10.0).build().unwrap();
+        let t = super::super::tessellate(&block, &super::super::TessellateOptions::default());
+        let f = FeatureSize::new(&block, &t.edges, &t.surface.vertices, &inner);
+        assert_eq!(f.size_at(DVec3::ZERO), 5.0);
     }
 }
