@@ -21,11 +21,15 @@ use crate::core::Sign;
 use crate::core::ids::NONE;
 use crate::core::predicates::{insphere, orient3d};
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::mesh3d::optimize::RESCUE_BELOW;
+use crate::mesh3d::optimize::{LAST_PASSES_BELOW, RESCUE_BELOW};
 use crate::mesh3d::optimize::smooth::{MIN_GAIN, Smoother};
 use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::{tet_circumradius, tet_radius_edge};
 use glam::DVec3;
+
+/// The least score of a new star that may exceed the radius-edge bound a little when it
+/// replaces a tet under [`LAST_PASSES_BELOW`].
+const NEARLY_GOOD: f64 = 0.9;
 
 /// The most tets a cavity may hold.
 const MAX_CAVITY: usize = 48;
@@ -260,7 +264,16 @@ impl Inserter {
             let new_min = star.iter().map(|&s| w.q[s as usize]).fold(f64::INFINITY, f64::min);
             // far under target (a sliver of 1-9°), a new star a little over the radius-edge
             // bound is better than the sliver: allow twice the bound there
-            let bound = if old_min < RESCUE_BELOW { (2.0 * max_re).max(old_re) } else { max_re.max(old_re) };
+            // a tet that fails the usual acceptance figures (under LAST_PASSES_BELOW) may give
+            // way to a star whose every tet is nearly good by the score, which has a
+            // radius-edge term of its own (at least NEARLY_GOOD: radius-edge 2.22 for 2)
+            let bound = if old_min < RESCUE_BELOW {
+                (2.0 * max_re).max(old_re)
+            } else if old_min < LAST_PASSES_BELOW && new_min >= NEARLY_GOOD {
+                (max_re / NEARLY_GOOD).max(old_re)
+            } else {
+                max_re.max(old_re)
+            };
             new_min > old_min + MIN_GAIN && star.iter().all(|&s| tet_radius_edge(&w.corners(&w.tets[s as usize])) <= bound)
         };
         if ok {

@@ -96,6 +96,10 @@ const INSERT_FROM_PASS: usize = 2;
 /// radius-edge bound.
 const RESCUE_BELOW: f64 = 0.5;
 
+/// When the passes run out before the work converges, the tets under this score (12.6° or
+/// 164.6° for targets of 18° and 158°) get more passes, with insertion, within the budget.
+pub(crate) const LAST_PASSES_BELOW: f64 = 0.7;
+
 /// Options of [`optimize`].
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -398,6 +402,7 @@ impl Optimizer<'_> {
         // every bad tet is tried in the first pass and when insertion is first allowed; later,
         // only those that are new or had a tet at a vertex change since they last failed
         let mut try_all = true;
+        let mut converged = false;
         for pass in 0..self.opts.max_passes {
             if !insert_now && self.opts.insert && pass >= INSERT_FROM_PASS {
                 // passes that each still change something (sliding boundary vertices keep
@@ -407,12 +412,14 @@ impl Optimizer<'_> {
             }
             let bad = self.bad_tets();
             if bad.is_empty() || self.report.out_of_attempts {
+                converged = bad.is_empty();
                 break;
             }
             let changed = self.pass(&bad, try_all, insert_now, max_attempts);
             try_all = false;
             if !changed {
                 if insert_now || !self.opts.insert {
+                    converged = true;
                     break;
                 }
                 insert_now = true;
@@ -422,11 +429,20 @@ impl Optimizer<'_> {
         // the budget ran out on the many tets a little under target: a quarter more of it
         // goes to the few far under (score under RESCUE_BELOW), with insertion, so that the
         // worst tets are not left where the passes stopped
-        if self.report.out_of_attempts && max_attempts != usize::MAX {
-            let limit = max_attempts + max_attempts / 4;
+        // the passes ran out while small changes went on (sliding vertices): the rest of the
+        // budget goes to the tets far enough under target to fail the usual acceptance
+        // figures (score under LAST_PASSES_BELOW), so that a last few are not left behind
+        let rescue = if self.report.out_of_attempts {
+            Some((max_attempts + max_attempts / 4, RESCUE_BELOW))
+        } else if !converged {
+            Some((max_attempts, LAST_PASSES_BELOW))
+        } else {
+            None
+        };
+        if let Some((limit, below)) = rescue.filter(|_| max_attempts != usize::MAX) {
             let mut try_all = true;
             for _ in 0..self.opts.max_passes {
-                let bad: Vec<(f64, u32)> = self.bad_tets().into_iter().filter(|&(q, _)| q < RESCUE_BELOW).collect();
+                let bad: Vec<(f64, u32)> = self.bad_tets().into_iter().filter(|&(q, _)| q < below).collect();
                 if bad.is_empty() || self.report.attempts >= limit {
                     break;
                 }
