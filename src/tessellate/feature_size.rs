@@ -138,10 +138,11 @@ impl<'a> FeatureSize<'a> {
                     samples.push((last, s));
                 }
             }
-            // a short open edge asks for its own length at its points (Netgen restricts its
-            // local size to every edge's length likewise): the edges and faces beside it grade
-            // down to it instead of fanning needles from its ends
-            if !model.edges[e].closed && pts.len() >= 2 {
+            // a short edge asks for its own length at its points (Netgen restricts its local
+            // size to every edge's length likewise), and so does a closed one (a circle of
+            // 0.02 mm at a cone's truncated tip): the edges and faces beside it grade down to
+            // it instead of fanning needles from its ends
+            if pts.len() >= 2 {
                 let len: f64 = pts.windows(2).map(|w| w[0].distance(w[1])).sum();
                 for &x in &pts {
                     let h = inner.size_at(x);
