@@ -146,14 +146,19 @@ fn chord_meets(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &[f64], t
     if !(chord.length_squared() > 0.0) {
         return false;
     }
-    let turn_ok = match (d(t0).try_normalize(), d(t1).try_normalize()) {
-        (Some(u), Some(v)) => u.dot(v) >= cos_max,
-        _ => true,
-    };
-    turn_ok
+    turn_ok(d, t0, t1, cos_max)
         && ts.windows(2).all(|w| {
             [0.0, 0.25, 0.5, 0.75].iter().all(|&f| (p(w[0] + (w[1] - w[0]) * f) - p0).reject_from(chord).length() <= tol)
         })
+}
+
+/// True if the curve's tangent turns by at most the angle of `cos_max` from `t0` to `t1` (or
+/// has no direction at either end).
+fn turn_ok(d: &dyn Fn(f64) -> DVec3, t0: f64, t1: f64, cos_max: f64) -> bool {
+    match (d(t0).try_normalize(), d(t1).try_normalize()) {
+        (Some(u), Some(v)) => u.dot(v) >= cos_max,
+        _ => true,
+    }
 }
 
 /// Appends the parameters after `t0` up to and including `t1`, splitting where the midpoint
@@ -164,11 +169,7 @@ fn refine(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, t0: f64, t1: f64, 
     let (p0, p1, pm) = (p(t0), p(t1), p(tm));
     let chord = p1 - p0;
     let dev = if chord.length_squared() > 0.0 { (pm - p0).reject_from(chord).length() } else { (pm - p0).length() };
-    let turn_ok = match (d(t0).try_normalize(), d(t1).try_normalize()) {
-        (Some(u), Some(v)) => u.dot(v) >= cos_max,
-        _ => true,
-    };
-    if depth < 16 && (dev > tol || !turn_ok) {
+    if depth < 16 && (dev > tol || !turn_ok(d, t0, t1, cos_max)) {
         refine(p, d, t0, tm, tol, cos_max, depth + 1, out);
         refine(p, d, tm, t1, tol, cos_max, depth + 1, out);
     } else {

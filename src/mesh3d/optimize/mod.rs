@@ -426,12 +426,11 @@ impl Optimizer<'_> {
                 try_all = true;
             }
         }
-        // the budget ran out on the many tets a little under target: a quarter more of it
-        // goes to the few far under (score under RESCUE_BELOW), with insertion, so that the
-        // worst tets are not left where the passes stopped
-        // the passes ran out while small changes went on (sliding vertices): the rest of the
-        // budget goes to the tets far enough under target to fail the usual acceptance
-        // figures (score under LAST_PASSES_BELOW), so that a last few are not left behind
+        // the worst tets are not left where the passes stopped: when the budget ran out on the
+        // many tets a little under target, a quarter more of it goes to the few far under
+        // (score under RESCUE_BELOW); when the passes ran out while small changes went on
+        // (sliding vertices), the rest of it goes to the tets under LAST_PASSES_BELOW (those
+        // that fail the usual acceptance figures); with insertion either way
         let rescue = if self.report.out_of_attempts {
             Some((max_attempts + max_attempts / 4, RESCUE_BELOW))
         } else if !converged {
