@@ -30,6 +30,21 @@ pub(super) fn deviation(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3], free_edge
             return f64::INFINITY;
         }
     }
+    // the surface normal at every corner too: a triangle across half a thin cylinder (from
+    // its seam to the far side, long along it) can have its centroid's normal and be within a
+    // coarse chord, yet its corners' normals are opposite (and the other half's triangles
+    // share its 3D side: a fold). Not at a singular corner (a cone's apex, a pole), where
+    // the parametrization's normal is not the surface's
+    let corner = uv.map(|q| {
+        let (_, su, sv) = surf.point_and_tangents(q.x, q.y);
+        su.cross(sv)
+    });
+    let big = corner.iter().map(|c| c.length()).fold(0.0, f64::max);
+    for c in corner {
+        if c.length() > 1e-3 * big && n.dot(c.normalize()) < cos_max {
+            return f64::INFINITY;
+        }
+    }
     let mut d = (sp - p[0]).dot(n).abs();
     for i in 0..3 {
         if free_edge[i] {
