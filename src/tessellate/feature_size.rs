@@ -62,7 +62,9 @@ impl SizeField for FeatureSize<'_> {
 impl<'a> FeatureSize<'a> {
     /// The field for `model` whose edges have the chord-only points `edges` (vertex indices
     /// into `vertices`), on top of `inner`.
-    pub fn new(model: &Model, edges: &[EdgePoints], vertices: &[DVec3], inner: &'a dyn SizeField) -> FeatureSize<'a> {
+    /// `walls` are more samples (the solid's thickness, `proximity`), their floors too taken
+    /// from `inner`.
+    pub fn new(model: &Model, edges: &[EdgePoints], vertices: &[DVec3], inner: &'a dyn SizeField, walls: &[(DVec3, f64)]) -> FeatureSize<'a> {
         // the faces on each edge
         let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); model.edges.len()];
         for (f, face) in model.faces.iter().enumerate() {
@@ -106,7 +108,7 @@ impl<'a> FeatureSize<'a> {
             });
             d
         };
-        let mut samples = Vec::new();
+        let mut samples = walls.to_vec();
         for (e, ep) in edges.iter().enumerate() {
             if model.edges[e].degenerate || faces_of[e].is_empty() {
                 continue;
@@ -152,6 +154,12 @@ impl<'a> FeatureSize<'a> {
                 }
             }
         }
+        FeatureSize::from_samples(inner, samples)
+    }
+
+    /// The smaller of `inner` and the sizes `samples` ask for at their points, each grown by
+    /// the distance from its point.
+    fn from_samples(inner: &'a dyn SizeField, mut samples: Vec<(DVec3, f64)>) -> FeatureSize<'a> {
         samples.sort_by(|x, y| x.0.x.total_cmp(&y.0.x).then(x.0.y.total_cmp(&y.0.y)).then(x.0.z.total_cmp(&y.0.z)).then(x.1.total_cmp(&y.1)));
         samples.dedup();
         // a sample matters where its size plus the distance is under the size asked for
@@ -195,7 +203,7 @@ mod tests {
         let thin = crate::cad::parts::Bracket { thickness: 0.4, ..Default::default() }.build().unwrap();
         let t = super::super::tessellate(&thin, &super::super::TessellateOptions::default());
         let inner = UniformSize(5.0);
-        let f = FeatureSize::new(&thin, &t.edges, &t.surface.vertices, &inner);
+        let f = FeatureSize::new(&thin, &t.edges, &t.surface.vertices, &inner, &[]);
         assert!(f.samples() > 0);
         // on a long edge of a side, 1.5 times the thickness
         let h = f.size_at(DVec3::new(40.0, 0.0, 0.0));
@@ -205,7 +213,7 @@ mod tests {
         // the default bracket (8 thick, holes 10.5 from the sides) asks for nothing more
         let plain = crate::cad::parts::Bracket::default().build().unwrap();
         let t = super::super::tessellate(&plain, &super::super::TessellateOptions::default());
-        let f = FeatureSize::new(&plain, &t.edges, &t.surface.vertices, &inner);
+        let f = FeatureSize::new(&plain, &t.edges, &t.surface.vertices, &inner, &[]);
         assert_eq!(f.samples(), 0);
     }
 
@@ -215,7 +223,7 @@ mod tests {
         let slab = crate::cad::parts::Block::new(40.0, 10.0, 0.3).build().unwrap();
         let t = super::super::tessellate(&slab, &super::super::TessellateOptions::default());
         let inner = UniformSize(5.0);
-        let f = FeatureSize::new(&slab, &t.edges, &t.surface.vertices, &inner);
+        let f = FeatureSize::new(&slab, &t.edges, &t.surface.vertices, &inner, &[]);
         // at a corner: the edge's length, under the strips' 1.5 times their width
         let h = f.size_at(DVec3::new(0.0, 0.0, 0.0));
         assert!((h - 0.3).abs() < 1e-9, "{h}");
@@ -226,7 +234,7 @@ mod tests {
         // edges as long as the size ask for nothing
         let block = crate::cad::parts::Block::new(40.0, 10.0, 10.0).build().unwrap();
         let t = super::super::tessellate(&block, &super::super::TessellateOptions::default());
-        let f = FeatureSize::new(&block, &t.edges, &t.surface.vertices, &inner);
+        let f = FeatureSize::new(&block, &t.edges, &t.surface.vertices, &inner, &[]);
         assert_eq!(f.size_at(DVec3::ZERO), 5.0);
     }
 }

@@ -30,6 +30,7 @@ mod face_vertices;
 pub mod orient;
 mod seams;
 mod feature_size;
+mod proximity;
 pub mod quadrature;
 pub mod reached;
 mod improve;
@@ -161,17 +162,31 @@ pub fn tessellate_sized(model: &Model, opts: &TessellateOptions, size: &dyn Size
 }
 
 fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>) -> Tessellation {
+    let t = tessellate_volume(model, opts, size, &[]);
+    // to a size: walls of the solid thinner than a third of it (measured across the solid on
+    // this tessellation) ask for less, and the model is tessellated again
+    let Some(h) = size else { return t };
+    let walls = proximity::wall_samples(model, &t.surface, h, t.chord);
+    if walls.is_empty() {
+        return t;
+    }
+    tessellate_volume(model, opts, size, &walls)
+}
+
+/// [`tessellate_with`] without the walls' sizes: by the chord, angle and size criteria, again
+/// with smaller chords on solids whose volume falls short.
+fn tessellate_volume(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, walls: &[(DVec3, f64)]) -> Tessellation {
     let tol = opts.chord_relative * model.size();
     let uniform = vec![tol; model.faces.len()];
     if !(opts.volume_relative > 0.0) {
-        return tessellate_chords(model, opts, size, tol, &uniform);
+        return tessellate_chords(model, opts, size, walls, tol, &uniform);
     }
     // solids that lose more than `volume_relative` of their volume: again with smaller
     // chords on their faces (see `volume_chord`), aiming at three quarters of it; with a
     // size field just under it (chords finer than the size make thin triangles beside it)
     let aim = if size.is_some() { 0.9 } else { 0.75 };
     let mut chords = uniform;
-    let mut t = tessellate_chords(model, opts, size, tol, &chords);
+    let mut t = tessellate_chords(model, opts, size, walls, tol, &chords);
     let mut prev_loss = Vec::new();
     for _ in 0..volume_chord::ROUNDS {
         let (next, quadrature) = volume_chord::shrink_chords(model, &t, &chords, tol, opts.volume_relative, aim, &mut prev_loss);
@@ -180,14 +195,15 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
             break;
         };
         chords = next;
-        t = tessellate_chords(model, opts, size, tol, &chords);
+        t = tessellate_chords(model, opts, size, walls, tol, &chords);
     }
     t
 }
 
 /// Tessellates with the chord `face_chord[f]` on face `f` (its edges: the smallest of their
-/// faces'), `tol` the model-wide chord.
-fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, tol: f64, face_chord: &[f64]) -> Tessellation {
+/// faces'), `tol` the model-wide chord; with a size, `walls` are the sizes the solid's
+/// thickness asks for (`proximity`).
+fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, walls: &[(DVec3, f64)], tol: f64, face_chord: &[f64]) -> Tessellation {
     let model_size = model.size();
     let edge_chord = volume_chord::edge_chords(model, face_chord, tol);
     let mut vertices: Vec<DVec3> = model.vertices.iter().map(|v| v.point).collect();
@@ -223,7 +239,7 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         Some(h) => {
             let mut chords = vertices.clone();
             let edges = discretise(None, &mut chords);
-            narrow = feature_size::FeatureSize::new(model, &edges, &chords, h);
+            narrow = feature_size::FeatureSize::new(model, &edges, &chords, h, walls);
             Some(&narrow)
         }
         None => None,
