@@ -166,7 +166,7 @@ fn tessellate_with(model: &Model, opts: &TessellateOptions, size: Option<&dyn Si
     // to a size: walls of the solid thinner than a third of it (measured across the solid on
     // this tessellation) ask for less, and the model is tessellated again
     let Some(h) = size else { return t };
-    let walls = proximity::wall_samples(model, &t.surface, h, t.chord);
+    let walls = proximity::wall_samples(&t.surface, h, t.chord);
     if walls.is_empty() {
         return t;
     }

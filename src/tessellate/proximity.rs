@@ -1,15 +1,13 @@
 //! The size a solid's thickness asks for: at each vertex of a sized tessellation, the distance
 //! through the solid to the nearest wall facing it (a plate's other side, a rib between two
-//! pockets, the web between a hole and a face), where the faces on both sides do not meet.
+//! pockets, the web between a hole and a face, the other side of a wedge).
 //!
 //! `feature_size` measures widths along a face (between the edges of one face); this measures
 //! across the solid. Without it, a wall thinner than the size gets tets as long as the size
-//! and as high as the wall: the flat tets of 166° to 176° at the walls of the corpus'
-//! `abc-0000` and `wing_fuselage`. Netgen's and gmsh's "mesh size from curvature and
-//! proximity" do the same; TetGen meets it by splitting encroached subfaces, which is the
-//! same size reached later and by more points.
+//! and as high as the wall: the flat tets of 166° to 169° at the walls of the corpus'
+//! `abc-0000` and at `wing_fuselage`'s trailing edges. TetGen reaches such sizes by
+//! splitting the subfaces its refinement encroaches, later and with more points.
 
-use crate::cad::brep::Model;
 use crate::core::aabb::Aabb;
 use crate::core::bvh::Bvh;
 use crate::core::closest::closest_point_on_triangle;
@@ -29,49 +27,27 @@ const THICK: f64 = 1.0 / 3.0;
 const FLOOR: f64 = 1.0 / 64.0;
 
 /// Walls under this many chords thick ask for nothing: the gap between two chords of one
-/// curved surface, or a wall that is a rounding error of the CAD model.
+/// curved surface, the last stretch of a wedge towards its edge (whose angle no size
+/// removes), or a wall that is a rounding error of the CAD model.
 const MIN_CHORDS: f64 = 2.0;
 
 /// Two triangles face each other when their unit normals make more than 120°.
 const FACING: f64 = -0.5;
 
 /// Samples `(point, size)` where a wall of the solid is thinner than a third of the size
-/// asked for: at the vertices of `surface` (triangles tagged with their face of `model`,
-/// outward), the size `1.5 d` for the wall thickness `d`, floored at 1/64 of the size.
+/// asked for: at the vertices of `surface` (closed shells, outward), the size `1.5 d` for the
+/// wall thickness `d`, floored at 1/64 of the size.
 ///
 /// A vertex is measured against the triangles of its shell that face it (normals more than
-/// 120° apart) and lie inward from it, leaving out its own faces and the faces that share a
-/// CAD edge with them (their distance goes to zero at the edge: an input angle, which no
-/// size removes).
-pub(super) fn wall_samples(model: &Model, surface: &TriSurface, inner: &dyn SizeField, chord: f64) -> Vec<(DVec3, f64)> {
+/// 120° apart), lie inward from it and have it on their inner side: a plate's other side, a
+/// pin's far side, and the two sides of a wedge (a wing's trailing edge, a sharp fold), which
+/// grade towards their edge down to two chords. Faces that meet at an angle over 60° (a
+/// plate's sides and top) never face each other.
+pub(super) fn wall_samples(surface: &TriSurface, inner: &dyn SizeField, chord: f64) -> Vec<(DVec3, f64)> {
     let (v, tris) = (&surface.vertices, &surface.triangles);
     if tris.is_empty() {
         return Vec::new();
     }
-    // the faces that share an edge with each face
-    let nf = model.faces.len();
-    let mut faces_of_edge: Vec<Vec<u32>> = vec![Vec::new(); model.edges.len()];
-    for (f, face) in model.faces.iter().enumerate() {
-        for &l in &face.loops {
-            for c in &model.loops[l as usize].coedges {
-                let fs = &mut faces_of_edge[c.edge as usize];
-                if !fs.contains(&(f as u32)) {
-                    fs.push(f as u32);
-                }
-            }
-        }
-    }
-    let mut near: Vec<Vec<u32>> = vec![Vec::new(); nf];
-    for fs in &faces_of_edge {
-        for &a in fs {
-            for &b in fs {
-                if !near[a as usize].contains(&b) {
-                    near[a as usize].push(b);
-                }
-            }
-        }
-    }
-    let face = |t: usize| surface.face_tags[t].index().map(|k| k as u32);
     // shells: vertices joined by triangles
     let mut shells = UnionFind::new(v.len());
     for t in tris {
@@ -79,28 +55,22 @@ pub(super) fn wall_samples(model: &Model, surface: &TriSurface, inner: &dyn Size
         shells.union(t[0], t[2]);
     }
     let shell_of: Vec<u32> = (0..v.len() as u32).map(|k| shells.find(k)).collect();
-    // unit normals, vertex normals (angle-free: area weighted) and the faces at each vertex
+    // unit normals and area-weighted vertex normals
     let mut normal = Vec::with_capacity(tris.len());
     let mut vn = vec![DVec3::ZERO; v.len()];
-    let mut vfaces: Vec<Vec<u32>> = vec![Vec::new(); v.len()];
-    for (i, t) in tris.iter().enumerate() {
+    for t in tris {
         let [a, b, c] = t.map(|k| v[k as usize]);
         let n = (b - a).cross(c - a);
         normal.push(n.normalize_or_zero());
         for &k in t {
             vn[k as usize] += n;
-            if let Some(f) = face(i) {
-                if !vfaces[k as usize].contains(&f) {
-                    vfaces[k as usize].push(f);
-                }
-            }
         }
     }
     let bvh = Bvh::build(tris.iter().enumerate().map(|(i, t)| (i as u32, Aabb::from_points(t.map(|k| v[k as usize]).iter()))));
     let mut out = Vec::new();
     for (p_id, &p) in v.iter().enumerate() {
         let n = vn[p_id].normalize_or_zero();
-        if n == DVec3::ZERO || vfaces[p_id].is_empty() {
+        if n == DVec3::ZERO {
             continue;
         }
         let h = inner.size_at(p);
@@ -112,20 +82,12 @@ pub(super) fn wall_samples(model: &Model, surface: &TriSurface, inner: &dyn Size
             continue;
         }
         let shell = shell_of[p_id];
-        let mine = &vfaces[p_id];
         let mut d = f64::INFINITY;
         let q = Aabb { min: p - DVec3::splat(r), max: p + DVec3::splat(r) };
         bvh.for_each_overlapping(&q, |i| {
             let i = i as usize;
             let t = tris[i];
-            if normal[i].dot(n) > FACING || t.contains(&(p_id as u32)) {
-                return;
-            }
-            let Some(f) = face(i) else { return };
-            if mine.iter().any(|&m| m == f || near[m as usize].contains(&f)) {
-                return;
-            }
-            if shell_of[t[0] as usize] != shell {
+            if normal[i].dot(n) > FACING || t.contains(&(p_id as u32)) || shell_of[t[0] as usize] != shell {
                 return;
             }
             let c = closest_point_on_triangle(p, t.map(|k| v[k as usize]));
@@ -146,11 +108,12 @@ pub(super) fn wall_samples(model: &Model, surface: &TriSurface, inner: &dyn Size
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cad::brep::Model;
     use crate::core::size_field::UniformSize;
 
     fn samples(m: &Model, h: f64) -> Vec<(DVec3, f64)> {
         let t = super::super::tessellate_sized(m, &super::super::TessellateOptions::default(), &UniformSize(h));
-        wall_samples(m, &t.surface, &UniformSize(h), t.chord)
+        wall_samples(&t.surface, &UniformSize(h), t.chord)
     }
 
     #[test]
@@ -161,9 +124,11 @@ mod tests {
         assert!(s.len() > 100, "{}", s.len());
         for &(p, h) in &s {
             let r = (p.x * p.x + p.y * p.y).sqrt();
-            // on the bore or the outer face (not the ends, 40 apart), 1.5 times the wall
+            // on the bore or the outer face (not the ends, 40 apart), 1.5 times the wall: less
+            // by the chords, more at the rims (their normals lean on the ends' and the wall
+            // is measured aslant)
             assert!((r - 10.0).abs() < 0.05 || (r - 11.0).abs() < 0.05, "{p}");
-            assert!((h - 1.5).abs() < 0.1, "{h} at {p}");
+            assert!((1.45..1.75).contains(&h), "{h} at {p}");
         }
         // a plate 0.3 thick: only its two large faces, at 1.5 x 0.3
         let slab = crate::cad::parts::Block::new(40.0, 10.0, 0.3).build().unwrap();
@@ -173,7 +138,7 @@ mod tests {
     }
 
     #[test]
-    fn thick_walls_and_faces_that_meet_ask_for_nothing() {
+    fn thick_walls_and_faces_that_meet_square_ask_for_nothing() {
         // walls of 10 at size 6 (over a third of it); the sides meet the top at edges
         let tube = crate::cad::parts::Tube { inner_radius: 10.0, outer_radius: 20.0, length: 40.0, angle_deg: 360.0 }.build().unwrap();
         assert!(samples(&tube, 6.0).is_empty());
