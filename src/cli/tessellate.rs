@@ -54,7 +54,9 @@ pub struct Args {
     #[arg(long, value_name = "REL", value_parser = positive_fraction)]
     pub deviation: Option<f64>,
     /// Longest triangle edge (model units, mm for STEP): edges are cut to it and faces refined
-    /// to well-shaped triangles of about this size, as a volume mesher wants its boundary.
+    /// to well-shaped triangles of about this size, as a volume mesher wants its boundary;
+    /// smaller on faces narrower than it and across walls of the solid thinner than a third
+    /// of it (1.5 times their width or thickness, down to 1/64 of it).
     #[arg(long, value_name = "H", value_parser = crate::cli::positive)]
     pub max_edge: Option<f64>,
     /// Print one JSON object on standard output.
