@@ -266,15 +266,25 @@ impl Bvh {
     /// answer for a point nearby): its distance bounds the search from the start, so far
     /// branches are never opened. The answer is the same as without a hint.
     pub fn nearest_from(&self, p: DVec3, hint: Option<u32>, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
+        let best = hint.map(|h| (h, dist(h)));
+        self.nearest_bounded(p, best, f64::INFINITY, dist)
+    }
+
+    /// [`Bvh::nearest`] among the items nearer than `max`: boxes farther are never opened
+    /// (`dist` may return infinity for items to pass over). `None` when none is nearer.
+    pub fn nearest_within(&self, p: DVec3, max: f64, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
+        self.nearest_bounded(p, None, max, dist).filter(|&(_, d)| d < max)
+    }
+
+    fn nearest_bounded(&self, p: DVec3, mut best: Option<(u32, f64)>, max: f64, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
         if self.nodes.is_empty() {
             return None;
         }
-        let mut best: Option<(u32, f64)> = hint.map(|h| (h, dist(h)));
         // boxes are compared by squared distance against the best distance squared, grown a
         // little so that rounding never prunes a box at exactly the best distance (pruning
         // stays conservative: the answer is the one the unsquared comparison gives)
         let limit = |bd: f64| bd * bd * (1.0 + 8.0 * f64::EPSILON);
-        let mut best_sq = best.map_or(f64::INFINITY, |(_, bd)| limit(bd));
+        let mut best_sq = best.map_or(limit(max), |(_, bd)| limit(bd.min(max)));
         // a stack on the stack: no allocation per query (spills past its size)
         let mut stack = SmallStack::<(u32, f64)>::new();
         stack.push((0, box_distance_sq(&self.nodes[0].bbox, p)));
@@ -292,7 +302,7 @@ impl Bvh {
                     }
                     let di = dist(id);
                     let better = match best {
-                        None => true,
+                        None => max == f64::INFINITY || di < max,
                         Some((bi, bd)) => di < bd || (di == bd && id < bi),
                     };
                     if better {
@@ -644,6 +654,22 @@ mod tests {
         }
         assert_eq!(Bvh::default().nearest(DVec3::ZERO, |_| 0.0), None);
         assert!(!Bvh::default().any_overlapping(&boxes[0]));
+    }
+
+    #[test]
+    fn nearest_within_matches_brute_force_and_passes_over_infinite_items() {
+        let boxes = random_boxes(500, 11);
+        let bvh = Bvh::from_boxes(&boxes);
+        let mut s = 5u64;
+        for k in 0..200 {
+            let p = DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)) * 12.0 - DVec3::ONE;
+            // every third item passed over; a bound from 0.2 to 2
+            let d = |i: u32| if i % 3 == 0 { f64::INFINITY } else { boxes[i as usize].center().distance(p) };
+            let max = 0.2 + 1.8 * (k as f64 / 200.0);
+            let want = (0..boxes.len() as u32).map(|i| (i, d(i))).filter(|&(_, x)| x < max).min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+            assert_eq!(bvh.nearest_within(p, max, d), want);
+        }
+        assert_eq!(Bvh::default().nearest_within(DVec3::ZERO, 1.0, |_| 0.0), None);
     }
 
     fn brute_pairs(b: &[Aabb]) -> Vec<[u32; 2]> {

@@ -15,6 +15,7 @@ use crate::core::SizeField;
 use crate::core::union_find::UnionFind;
 use crate::mesh::TriSurface;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// A wall `d` thick asks for a size of `WALL_FACTOR · d`: two to three tets across it.
 const WALL_FACTOR: f64 = 1.5;
@@ -67,42 +68,39 @@ pub(super) fn wall_samples(surface: &TriSurface, inner: &dyn SizeField, chord: f
         }
     }
     let bvh = Bvh::build(tris.iter().enumerate().map(|(i, t)| (i as u32, Aabb::from_points(t.map(|k| v[k as usize]).iter()))));
-    let mut out = Vec::new();
-    for (p_id, &p) in v.iter().enumerate() {
-        let n = vn[p_id].normalize_or_zero();
-        if n == DVec3::ZERO {
-            continue;
-        }
-        let h = inner.size_at(p);
-        if !(h.is_finite() && h > 0.0) {
-            continue;
-        }
-        let r = THICK * h;
-        if r <= MIN_CHORDS * chord {
-            continue;
-        }
-        let shell = shell_of[p_id];
-        let mut d = f64::INFINITY;
-        let q = Aabb { min: p - DVec3::splat(r), max: p + DVec3::splat(r) };
-        bvh.for_each_overlapping(&q, |i| {
-            let i = i as usize;
-            let t = tris[i];
-            if normal[i].dot(n) > FACING || t.contains(&(p_id as u32)) || shell_of[t[0] as usize] != shell {
-                return;
+    // each vertex on its own (in vertex order, whatever the threads): the nearest triangle that
+    // faces it, branch and bound within a third of the size
+    (0..v.len())
+        .into_par_iter()
+        .filter_map(|p_id| {
+            let p = v[p_id];
+            let n = vn[p_id].normalize_or_zero();
+            if n == DVec3::ZERO {
+                return None;
             }
-            let c = closest_point_on_triangle(p, t.map(|k| v[k as usize]));
-            let dc = c - p;
-            let l = dc.length();
-            // inward from p, and p on the triangle's inner side
-            if l < d && dc.dot(n) < 0.0 && dc.dot(normal[i]) > 0.0 {
-                d = l;
+            let h = inner.size_at(p);
+            if !(h.is_finite() && h > 0.0) {
+                return None;
             }
-        });
-        if d < r && d > MIN_CHORDS * chord {
-            out.push((p, (WALL_FACTOR * d).max(FLOOR * h)));
-        }
-    }
-    out
+            let r = THICK * h;
+            if r <= MIN_CHORDS * chord {
+                return None;
+            }
+            let shell = shell_of[p_id];
+            let facing = |i: u32| -> f64 {
+                let i = i as usize;
+                let t = tris[i];
+                if normal[i].dot(n) > FACING || t.contains(&(p_id as u32)) || shell_of[t[0] as usize] != shell {
+                    return f64::INFINITY;
+                }
+                let dc = closest_point_on_triangle(p, t.map(|k| v[k as usize])) - p;
+                // inward from p, and p on the triangle's inner side
+                if dc.dot(n) < 0.0 && dc.dot(normal[i]) > 0.0 { dc.length() } else { f64::INFINITY }
+            };
+            let (_, d) = bvh.nearest_within(p, r, facing)?;
+            (d > MIN_CHORDS * chord).then(|| (p, (WALL_FACTOR * d).max(FLOOR * h)))
+        })
+        .collect()
 }
 
 #[cfg(test)]
