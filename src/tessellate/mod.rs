@@ -18,6 +18,10 @@
 //! midpoints, on the shared edge points so both faces take the new points, and the faces are
 //! meshed again (a few rounds at most).
 //!
+//! To a size field ([`tessellate_sized`]), faces narrower than the size ask for less
+//! (`feature_size`), and so do walls of the solid thinner than a third of it, measured across
+//! the solid on a first tessellation (`proximity`): the part is then tessellated again.
+//!
 //! Faces that cannot be meshed this way (a periodic face bounded by closed edges without a
 //! seam, loops that still cross in parameter space) are listed in [`Tessellation::failed`],
 //! never left out silently. The result is meant to be checked with [`crate::mesh::topology`].
