@@ -273,9 +273,11 @@ impl Bvh {
     /// [`Bvh::nearest`] among the items nearer than `max`: boxes farther are never opened
     /// (`dist` may return infinity for items to pass over). `None` when none is nearer.
     pub fn nearest_within(&self, p: DVec3, max: f64, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
-        self.nearest_bounded(p, None, max, dist).filter(|&(_, d)| d < max)
+        self.nearest_bounded(p, None, max, dist)
     }
 
+    /// The search of [`Bvh::nearest_from`] and [`Bvh::nearest_within`]: from `best`, and
+    /// without a start only items nearer than `max` taken (any item when `max` is infinite).
     fn nearest_bounded(&self, p: DVec3, mut best: Option<(u32, f64)>, max: f64, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
         if self.nodes.is_empty() {
             return None;

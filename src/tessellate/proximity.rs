@@ -55,7 +55,7 @@ pub(super) fn wall_samples(surface: &TriSurface, inner: &dyn SizeField, chord: f
         shells.union(t[0], t[1]);
         shells.union(t[0], t[2]);
     }
-    let shell_of: Vec<u32> = (0..v.len() as u32).map(|k| shells.find(k)).collect();
+    let (shell_of, _) = shells.labels();
     // unit normals and area-weighted vertex normals
     let mut normal = Vec::with_capacity(tris.len());
     let mut vn = vec![DVec3::ZERO; v.len()];
