@@ -151,19 +151,35 @@ pub fn dihedral_from_cosine(c: f64) -> f64 {
 /// cosines, of the extreme cosines ([`dihedral_from_cosine`] is non-decreasing): bitwise the
 /// extremes of [`tet_dihedral_angles`].
 pub fn tet_min_max_dihedral(p: &[DVec3; 4]) -> (f64, f64) {
+    match tet_extreme_dihedral_cosines(p) {
+        Some((lo, hi)) => dihedrals_of_extreme_cosines(lo, hi),
+        None => (0.0, 180.0),
+    }
+}
+
+/// The least and the largest of the six cosines [`tet_min_max_dihedral`] takes its angles
+/// from (those of the smallest and the largest dihedral angle), without an arc cosine; `None`
+/// for a degenerate tet (whose angles are `(0, 180)`). Callers that need only the extremes
+/// over many tets fold these and take two arc cosines at the end
+/// ([`dihedrals_of_extreme_cosines`]): the same bits, since the angle is non-decreasing in the
+/// cosine.
+#[inline]
+pub fn tet_extreme_dihedral_cosines(p: &[DVec3; 4]) -> Option<(f64, f64)> {
     let det = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
     if det == 0.0 || !det.is_finite() {
-        return (0.0, 180.0);
+        return None;
     }
     let n = outward_normals(p);
     let len = n.map(|v| v.length());
-    match dihedral_cosines(&n, &len) {
-        Some(c) => {
-            let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-            (dihedral_from_cosine(lo).min(180.0), dihedral_from_cosine(hi).max(0.0))
-        }
-        None => (0.0, 180.0),
-    }
+    let c = dihedral_cosines(&n, &len)?;
+    Some(c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x))))
+}
+
+/// The smallest and largest dihedral angle (degrees) from the least and largest cosine of
+/// [`tet_extreme_dihedral_cosines`], as [`tet_min_max_dihedral`] gives them.
+#[inline]
+pub fn dihedrals_of_extreme_cosines(lo: f64, hi: f64) -> (f64, f64) {
+    (dihedral_from_cosine(lo).min(180.0), dihedral_from_cosine(hi).max(0.0))
 }
 
 /// [`tet_min_max_dihedral`] and [`tet_radius_edge`] together, bitwise equal to them, with two

@@ -26,7 +26,7 @@
 //!   the roles of `p` and `q` exchanged.
 
 use crate::mesh::tet_mesh::TET_FACES;
-use crate::quality::tetrahedron::{TET_EDGES, tet_min_max_dihedral_radius_edge, tet_radius_edge};
+use crate::quality::tetrahedron::{TET_EDGES, dihedrals_of_extreme_cosines, tet_extreme_dihedral_cosines, tet_min_max_dihedral_radius_edge, tet_radius_edge};
 use glam::DVec3;
 
 /// The faces at each edge of [`TET_EDGES`]: the faces opposite the edge's two other vertices.
@@ -150,9 +150,100 @@ impl Judged {
 }
 
 /// The score of a positively oriented tet: [`Judged::score`] of its [`Judged`] measures.
+#[cfg(test)]
 #[inline]
 pub(crate) fn score(p: &[DVec3; 4], tg: &Targets) -> f64 {
     Judged::of(p).score(tg)
+}
+
+/// A margin on cosines that covers the rounding of every angle computed from them (under
+/// 1e-15 in the cosine), so that a test on a cosine against a threshold decides as the test on
+/// the angle would, or abstains.
+const COSINE_MARGIN: f64 = 1e-9;
+
+/// The cosine at which [`angle`] (and the judge's dihedral angle) equals `deg`, or `±∞` when
+/// `deg` is outside `(0°, 180°)`: `-∞` at or below 0°, `+∞` at or above 180°.
+fn cosine_of_angle(deg: f64) -> f64 {
+    if !(deg > 0.0) {
+        f64::NEG_INFINITY
+    } else if !(deg < 180.0) {
+        f64::INFINITY
+    } else {
+        (180.0 - deg).to_radians().cos()
+    }
+}
+
+impl Targets {
+    /// Cosines past which a tet surely scores at most `beat`: its least cosine under the first,
+    /// or its largest over the second (margins included; `±∞` where no cosine decides).
+    pub(crate) fn failing_cosines(&self, beat: f64) -> (f64, f64) {
+        let lo = cosine_of_angle(beat * self.min_deg) - COSINE_MARGIN;
+        let hi = cosine_of_angle(180.0 - beat * self.max_gap) + COSINE_MARGIN;
+        (lo, hi)
+    }
+
+    /// Cosines between which neither angle term of an edge falls under `limit` (margins
+    /// included): an edge whose cosine lies strictly between them has both terms at or above
+    /// it. [`terms_below`] takes them.
+    pub(crate) fn quiet_cosines(&self, limit: f64) -> (f64, f64) {
+        let small = cosine_of_angle(limit * self.min_deg) + COSINE_MARGIN;
+        let large = cosine_of_angle(180.0 - limit * self.max_gap) - COSINE_MARGIN;
+        (small, large)
+    }
+}
+
+/// The least [`score`] over a set of positively oriented tets, folded tet by tet with no arc
+/// cosine per tet: the score is non-decreasing in each tet's least cosine and non-increasing
+/// in its largest, so the least score is bitwise that of the least and the largest cosine over
+/// the set, and of the least radius-edge term.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct LeastScore {
+    lo_c: f64,
+    hi_c: f64,
+    re_term: f64,
+    tets: usize,
+    flat: bool,
+}
+
+impl LeastScore {
+    pub(crate) fn new() -> LeastScore {
+        LeastScore { lo_c: f64::INFINITY, hi_c: f64::NEG_INFINITY, re_term: f64::INFINITY, tets: 0, flat: false }
+    }
+
+    /// Adds the tet `p`; returns its extreme cosines (`None` if it is degenerate: score 0).
+    #[inline]
+    pub(crate) fn add(&mut self, p: &[DVec3; 4], tg: &Targets) -> Option<(f64, f64)> {
+        self.tets += 1;
+        let Some((lo, hi)) = tet_extreme_dihedral_cosines(p) else {
+            self.flat = true;
+            return None;
+        };
+        self.lo_c = self.lo_c.min(lo);
+        self.hi_c = self.hi_c.max(hi);
+        if tg.max_re.is_finite() {
+            self.re_term = self.re_term.min(tg.max_re / tet_radius_edge(p));
+        }
+        Some((lo, hi))
+    }
+
+    /// The least radius-edge term so far (`+∞` without a radius-edge bound).
+    pub(crate) fn re_term(&self) -> f64 {
+        self.re_term
+    }
+
+    /// The least score of the tets added: bitwise the least [`score`] of them; `+∞` for none.
+    pub(crate) fn value(&self, tg: &Targets) -> f64 {
+        if self.tets == 0 {
+            return f64::INFINITY;
+        }
+        if self.flat {
+            return 0.0;
+        }
+        // as Judged::score, with the extremes over the set
+        let (lo, hi) = dihedrals_of_extreme_cosines(self.lo_c, self.hi_c);
+        let s = (lo / tg.min_deg).min((180.0 - hi) / tg.max_gap).max(0.0);
+        if tg.max_re.is_finite() { s.min(self.re_term) } else { s }
+    }
 }
 
 /// One term of a tet's score: the normalised small-angle or large-angle measure of one edge,
@@ -168,11 +259,17 @@ pub(crate) struct Term {
 /// Calls `f` with every term of the tet `p` below `limit` and its gradient with respect to
 /// vertex `m`: each edge gives `θ / θ_target_min` and `(180° − θ) / (180° − θ_target_max)`;
 /// the radius-edge term comes only below `re_limit` (its gradient costs six evaluations).
-/// Nothing for a tet degenerate in floating point.
-pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, re_limit: f64, mut f: impl FnMut(Term)) {
+/// Nothing for a tet degenerate in floating point. `quiet` is [`Targets::quiet_cosines`] of
+/// `limit`: the edges whose cosines lie between them are skipped without an arc cosine.
+pub(crate) fn terms_below(p: &[DVec3; 4], m: usize, tg: &Targets, limit: f64, quiet: (f64, f64), re_limit: f64, mut f: impl FnMut(Term)) {
     let n = normals(p);
     let Some(c) = cosines(&n) else { return };
+    // most edges are far from the targets: their cosines tell, without an arc cosine
+    let (quiet_lo, quiet_hi) = quiet;
     for (e, &ce) in c.iter().enumerate() {
+        if ce > quiet_lo && ce < quiet_hi {
+            continue;
+        }
         let th = angle(ce);
         let small = th * tg.inv_min;
         let large = (180.0 - th) * tg.inv_max;
@@ -318,6 +415,59 @@ mod tests {
                         "edge {e} vertex {m} axis {axis}: {fd} vs {}",
                         g[axis]
                     );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn least_score_is_bitwise_the_least_of_the_scores() {
+        let mut rng = crate::core::spatial_order::XorShift::new(7);
+        let mut rnd = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        for (k, tg) in [Targets::new(18.0, 158.0).with_radius_edge(2.0), Targets::new(15.0, 160.0)].into_iter().cycle().take(4000).enumerate() {
+            let mut least = LeastScore::new();
+            let mut plain = f64::INFINITY;
+            for i in 0..(1 + k % 9) {
+                let mut p = [0; 4].map(|_| DVec3::new(rnd(), rnd(), rnd()));
+                if (i + k) % 4 == 0 {
+                    // slivers, needles and flat tets
+                    p[3] = (p[0] + p[1] + p[2]) / 3.0 + DVec3::new(rnd(), rnd(), rnd()) * if k % 8 == 0 { 0.0 } else { 1e-6 };
+                }
+                least.add(&p, &tg);
+                plain = plain.min(score(&p, &tg));
+            }
+            assert_eq!(least.value(&tg).to_bits(), plain.to_bits(), "set {k}");
+        }
+        assert_eq!(LeastScore::new().value(&Targets::new(18.0, 158.0)), f64::INFINITY);
+    }
+
+    #[test]
+    fn cosine_thresholds_never_decide_wrongly() {
+        // a tet past the failing cosines scores at most `beat`; an edge between the quiet
+        // cosines has both angle terms at or above `limit`
+        let mut rng = crate::core::spatial_order::XorShift::new(11);
+        let mut rnd = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let tg = Targets::new(18.0, 158.0);
+        for k in 0..20000 {
+            let mut p = [0; 4].map(|_| DVec3::new(rnd(), rnd(), rnd()));
+            if k % 3 == 0 {
+                p[3] = (p[0] + p[1] + p[2]) / 3.0 + DVec3::new(rnd(), rnd(), rnd()) * 1e-3;
+            }
+            let beat = 2.0 * rnd();
+            let (fail_lo, fail_hi) = tg.failing_cosines(beat);
+            if let Some((lo, hi)) = tet_extreme_dihedral_cosines(&p) {
+                if lo < fail_lo || hi > fail_hi {
+                    assert!(score(&p, &tg) <= beat, "{p:?} {beat}");
+                }
+            }
+            let limit = 2.0 * rnd();
+            let (q_lo, q_hi) = tg.quiet_cosines(limit);
+            if let Some(c) = cosines(&normals(&p)) {
+                for ce in c {
+                    if ce > q_lo && ce < q_hi {
+                        let th = angle(ce);
+                        assert!(th * tg.inv_min >= limit && (180.0 - th) * tg.inv_max >= limit, "{ce} {limit}");
+                    }
                 }
             }
         }

@@ -22,7 +22,7 @@
 
 use crate::core::Sign;
 use crate::core::predicates::orient3d;
-use crate::mesh3d::optimize::measure::{Term, score, terms_below};
+use crate::mesh3d::optimize::measure::{LeastScore, Term, terms_below};
 use crate::mesh3d::optimize::slide::Slide;
 use crate::mesh3d::optimize::work::{Work, local};
 use crate::quality::tetrahedron::tet_radius_edge;
@@ -84,20 +84,29 @@ impl Smoother {
     }
 
     /// The least score of the star with the vertex at `x`, or `None` if a tet would not be
-    /// positively oriented (exact).
-    fn evaluate(&self, w: &Work, x: DVec3, beat: f64) -> Option<f64> {
-        let mut f = f64::INFINITY;
+    /// positively oriented (exact). It may stop at a tet that surely scores at most `beat`
+    /// and then gives a value at most `beat` (the caller only asks whether `beat` is beaten).
+    /// The angle terms are folded by their cosines ([`LeastScore`]): two arc cosines per call,
+    /// not two per tet, and the same bits.
+    /// `fail` is [`Targets::failing_cosines`](crate::mesh3d::optimize::measure::Targets) of
+    /// `beat`.
+    fn evaluate(&self, w: &Work, x: DVec3, beat: f64, fail: (f64, f64)) -> Option<f64> {
+        let (fail_lo, fail_hi) = fail;
+        let mut least = LeastScore::new();
         for s in 0..self.star.len() {
             let [a, b, c, d] = self.corners_at(w, s, x);
             if orient3d(a, b, c, d) != Sign::Positive {
                 return None;
             }
-            f = f.min(score(&[a, b, c, d], &w.tg));
-            if f <= beat {
-                return Some(f);
+            let sure_fail = match least.add(&[a, b, c, d], &w.tg) {
+                None => true,
+                Some((lo, hi)) => lo < fail_lo || hi > fail_hi || least.re_term() <= beat,
+            };
+            if sure_fail {
+                return Some(least.value(&w.tg).min(beat));
             }
         }
-        Some(f)
+        Some(least.value(&w.tg))
     }
 
     /// Loads the star of `v`; false if `v` is fixed or has no star.
@@ -175,10 +184,11 @@ impl Smoother {
         let (mut x, mut f) = (x0, f0);
         for _ in 0..ITERATIONS {
             self.terms.clear();
+            let quiet = w.tg.quiet_cosines(f + WINDOW);
             for s in 0..self.star.len() {
                 let p = self.corners_at(w, s, x);
                 let terms = &mut self.terms;
-                terms_below(&p, self.at[s] as usize, &w.tg, f + WINDOW, f + ACTIVE, |t| terms.push(t));
+                terms_below(&p, self.at[s] as usize, &w.tg, f + WINDOW, quiet, f + ACTIVE, |t| terms.push(t));
             }
             self.grads.clear();
             for t in &self.terms {
@@ -199,9 +209,10 @@ impl Smoother {
                 }
             }
             let mut moved = false;
+            let fail = w.tg.failing_cosines(f + MIN_GAIN);
             for _ in 0..HALVINGS {
                 let y = slide.map_or(x + d * alpha, |s| s.snap(x + d * alpha));
-                if let Some(fy) = self.evaluate(w, y, f + MIN_GAIN) {
+                if let Some(fy) = self.evaluate(w, y, f + MIN_GAIN, fail) {
                     if fy > f + MIN_GAIN {
                         x = y;
                         f = fy;
