@@ -98,6 +98,18 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
         if dom.v_closed && dom.v_period.is_none() {
             seam_sides(&mut pts, 1, dom.v.min, dom.v.max);
         }
+        // a loop that still steps across such a seam goes around the surface: its polygon in
+        // (u, v) would cut straight across the domain (tens of thousands of triangles, or
+        // crossing segments), so the face is refused, named, instead
+        for (axis, closed, period, len) in [(0, dom.u_closed, dom.u_period, dom.u.length()), (1, dom.v_closed, dom.v_period, dom.v.length())] {
+            if closed && period.is_none() && len.is_finite() {
+                let n = pts.len();
+                if (0..n).any(|i| (pts[(i + 1) % n].0[axis] - pts[i].0[axis]).abs() > 0.5 * len) {
+                    let name = if axis == 0 { "u" } else { "v" };
+                    return Err(format!("loop {} goes once around a closed B-spline surface in {name} (across its seam): not supported yet", lp.source));
+                }
+            }
+        }
         // a loop through a pole (a cone's apex between two generators): u jumps there
         // arbitrarily, so the loop is rotated to end at the pole and unwrapped from its new
         // start; the pole then becomes a segment of the pole line (open_poles)
