@@ -413,7 +413,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
                 None => face_integrals(model, fid, dom, &t.edges, &index, centre),
             };
             let corners: Vec<[DVec3; 3]> = tris.iter().map(|tr| tr.map(|i| s.vertices.get(i as usize).copied().unwrap_or(DVec3::NAN))).collect();
-            Some((q, face_deviation(model, fid, dom, &corners, &t.edges, &index)))
+            Some((q, face_deviation(model, fid, dom, &corners, &s.vertices, &t.edges, &index)))
         })
         .collect();
     for (f, dom) in t.domains.iter().enumerate() {

@@ -5,9 +5,10 @@
 //! the triangle's plane at seven points of the triangle's `(u, v)` image (its centroid, its
 //! edge midpoints and the points `(2/3, 1/6, 1/6)`: where the gap of a triangle inscribed in
 //! a smooth surface, a quadratic vanishing at the corners, peaks), and over its boundary
-//! segments, between the edge curve and the segment's chord at a quarter, half and three
-//! quarters of the segment's parameters (the slivers between the trimming curves and the
-//! chords).
+//! segments, between the edge curve and the segment's chord at its ends, a quarter, half and
+//! three quarters of the segment's parameters (the slivers between the trimming curves and
+//! the chords; at an edge's ends the chord runs to the B-rep vertex, which a file may place
+//! off the curve within its tolerance).
 
 use super::FaceDomain;
 use super::edge_points::EdgePoints;
@@ -45,8 +46,8 @@ fn triangle_gap(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3]) -> f64 {
 }
 
 /// The deviation reached on face `fid` (module docs), mm, from its triangles `tris` (corners
-/// in 3D, in the order of `domain.uv`) and its boundary segments.
-pub fn face_deviation(model: &Model, fid: FaceId, domain: &FaceDomain, tris: &[[DVec3; 3]], edges: &[EdgePoints], index: &SegmentIndex) -> f64 {
+/// in 3D, in the order of `domain.uv`) and its boundary segments (their ends in `vertices`).
+pub fn face_deviation(model: &Model, fid: FaceId, domain: &FaceDomain, tris: &[[DVec3; 3]], vertices: &[DVec3], edges: &[EdgePoints], index: &SegmentIndex) -> f64 {
     let surf = model.surface(model.face(fid).surface);
     let mut d: f64 = 0.0;
     for (p, uv) in tris.iter().zip(&domain.uv) {
@@ -58,10 +59,13 @@ pub fn face_deviation(model: &Model, fid: FaceId, domain: &FaceDomain, tris: &[[
         let Some(ep) = edges.get(e as usize) else { continue };
         let (Some(&ta), Some(&tb)) = (ep.params.get(k as usize), ep.params.get(k as usize + 1)) else { continue };
         let curve = model.curve(ci);
-        let (pa, pb) = (curve.point(ta), curve.point(tb));
-        for s in [0.25, 0.5, 0.75] {
+        // the segment as the mesh has it: at an edge's end the B-rep vertex, which a file may
+        // place off its curve within its tolerance (the sliver between them counts too)
+        let (Some(&pa), Some(&pb)) = (vertices.get(a as usize), vertices.get(b as usize)) else { continue };
+        let (ta, tb) = if ep.ids.get(k as usize) == Some(&a) { (ta, tb) } else { (tb, ta) };
+        for s in [0.0, 0.25, 0.5, 0.75, 1.0] {
             let q = curve.point(ta + (tb - ta) * s);
-            let gap = if pa == pb { (q - pa).length() } else { (q - pa).reject_from(pb - pa).length() };
+            let gap = crate::core::closest::closest_point_on_segment(q, pa, pb).distance(q);
             d = if gap.is_nan() { f64::INFINITY } else { d.max(gap) };
         }
     }
