@@ -443,6 +443,24 @@ impl Part {
                 let (ia, ib) = (id(a.face), id(b.face));
                 PipelineError::Overlap { path: self.path.clone(), source, step_faces: format!("{ia} and {ib}") }
             }
+            MeshingError::Open { count, edges, at, faces } if self.is_cad() => {
+                // the open edges' faces by their STEP #ids too
+                let table = self.face_table();
+                let faces = faces
+                    .iter()
+                    .map(|(f, name)| {
+                        let id = step_id(&table, *f).map(|e| format!("STEP {e}"));
+                        let label = match (name.as_deref().filter(|n| !n.is_empty() && *n != "NONE"), id) {
+                            (Some(n), Some(id)) => Some(format!("{n}, {id}")),
+                            (Some(n), None) => Some(n.to_string()),
+                            (None, id) => id,
+                        };
+                        (*f, label)
+                    })
+                    .collect();
+                let source = MeshingError::Open { count: *count, edges: edges.clone(), at: at.clone(), faces };
+                PipelineError::Meshing { path: self.path.clone(), source }
+            }
             _ => PipelineError::Meshing { path: self.path.clone(), source },
         }
     }

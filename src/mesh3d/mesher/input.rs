@@ -20,7 +20,21 @@ pub(crate) fn check(s: &TriSurface) -> Result<(), MeshingError> {
     let open = open_edges_list(s);
     if !open.is_empty() {
         let count = open.len();
-        return Err(MeshingError::Open { count, edges: open.into_iter().take(10).collect() });
+        // the faces along the open edges: the tags of the triangles that hold them
+        let lookup: std::collections::BTreeSet<[u32; 2]> = open.iter().copied().collect();
+        let mut tags: std::collections::BTreeSet<crate::core::FaceId> = std::collections::BTreeSet::new();
+        for (t, tri) in s.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if lookup.contains(&[a.min(b), a.max(b)]) {
+                    tags.insert(s.face_tags.get(t).copied().unwrap_or_default());
+                }
+            }
+        }
+        let faces = tags.into_iter().take(10).map(|f| (f, s.face_names.get(f).map(str::to_string))).collect();
+        let edges: Vec<[u32; 2]> = open.into_iter().take(10).collect();
+        let at = edges.iter().map(|e| e.map(|v| s.vertices[v as usize].to_array())).collect();
+        return Err(MeshingError::Open { count, edges, at, faces });
     }
     let nm = nonmanifold_edges_list(s);
     if let Some(&edge) = nm.first() {

@@ -191,12 +191,17 @@ fn refinement_stop(stopped: bool, points: usize, max_points: usize) -> Option<Re
 #[non_exhaustive]
 pub enum MeshingError {
     /// The surface is not closed: it has edges used by one triangle only.
-    #[error("the surface is open: {count} boundary edges, e.g. {}; close it (or fill its holes) before meshing", edges_text(edges))]
+    #[error("the surface is open: {count} boundary edges, e.g. {}{}; close it (or fill its holes) before meshing", edges_text(edges, at), faces_text(faces))]
     Open {
         /// Number of boundary edges.
         count: usize,
         /// The first boundary edges (vertex pairs).
         edges: Vec<[u32; 2]>,
+        /// Their end points, as `edges`.
+        at: Vec<[[f64; 3]; 2]>,
+        /// The faces the open edges border (tags, with their names where known), in tag
+        /// order, the first ten.
+        faces: Vec<(FaceId, Option<String>)>,
     },
     /// An edge is used by more than two triangles.
     #[error("edge ({}, {}) is shared by {count} triangles (non-manifold); separate the bodies or merge the duplicated faces", edge[0], edge[1])]
@@ -273,8 +278,28 @@ pub enum MeshingError {
     },
 }
 
-fn edges_text(e: &[[u32; 2]]) -> String {
-    e.iter().take(5).map(|x| format!("({}, {})", x[0], x[1])).collect::<Vec<_>>().join(", ")
+fn edges_text(e: &[[u32; 2]], at: &[[[f64; 3]; 2]]) -> String {
+    use crate::quality::worst_tet::fmt_point;
+    e.iter()
+        .enumerate()
+        .take(3)
+        .map(|(k, x)| match at.get(k) {
+            Some([a, b]) => format!("vertices {} {} to {} {}", x[0], fmt_point(*a), x[1], fmt_point(*b)),
+            None => format!("({}, {})", x[0], x[1]),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn faces_text(faces: &[(FaceId, Option<String>)]) -> String {
+    if faces.is_empty() {
+        return String::new();
+    }
+    let list: Vec<String> = faces.iter().map(|(f, name)| match name {
+        Some(n) => format!("{} \"{n}\"", f.0),
+        None => f.0.to_string(),
+    }).collect();
+    format!(" (along face{} {})", if faces.len() == 1 { "" } else { "s" }, list.join(", "))
 }
 
 /// Meshes the volume enclosed by `surface`.

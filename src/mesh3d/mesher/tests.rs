@@ -106,8 +106,15 @@ fn open_and_crossing_surfaces_are_refused() {
     let mut s = cube(1);
     s.triangles.pop();
     s.face_tags.pop();
+    let tag = *s.face_tags.last().unwrap();
     let e = mesh_surface(&s, &Seeds::default(), &UniformSize(1.0), &MeshOptions::default()).unwrap_err();
     assert!(matches!(e, MeshingError::Open { count: 3, .. }), "{e}");
+    // the message says where: the open edges' end points and the faces along them (the one
+    // that lost a triangle, whose other triangle holds the diagonal, and the two beside it)
+    let MeshingError::Open { at, faces, .. } = &e else { unreachable!() };
+    assert_eq!(at.len(), 3);
+    assert!(faces.iter().any(|f| f.0 == tag) && faces.len() == 3, "{e}");
+    assert!(e.to_string().contains("along faces "), "{e}");
     let mut two = cube(1);
     let mut b = cube(1);
     for v in &mut b.vertices {

@@ -260,7 +260,7 @@ fn renumber(e: MeshingError, part: &solid::SolidSurface) -> MeshingError {
     let v = |x: u32| part.vertex_of.get(x as usize).copied().unwrap_or(x);
     let t = |x: u32| part.triangle_of.get(x as usize).copied().unwrap_or(x);
     match e {
-        MeshingError::Open { count, edges } => MeshingError::Open { count, edges: edges.into_iter().map(|e| e.map(v)).collect() },
+        MeshingError::Open { count, edges, at, faces } => MeshingError::Open { count, edges: edges.into_iter().map(|e| e.map(v)).collect(), at, faces },
         MeshingError::NonManifold { edge, count } => MeshingError::NonManifold { edge: edge.map(v), count },
         MeshingError::SelfIntersecting { a, b, tag_a, tag_b, count } => MeshingError::SelfIntersecting { a: t(a), b: t(b), tag_a, tag_b, count },
         MeshingError::Recovery { triangle, tag, message } => MeshingError::Recovery { triangle: t(triangle as u32) as usize, tag, message },
