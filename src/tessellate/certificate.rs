@@ -22,7 +22,8 @@
 //!   [`Certificate::solid_contacts`], not as failures: the B-rep itself has them.
 //! - **Euler characteristic per group** equals the B-rep's own, counted the way the mesh sees
 //!   the B-rep: `V − E + Σ_f χ_f` with `V` every vertex of the group's edges and vertex loops
-//!   (poles and apexes included), `E` every edge that is not degenerate (seams included: the
+//!   (poles and apexes included; a vertex where sheets of the surface touch, a pinch whose
+//!   link falls in pieces, once per piece, as the triangles' fans there are), `E` every edge that is not degenerate (seams included: the
 //!   mesh has vertices and edges along them, shared by the face's two sides), and
 //!   `χ_f = 2 − 2 g_f − L_f` for each face with `L_f` loops (edge and vertex loops; a face is a
 //!   sphere with `L_f` holes cut along its seams) and `g_f = 1` only for a face on a surface
@@ -293,6 +294,50 @@ fn expected_patch_loops(model: &Model, f: usize) -> usize {
 }
 
 /// The B-rep's own `χ_f` of face `f` (module docs).
+/// Per shell group and B-rep vertex with more than one, the number of pieces of the vertex's
+/// link in the group: the corners of the group's face loops at the vertex, two of them joined
+/// when they share an edge there. A vertex of a 2-manifold has one piece; where two sheets
+/// touch at a point (a pinch), two. `group` is the group of each face.
+pub(super) fn vertex_umbrellas(model: &Model, group: &[u32]) -> FxHashMap<(u32, u32), usize> {
+    // corners: (group, vertex, edge in, edge out) where a loop passes through the vertex
+    let mut corners: Vec<(u32, u32, u32, u32)> = Vec::new();
+    for lp in &model.loops {
+        let Some(&g) = lp.face.index().and_then(|f| group.get(f)) else { continue };
+        let n = lp.coedges.len();
+        for k in 0..n {
+            let (c, d) = (&lp.coedges[k], &lp.coedges[(k + 1) % n]);
+            let e = &model.edges[c.edge as usize];
+            let v = if c.forward { e.end } else { e.start };
+            corners.push((g, v, c.edge, d.edge));
+        }
+    }
+    corners.sort_unstable();
+    let mut out = FxHashMap::default();
+    let mut i = 0;
+    while i < corners.len() {
+        let (g, v) = (corners[i].0, corners[i].1);
+        let j = i + corners[i..].iter().take_while(|c| (c.0, c.1) == (g, v)).count();
+        let at = &corners[i..j];
+        if at.len() > 1 {
+            let mut uf = crate::core::union_find::UnionFind::new(at.len());
+            // corners sharing an edge at the vertex are one piece
+            let mut by_edge: Vec<(u32, usize)> = at.iter().enumerate().flat_map(|(k, c)| [(c.2, k), (c.3, k)]).collect();
+            by_edge.sort_unstable();
+            for w in by_edge.windows(2) {
+                if w[0].0 == w[1].0 {
+                    uf.union(w[0].1 as u32, w[1].1 as u32);
+                }
+            }
+            let pieces = (0..at.len() as u32).filter(|&k| uf.is_root(k)).count();
+            if pieces > 1 {
+                out.insert((g, v), pieces);
+            }
+        }
+        i = j;
+    }
+    out
+}
+
 fn face_euler(model: &Model, f: usize) -> i64 {
     let face = &model.faces[f];
     let loops = face.loops.len() as i64;
@@ -541,6 +586,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             }
         }
     }
+    let umbrellas = vertex_umbrellas(model, &group);
     let mut closed_ok = true;
     let mut euler_ok = true;
     let mut outward_ok = true;
@@ -552,7 +598,11 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         verts[g].dedup();
         edges[g].sort_unstable();
         edges[g].dedup();
-        x.euler_brep += verts[g].len() as i64 - edges[g].len() as i64;
+        // a vertex where sheets of the surface touch (its link in several pieces, a pinch)
+        // counts once per piece: the triangles there are the surface's sheets, each with its
+        // own fan, and V - E + F is the manifold's
+        let extra: i64 = verts[g].iter().map(|&v| umbrellas.get(&(g as u32, v)).map_or(0, |&k| k as i64 - 1)).sum();
+        x.euler_brep += verts[g].len() as i64 + extra - edges[g].len() as i64;
         [x.area_mesh, x.area_brep] = g_area[g];
         [x.volume_mesh, x.volume_brep] = g_volume[g];
         area_total[0] += x.area_mesh;

@@ -133,6 +133,37 @@ fn certificate_passes_an_edge_curve_off_its_vertices_within_a_file_tolerance() {
 }
 
 #[test]
+fn a_pinched_vertex_counts_once_per_sheet() {
+    // a 2-manifold's vertices have one piece of link each
+    let m = tetrahedron();
+    assert!(certificate::vertex_umbrellas(&m, &[0, 0, 0, 0]).is_empty());
+    // two triangular faces of one group that touch only at vertex 0: two pieces there
+    let p = [DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::X, DVec3::new(0.0, -1.0, 0.5)];
+    let mut m = Model::default();
+    m.vertices = p.iter().map(|&point| Vertex { point, source: EntityRef(0) }).collect();
+    let pairs = [(0, 1), (1, 2), (2, 0), (0, 3), (3, 4), (4, 0)];
+    for (k, &(a, b)) in pairs.iter().enumerate() {
+        m.curves.push(Curve::Line(Line { origin: p[a], direction: p[b] - p[a] }));
+        m.edges.push(Edge { curve: Some(k as u32), start: a as u32, end: b as u32, range: Interval::new(0.0, 1.0), same_sense: true, closed: false, seam: false, degenerate: false, source: EntityRef(k as u64 + 1) });
+    }
+    for f in 0..2 {
+        m.loops.push(Loop {
+            face: FaceId::from_index(f),
+            outer: true,
+            orientation: true,
+            coedges: (0..3).map(|k| Coedge { edge: (3 * f + k) as u32, forward: true }).collect(),
+            vertex: None,
+            source: EntityRef(200 + f as u64),
+        });
+    }
+    let u = certificate::vertex_umbrellas(&m, &[0, 0]);
+    assert_eq!(u.len(), 1);
+    assert_eq!(u.get(&(0, 0)), Some(&2));
+    // in different groups each sheet is whole
+    assert!(certificate::vertex_umbrellas(&m, &[0, 1]).is_empty());
+}
+
+#[test]
 fn certificate_names_the_face_of_a_hole() {
     let m = tetrahedron();
     let mut t = tessellate(&m, &TessellateOptions::default());
