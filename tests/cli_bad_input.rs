@@ -158,3 +158,22 @@ fn bad_usage_exits_2() {
     assert_eq!(h.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&h.stdout).contains("Examples:"));
 }
+
+#[test]
+fn a_failure_with_json_prints_its_error_as_json() {
+    // a machine reading standard output gets the reason, not an empty output
+    let dir = tempfile::tempdir().unwrap();
+    let open = write(dir.path(), "open.stl", b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
+    let out = dir.path().join("open.mesh");
+    let o = fepre(&["mesh".as_ref(), open.as_os_str(), "-o".as_ref(), out.as_os_str(), "--json".as_ref()]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object on standard output");
+    let msg = v["error"].as_str().unwrap_or_default();
+    assert!(msg.contains("open.stl") && msg.contains("open"), "{v}");
+    assert_eq!(v["exit_code"], 1);
+    assert!(!out.exists());
+    // without --json, nothing on standard output
+    let o = fepre(&["mesh".as_ref(), open.as_os_str(), "-o".as_ref(), out.as_os_str()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(o.stdout.is_empty(), "{}", String::from_utf8_lossy(&o.stdout));
+}

@@ -34,11 +34,16 @@ pub mod tessellate;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+/// Whether anything went to standard output (with `--json`, a failed command that printed
+/// nothing prints its error as a JSON object instead).
+static WROTE_OUT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 /// Writes to standard output. A closed output (a pipe into `head`) ends the process quietly
 /// with success, as ripgrep and other command-line tools do, instead of a panic; any other
 /// write error ends it with exit 1 and a message. Every output file is in place by then.
 pub(crate) fn write_out(args: std::fmt::Arguments) {
     use std::io::Write;
+    WROTE_OUT.store(true, std::sync::atomic::Ordering::Relaxed);
     if let Err(e) = std::io::stdout().lock().write_fmt(args) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             std::process::exit(0);
@@ -130,6 +135,17 @@ pub fn main() -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
+    let json = match &cli.command {
+        Command::Inspect(a) => a.json,
+        Command::Convert(a) => a.json,
+        Command::Delaunay(a) => a.json,
+        Command::Mesh(a) => a.json,
+        Command::Mesh2d(a) => a.json,
+        Command::CadInfo(a) => a.json,
+        Command::Tessellate(a) => a.json,
+        Command::Run(a) => a.json,
+        Command::Solve(a) => a.json,
+    };
     let result = match cli.command {
         Command::Inspect(a) => inspect::run(&a),
         Command::Convert(a) => convert::run(&a),
@@ -144,8 +160,16 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
+            let code: u8 = if e.is::<UsageError>() { 2 } else { 1 };
             eprintln!("error: {}", message(&e));
-            ExitCode::from(if e.is::<UsageError>() { 2 } else { 1 })
+            if json && !WROTE_OUT.load(std::sync::atomic::Ordering::Relaxed) {
+                // a machine reading the JSON gets the reason too, not an empty output
+                let report = serde_json::json!({ "error": message(&e), "exit_code": code });
+                if let Ok(text) = serde_json::to_string_pretty(&report) {
+                    write_out(format_args!("{text}\n"));
+                }
+            }
+            ExitCode::from(code)
         }
     }
 }
