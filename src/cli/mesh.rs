@@ -185,7 +185,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     crate::cli::warn_octree(report.octree.as_ref());
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&r)?);
-        crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
+        crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D", report.octree.is_some());
         return Ok(());
     }
     crate::cli::print_mesh_summary(&m, report.octree.is_none());
@@ -220,6 +220,6 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     }
     crate::cli::contacts::print(&report.contacts);
     outln!("wrote            {}", r.output);
-    crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D");
+    crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D", report.octree.is_some());
     Ok(())
 }

@@ -292,10 +292,16 @@ const VOLUME_WARNING: f64 = 0.01;
 /// Warns on standard error about a volume more than 1 % off the CAD solids' and about a tet
 /// under 1° (`require`: the option that makes the latter an error), with where the worst one
 /// sits.
-pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: &str) {
+/// `octree`: the octree mesher made the mesh (its cells are a cause too).
+pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: &str, octree: bool) {
     if let Some(e) = m.volume_error.filter(|e| e.abs() > VOLUME_WARNING) {
+        let cause = if octree {
+            "the tessellation's chords cut the curved faces, and octree cells miss what is thinner than a cell"
+        } else {
+            "the tessellation's chords cut the curved faces, and at this size a slender or thin part's circles have few sides"
+        };
         eprintln!(
-            "WARNING: the mesh's volume is {:+.2}% off the CAD solids' (the tessellation's chords cut the curved faces, and octree cells miss what is thinner than a cell: give a smaller size, a curvature size or a smaller deviation); --require-volume-error F makes this an error",
+            "WARNING: the mesh's volume is {:+.2}% off the CAD solids' ({cause}; give a smaller size, a curvature size or a smaller deviation); --require-volume-error F makes this an error",
             100.0 * e
         );
     }

@@ -60,7 +60,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
     crate::cli::warn_octree(report.octree.as_ref());
     if let Some(m) = &report.mesh {
-        crate::cli::warn_mesh_summary(m, "[require] min_dihedral");
+        crate::cli::warn_mesh_summary(m, "[require] min_dihedral", report.octree.is_some());
     }
     Ok(())
 }
