@@ -338,6 +338,11 @@ pub(super) fn vertex_umbrellas(model: &Model, group: &[u32]) -> FxHashMap<(u32, 
     out
 }
 
+/// STEP entity references as a message writes them: `#12, #40`.
+fn refs(r: &[EntityRef]) -> String {
+    r.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
+}
+
 fn face_euler(model: &Model, f: usize) -> i64 {
     let face = &model.faces[f];
     let loops = face.loops.len() as i64;
@@ -615,7 +620,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         let shell_ref = x.brep_shells.first().copied();
         if x.brep_closed && !closed {
             closed_ok = false;
-            failures.push(CheckFailure { check: "closed", face: None, step_id: shell_ref, message: format!("shell group {:?}: its B-rep closes, its triangles do not", x.brep_shells) });
+            failures.push(CheckFailure { check: "closed", face: None, step_id: shell_ref, message: format!("shell group {}: its B-rep closes, its triangles do not", refs(&x.brep_shells)) });
         }
         if x.mesh_components != 1 || x.euler_mesh != x.euler_brep {
             euler_ok = false;
@@ -623,14 +628,14 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
                 check: "euler",
                 face: None,
                 step_id: shell_ref,
-                message: format!("shell group {:?}: {} mesh components, Euler characteristic {} of the triangles, {} of the B-rep", x.brep_shells, x.mesh_components, x.euler_mesh, x.euler_brep),
+                message: format!("shell group {}: {} mesh components, Euler characteristic {} of the triangles, {} of the B-rep", refs(&x.brep_shells), x.mesh_components, x.euler_mesh, x.euler_brep),
             });
         }
         if x.brep_closed {
             let positive = if x.void { x.volume_mesh < 0.0 } else { x.volume_mesh > 0.0 };
             if !positive {
                 outward_ok = false;
-                failures.push(CheckFailure { check: "outward", face: None, step_id: shell_ref, message: format!("shell group {:?} encloses volume {:.6e} (void: {})", x.brep_shells, x.volume_mesh, x.void) });
+                failures.push(CheckFailure { check: "outward", face: None, step_id: shell_ref, message: format!("shell group {} encloses volume {:.6e} (void: {})", refs(&x.brep_shells), x.volume_mesh, x.void) });
             }
             let cap = if opts.volume_cap { VOLUME_RELATIVE * x.volume_brep.abs() } else { f64::INFINITY };
             let tol = g_band[g].min(cap) + 1e-9 * x.volume_brep.abs();
@@ -650,8 +655,8 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
                     face: g_worst[g].map(|w| w.2),
                     step_id: shell_ref,
                     message: format!(
-                        "{solid}shell group {:?}: volume {:.9e} of the triangles, {:.9e} of the B-rep: {:+.3} % off, tolerance {tol:.3e} = min(band Σ area x deviation reached {:.3e}, {} % of the volume {cap:.3e}){worst}",
-                        x.brep_shells,
+                        "{solid}shell group {}: volume {:.9e} of the triangles, {:.9e} of the B-rep: {:+.3} % off, tolerance {tol:.3e} = min(band Σ area x deviation reached {:.3e}, {} % of the volume {cap:.3e}){worst}",
+                        refs(&x.brep_shells),
                         x.volume_mesh,
                         x.volume_brep,
                         100.0 * (x.volume_mesh - x.volume_brep) / x.volume_brep.abs(),
@@ -711,7 +716,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
                 check: "closed",
                 face: None,
                 step_id: x.brep_shells.first().copied(),
-                message: format!("open shell group {:?}: {} open mesh edges, its free B-rep edges have {} segments (faces do not conform along a shared edge)", x.brep_shells, open_in_group[g], free_segments[g]),
+                message: format!("open shell group {}: {} open mesh edges, its free B-rep edges have {} segments (faces do not conform along a shared edge)", refs(&x.brep_shells), open_in_group[g], free_segments[g]),
             });
         }
     }
