@@ -97,11 +97,14 @@ pub enum StepError {
         message: String,
     },
     /// The file parsed, but holds no solid, shell or surface model fepre can use.
-    #[error("{}: no B-rep shape found (no MANIFOLD_SOLID_BREP, BREP_WITH_VOIDS or SHELL_BASED_SURFACE_MODEL){dropped}", path.display())]
+    #[error("{}: {}{dropped}", path.display(), if roots.is_empty() { "no B-rep shape found (no MANIFOLD_SOLID_BREP, BREP_WITH_VOIDS or SHELL_BASED_SURFACE_MODEL)".to_string() } else { format!("no usable B-rep shape: {roots}, but not one face of them could be read") })]
     NoShape {
         /// The file.
         path: PathBuf,
         /// A summary of what was dropped, if anything.
         dropped: String,
+        /// The shape entities the file has (`2 MANIFOLD_SOLID_BREP (#210, #211)`), when it
+        /// has some; empty when it has none.
+        roots: String,
     },
 }

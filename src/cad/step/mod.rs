@@ -93,6 +93,23 @@ pub fn read_shape(path: &Path) -> Result<Shape, StepError> {
     to_shape(&parser::parse(path, &bytes)?)
 }
 
+/// The B-rep shape entities of `file`, as a message lists them: `8 MANIFOLD_SOLID_BREP (#210,
+/// #211, #212, ...)`; empty when there are none.
+fn shape_roots(file: &StepFile) -> String {
+    let mut out = Vec::new();
+    for kind in ["MANIFOLD_SOLID_BREP", "BREP_WITH_VOIDS", "SHELL_BASED_SURFACE_MODEL"] {
+        let ids: Vec<u64> = file.entities().iter().filter(|e| e.has(kind)).map(|e| e.id).collect();
+        if !ids.is_empty() {
+            let mut list: Vec<String> = ids.iter().take(3).map(|i| format!("#{i}")).collect();
+            if ids.len() > 3 {
+                list.push("...".into());
+            }
+            out.push(format!("{} {kind} ({})", ids.len(), list.join(", ")));
+        }
+    }
+    out.join(", ")
+}
+
 /// Converts a parsed file into a B-rep or, where it has none, its tessellated geometry.
 ///
 /// # Errors
@@ -117,7 +134,7 @@ pub fn to_shape(file: &StepFile) -> Result<Shape, StepError> {
         if !tess.faces.is_empty() {
             dropped.push_str(&format!("; {} tessellated face(s) without a triangle", tess.faces.len()));
         }
-        return Err(StepError::NoShape { path: file.path.clone(), dropped });
+        return Err(StepError::NoShape { path: file.path.clone(), dropped, roots: shape_roots(file) });
     }
     for (id, kind) in &tess.roots {
         model.dropped.push(Dropped { kind: kind.clone(), id: *id, why: "tessellated geometry beside the B-rep: fepre reads the B-rep".into() });
@@ -142,6 +159,7 @@ pub fn to_model(file: &StepFile) -> Result<Model, StepError> {
         Shape::Tessellated(t) => Err(StepError::NoShape {
             path: file.path.clone(),
             dropped: format!("; the file holds tessellated geometry only ({} faces, {} triangles), which `fepre mesh`, `fepre tessellate` and `fepre cad-info` read", t.faces.len(), t.surface.triangles.len()),
+            roots: String::new(),
         }),
     }
 }

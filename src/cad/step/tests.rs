@@ -99,6 +99,8 @@ fn unsupported_surface_is_reported_not_silent() {
     let e = read_bytes(Path::new("sq.stp"), text.as_bytes()).unwrap_err();
     assert!(matches!(e, StepError::NoShape { .. }), "{e}");
     assert!(e.to_string().contains("#62") && e.to_string().contains("RECTANGULAR_COMPOSITE_SURFACE"), "{e}");
+    // the shape is there, its only face is not: the message says so, naming it
+    assert!(e.to_string().contains("no usable B-rep shape: 1 SHELL_BASED_SURFACE_MODEL (#"), "{e}");
 }
 
 #[test]
