@@ -56,7 +56,8 @@ pub struct Args {
     /// Longest triangle edge (model units, mm for STEP): edges are cut to it and faces refined
     /// to well-shaped triangles of about this size, as a volume mesher wants its boundary;
     /// smaller on faces narrower than it and across walls of the solid thinner than a third
-    /// of it (1.5 times their width or thickness, down to 1/64 of it).
+    /// of it (1.5 times their width or thickness, down to 1/256 of it across a face and 1/64
+    /// across the solid).
     #[arg(long, value_name = "H", value_parser = crate::cli::positive)]
     pub max_edge: Option<f64>,
     /// Print one JSON object on standard output.
