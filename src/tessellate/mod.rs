@@ -40,6 +40,7 @@ pub mod reached;
 mod improve;
 mod refine;
 mod sizing;
+mod uv_loops;
 mod volume_chord;
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Loop points at seams and poles of a face's parameter domain: seam points put on their
 //! neighbours' side, pole points recognised and opened (split out of `face_mesh.rs`).
 
-use super::face_mesh::UvLoop;
+use super::uv_loops::UvLoop;
 use crate::cad::geom::Surface;
 use glam::DVec2;
 
@@ -106,7 +106,7 @@ pub(super) fn unwrap_through_poles(surf: &Surface, pts: &mut UvLoop, per: f64, f
                 pt.0.x += shift;
             }
             let poly: Vec<DVec2> = open_poles(surf, c).iter().map(|p| p.0).collect();
-            super::face_mesh::signed_area(&poly)
+            super::uv_loops::signed_area(&poly)
         };
         let best = [0.0, per, -per]
             .into_iter()
