@@ -640,13 +640,18 @@ mod tests {
             .collect()
     }
 
+    /// A random query point around the boxes of [`random_boxes`].
+    fn query_point(s: &mut u64) -> DVec3 {
+        DVec3::new(rng(s), rng(s), rng(s)) * 12.0 - DVec3::ONE
+    }
+
     #[test]
     fn nearest_and_any_overlapping_match_brute_force() {
         let boxes = random_boxes(500, 7);
         let bvh = Bvh::from_boxes(&boxes);
         let mut s = 99u64;
         for _ in 0..200 {
-            let p = DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)) * 12.0 - DVec3::ONE;
+            let p = query_point(&mut s);
             // the distance to a box's centre is at least the distance to the box
             let d = |i: u32| boxes[i as usize].center().distance(p);
             let want = (0..boxes.len() as u32).map(|i| (i, d(i))).min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0))).unwrap();
@@ -664,7 +669,7 @@ mod tests {
         let bvh = Bvh::from_boxes(&boxes);
         let mut s = 5u64;
         for k in 0..200 {
-            let p = DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)) * 12.0 - DVec3::ONE;
+            let p = query_point(&mut s);
             // every third item passed over; a bound from 0.2 to 2
             let d = |i: u32| if i % 3 == 0 { f64::INFINITY } else { boxes[i as usize].center().distance(p) };
             let max = 0.2 + 1.8 * (k as f64 / 200.0);

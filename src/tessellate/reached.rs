@@ -61,8 +61,8 @@ pub fn face_deviation(model: &Model, fid: FaceId, domain: &FaceDomain, tris: &[[
         let curve = model.curve(ci);
         // the segment as the mesh has it: at an edge's end the B-rep vertex, which a file may
         // place off its curve within its tolerance (the sliver between them counts too)
+        // (the samples are symmetric, so which end is a does not matter)
         let (Some(&pa), Some(&pb)) = (vertices.get(a as usize), vertices.get(b as usize)) else { continue };
-        let (ta, tb) = if ep.ids.get(k as usize) == Some(&a) { (ta, tb) } else { (tb, ta) };
         for s in [0.0, 0.25, 0.5, 0.75, 1.0] {
             let q = curve.point(ta + (tb - ta) * s);
             let gap = crate::core::closest::closest_point_on_segment(q, pa, pb).distance(q);
