@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Uniform octree meshing (isosurface stuffing) of the corpus: every closed mesh and STEP solid
-# and the dirty meshes, at cell size diagonal / DIV (default 100). Per file: tets, the shared
+# and the dirty meshes, at cell size diagonal / DIV (default 100; -d 0: the default cell, which
+# fepre chooses to hold every solid's volume within 1 %). Per file: tets, the shared
 # judge's min/max dihedral (shared/tools/cgal_ref/tetquality), the volume against the input's
 # (divergence theorem on the surface meshed; for a STEP part the certified tessellation's),
 # the sampled Hausdorff distance and its upper bound against the cell size (status ok: angles
@@ -43,23 +44,21 @@ else
 fi
 for name in "${files[@]}"; do
   f="$corpus/$name"
-  # the cell size: the diagonal over DIV (a first run at the default cell, diagonal / 25)
-  # (a part whose solids are all thinner than that cell: the cell its error names)
-  if "$fepre" mesh "$f" -o "$tmp/a.mesh" --method octree --json > "$tmp/a.json" 2> "$tmp/a.err"; then
-    diag=$(python3 -c 'import json,sys; print(25 * json.load(open(sys.argv[1]))["octree"]["cell_size"])' "$tmp/a.json")
-  elif cell=$(grep -o 'solid [0-9]*.*no lattice vertex is inside the surface at cell size [0-9.e+-]*' "$tmp/a.err" | grep -o '[0-9.e+-]*$'); [ -n "$cell" ]; then
-    diag=$(python3 -c "print(25 * $cell)")
-  else
+  # the cell size: the diagonal over DIV (the default run's first cell is diagonal / 25;
+  # -d 0: the default cell, chosen to hold every solid's volume)
+  if ! "$fepre" mesh "$f" -o "$tmp/a.mesh" --method octree "${grading[@]}" --json > "$tmp/a.json" 2> "$tmp/a.err"; then
     printf '%-28s %s\n' "$name" "error: $(head -c 300 "$tmp/a.err" | tr '\n' ' ')"
     continue
   fi
-  size=$(python3 -c "print($diag/$div)")
+  diag=$(python3 -c 'import json,sys; o=json.load(open(sys.argv[1]))["octree"]; print(25 * (o.get("cell_tries") or [{"cell": o["cell_size"]}])[0]["cell"])' "$tmp/a.json")
+  size_args=()
+  if [ "$div" != 0 ]; then size_args=(--size "$(python3 -c "print($diag/$div)")"); fi
   start=$(date +%s.%N)
-  if "$fepre" mesh "$f" -o "$tmp/o.mesh" --method octree "${grading[@]}" --size "$size" --json > "$tmp/o.json" 2> "$tmp/o.err"; then
+  if "$fepre" mesh "$f" -o "$tmp/o.mesh" --method octree "${grading[@]}" "${size_args[@]}" --json > "$tmp/o.json" 2> "$tmp/o.err"; then
     end=$(date +%s.%N)
     uniform=""
     if [ "$graded" = 1 ]; then
-      "$fepre" mesh "$f" -o "$tmp/u.mesh" --method octree --size "$size" --json > "$tmp/u.json" 2> /dev/null
+      "$fepre" mesh "$f" -o "$tmp/u.mesh" --method octree --size "$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["octree"]["cell_size"])' "$tmp/o.json")" --json > "$tmp/u.json" 2> /dev/null
       uniform=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["octree"]["tets"])' "$tmp/u.json" 2> /dev/null)
     fi
     read -r tets lo hi < <("$judge" "$tmp/o.mesh" | awk '$1=="tets"{t=$2} $1=="min_dihedral_deg"{a=$2} $1=="max_dihedral_deg"{b=$2} END{print t, a, b}')

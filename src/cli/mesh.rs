@@ -73,8 +73,10 @@ pub struct Args {
     #[arg(long)]
     pub keep_surface: bool,
     /// The volume mesher: `delaunay` (a closed, non-self-intersecting surface, kept as the
-    /// boundary) or `octree` (isosurface stuffing on a BCC lattice of cell size --size,
-    /// default diagonal / 25: inside is where the surface's winding number exceeds one half,
+    /// boundary) or `octree` (isosurface stuffing on a BCC lattice of cell size --size;
+    /// without one, diagonal / 25 made finer by √2 until every solid holds lattice vertices
+    /// and its volume within 1 %, to at most 2^23 lattice vertices; inside is where the
+    /// surface's winding number exceeds one half,
     /// so open and self-intersecting surfaces mesh too; the boundary approximates the input
     /// within the reported Hausdorff distance; dihedral angles measured against the paper's
     /// [10.7°, 164.8°]).
@@ -192,6 +194,11 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     if let Some(o) = &report.octree {
         let d = &o.deviation;
         outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
+        if let (Some(first), Some(last)) = (o.cell_tries.first(), o.cell_tries.last()) {
+            let holds = crate::pipeline::octree::RESOLVE.holds(last);
+            let why = if holds { format!("every solid within {} % of its volume", 100.0 * crate::pipeline::octree::RESOLVE.volume_error) } else { "stopped at the lattice budget (WARNING below)".into() };
+            outln!("  cell chosen    {} tries, {:.4e} → {:.4e}: {why}", o.cell_tries.len(), first.cell, last.cell);
+        }
         if o.solids > 1 {
             outln!("  solids         {} meshed one by one, each its own region", o.solids - o.empty_solids.len());
         }

@@ -337,6 +337,19 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
             names.join(", ")
         ));
     }
+    let resolve = crate::pipeline::octree::RESOLVE;
+    if let Some(last) = o.cell_tries.last().filter(|t| !resolve.holds(t)) {
+        let short = match last.volume_error {
+            Some(e) if e > resolve.volume_error => format!("a solid's volume is {:.3} % off", 100.0 * e),
+            _ => format!("{} solids hold no lattice vertex", last.empty_solids),
+        };
+        out.push(format!(
+            "WARNING: the default cell stopped at {:.4e}, where {short} (more than {} % asked): a finer cell would pass the budget of {} lattice vertices; give --size for one",
+            last.cell,
+            100.0 * resolve.volume_error,
+            resolve.max_lattice_vertices
+        ));
+    }
     let d = &o.deviation;
     if d.hausdorff > o.cell_size || d.unresolved_feature_edges > 0 {
         use crate::quality::worst_tet::fmt_point;
@@ -384,6 +397,20 @@ mod tests {
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(w[0].starts_with("WARNING: the boundary strays 2.5000e0 from the input at (1, 2, 3) (sampled), against the cell size 1.0000e0"), "{}", w[0]);
         assert!(w[0].contains("2 of 9 feature edges are farther than a cell from it, the first from (0, 0, 0) to (4, 0, 0)"), "{}", w[0]);
+    }
+
+    #[test]
+    fn octree_warnings_say_where_the_default_cell_stopped() {
+        use crate::mesh3d::octree::{CellTry, OctreeReport};
+        let mut o = OctreeReport { cell_size: 1.0, ..OctreeReport::default() };
+        o.cell_tries = vec![CellTry { cell: 2.0, volume_error: Some(0.3), ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), ..CellTry::default() }];
+        assert!(octree_warnings(Some(&o)).is_empty(), "the last try holds");
+        o.cell_tries[1].volume_error = Some(0.0234);
+        let w = octree_warnings(Some(&o));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].starts_with("WARNING: the default cell stopped at 1.0000e0, where a solid's volume is 2.340 % off (more than 1 % asked)"), "{}", w[0]);
+        o.cell_tries[1] = CellTry { cell: 1.0, volume_error: None, empty_solids: 2, ..CellTry::default() };
+        assert!(octree_warnings(Some(&o))[0].contains("where 2 solids hold no lattice vertex"));
     }
 
     #[test]

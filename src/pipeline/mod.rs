@@ -21,6 +21,7 @@ pub mod fe_model;
 pub mod fe_ties;
 pub mod job;
 pub mod job_fe;
+pub mod octree;
 pub mod part;
 pub mod planar;
 pub mod run;

@@ -9,7 +9,7 @@ use crate::cad::step;
 use crate::core::{RegionId, SizeField};
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, assembly_contacts, merge_solids, mesh_solids, mesh_surface, solid_surfaces};
+use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids, mesh_surface};
 use super::assembly::{ContactReport, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
@@ -341,87 +341,6 @@ impl Part {
         Ok(self.mesh.insert(mesh))
     }
 
-    /// Meshes the volume the part's surface encloses by isosurface stuffing
-    /// ([`crate::mesh3d::octree`]): the winding number decides inside, so open and
-    /// self-intersecting surfaces mesh too, as one region (named after the solid of a
-    /// one-solid CAD part). A CAD part is tessellated to `size` first; one with several B-rep
-    /// solids has each meshed on its own (its own winding number, its own region, tag and
-    /// name), and the faces where solids touch are listed in [`Part::contacts`].
-    ///
-    /// # Errors
-    /// A failed certificate; [`PipelineError::Octree`] (a size too fine for the box, nothing
-    /// inside, a tet the warping turned over; in an assembly, naming the solid); solids of an
-    /// assembly that overlap or cross themselves, as [`Part::mesh`] says.
-    pub fn mesh_octree(&mut self, size: &dyn SizeField, tess: &TessellateOptions, opts: &crate::mesh3d::octree::OctreeOptions) -> Result<&TetMesh, PipelineError> {
-        if self.is_cad() && self.certified.is_none() {
-            self.tessellate(size, tess)?;
-        }
-        let Some(surface) = &self.surface else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
-        };
-        let t0 = Instant::now();
-        let solids = solids_of(self, surface);
-        let octree_error = |source| PipelineError::Octree { path: self.path.clone(), source };
-        let (mesh, report) = if self.model.is_some() && solids.solids.len() > 1 {
-            let mut contacts = assembly_contacts(surface, &solids, gap_of(self)).map_err(|source| self.meshing_error(source))?;
-            let mut meshes = Vec::with_capacity(solids.solids.len());
-            let mut reports = Vec::with_capacity(solids.solids.len());
-            // one solid after the other: each is meshed in parallel, and one lattice at a time
-            // keeps the memory of the largest solid's
-            // a solid thinner than the cell holds no lattice vertex: left out and reported
-            let mut empty = Vec::new();
-            let mut first_empty = None;
-            for (k, one) in solid_surfaces(surface, &solids).iter().enumerate() {
-                let info = &solids.solids[k];
-                match crate::mesh3d::octree::mesh_octree(one, size, opts) {
-                    Ok((m, r)) => {
-                        meshes.push(m);
-                        reports.push(r);
-                    }
-                    Err(e @ crate::mesh3d::octree::OctreeError::Empty(_)) => {
-                        meshes.push(TetMesh::default());
-                        empty.push(crate::mesh3d::octree::EmptySolid { solid: info.tag.0, name: info.name.clone(), volume: one.signed_volume() });
-                        first_empty.get_or_insert((k, e));
-                    }
-                    Err(source) => {
-                        return Err(octree_error(crate::mesh3d::octree::OctreeError::InSolid { solid: info.tag.0, name: info.name.clone(), source: Box::new(source) }));
-                    }
-                }
-            }
-            let mesh = merge_solids(meshes, &solids, &mut contacts);
-            self.contacts = contact_reports(&contacts, &self.face_table(), &solids);
-            let Some(mut report) = crate::mesh3d::octree::OctreeReport::merged(&reports) else {
-                // every solid is empty: the first one's error
-                let (k, e) = first_empty.ok_or_else(|| PipelineError::Usage { path: self.path.clone(), message: "no solid to mesh".into() })?;
-                let info = &solids.solids[k];
-                return Err(octree_error(crate::mesh3d::octree::OctreeError::InSolid { solid: info.tag.0, name: info.name.clone(), source: Box::new(e) }));
-            };
-            report.solids = solids.solids.len();
-            report.input_volume += empty.iter().map(|e| e.volume).sum::<f64>();
-            report.empty_solids = empty;
-            (mesh, report)
-        } else {
-            let (mut mesh, report) = crate::mesh3d::octree::mesh_octree(surface, size, opts).map_err(octree_error)?;
-            if let [solid] = &solids.solids[..] {
-                if let Some(name) = &solid.name {
-                    mesh.region_names.insert(RegionId(1), name.clone());
-                }
-            }
-            (mesh, report)
-        };
-        self.seconds.mesh = t0.elapsed().as_secs_f64();
-        self.mesh_report = Some(MeshReport {
-            nodes: mesh.vertices.len(),
-            tets: mesh.tets.len(),
-            regions: report.solids,
-            stage_seconds: report.stage_seconds.clone(),
-            seconds: self.seconds.mesh,
-            ..MeshReport::default()
-        });
-        self.octree_report = Some(report);
-        Ok(self.mesh.insert(mesh))
-    }
-
     /// Meshes `surface` (the part's solids in it, each on its own when there are several).
     fn mesh_once(&self, surface: &TriSurface, field: &dyn SizeField, opts: &MeshOptions) -> Result<(TetMesh, MeshReport, Solids, Option<Vec<Contact>>), MeshingError> {
         let solids = solids_of(self, surface);
@@ -435,7 +354,7 @@ impl Part {
     }
 
     /// The mesher's error for this part; an overlap of solids also names the STEP faces.
-    fn meshing_error(&self, source: MeshingError) -> PipelineError {
+    pub(super) fn meshing_error(&self, source: MeshingError) -> PipelineError {
         match &source {
             MeshingError::Overlap { a, b, .. } if self.is_cad() => {
                 let faces = self.face_table();

@@ -32,6 +32,7 @@ impl OctreeReport {
             out.dihedral = [out.dihedral[0].min(r.dihedral[0]), out.dihedral[1].max(r.dihedral[1])];
             out.volume += r.volume;
             out.input_volume += r.input_volume;
+            out.input_volume_exact &= r.input_volume_exact;
             out.deviation = merged_deviation(&out.deviation, &r.deviation);
             for (stage, s) in &r.stage_seconds {
                 match out.stage_seconds.iter_mut().find(|(n, _)| n == stage) {

@@ -154,10 +154,33 @@ pub struct OctreeReport {
     /// The input's signed volume by the divergence theorem (the integral of its winding
     /// number; the enclosed volume for a closed outward surface).
     pub input_volume: f64,
+    /// Whether `input_volume` is the volume the mesh approximates: the surface is closed and
+    /// consistently oriented (a 2-cycle) and its winding number is 0 or 1 at every lattice
+    /// vertex (no nested or overlapping shells). Not so for an open or self-overlapping
+    /// surface, whose stuffed volume is where the winding number exceeds one half.
+    pub input_volume_exact: bool,
+    /// Where no size was given: the cell sizes tried, coarsest first, the last the one
+    /// meshed (see `pipeline::octree`); empty when the cell came from a size.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub cell_tries: Vec<CellTry>,
     /// The boundary's deviation from the input.
     pub deviation: Deviation,
     /// Seconds per stage.
     pub stage_seconds: Vec<(String, f64)>,
+}
+
+/// One cell size tried while choosing the default cell.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct CellTry {
+    /// The cell size.
+    pub cell: f64,
+    /// Lattice vertices (all solids).
+    pub lattice_vertices: usize,
+    /// The largest relative volume error of a solid whose input volume is exact
+    /// ([`OctreeReport::input_volume_exact`]); `None` where none is.
+    pub volume_error: Option<f64>,
+    /// Solids holding no lattice vertex at this cell.
+    pub empty_solids: usize,
 }
 
 /// A solid of an assembly the lattice does not reach into.
@@ -233,7 +256,10 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
     let oracle = Winding::new(surface);
     stage("winding_bvh", &mut t);
     let n = lattice.num_vertices();
-    let w = winding_at_lattice(&lattice, &oracle);
+    let cycle = rows::is_cycle(surface);
+    let w = winding_at_lattice(&lattice, &oracle, cycle);
+    // the divergence theorem gives the stuffed volume where the winding number is 0 or 1
+    let input_volume_exact = cycle && w.par_iter().all(|&x| x > -0.5 && x < 1.5);
     stage("winding", &mut t);
     let cuts = cut::cut_and_warp(&lattice, &oracle, &w, opts.alpha_long, opts.alpha_short);
     stage("cut_warp", &mut t);
@@ -284,6 +310,8 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
         dihedral: [lo, hi],
         volume,
         input_volume,
+        input_volume_exact,
+        cell_tries: Vec::new(),
         deviation: dev,
         stage_seconds: stages,
     };
@@ -467,14 +495,14 @@ const BLOCK: u32 = 4;
 /// the block's centre, a smooth approximation across the hole of an open surface; elsewhere
 /// each vertex is evaluated, with [`winding::BETA`] where a triangle's box comes within a
 /// cell, [`winding::FAR_BETA`] farther (as the rows' degenerate rows are).
-fn winding_at_lattice(lattice: &Lattice, oracle: &Winding) -> Vec<f64> {
+fn winding_at_lattice(lattice: &Lattice, oracle: &Winding, cycle: bool) -> Vec<f64> {
     let h = lattice.h;
     let one = |v: u32| {
         let q = lattice.position(v);
         let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
         oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
     };
-    if rows::is_cycle(oracle.surface()) {
+    if cycle {
         return rows::winding_by_rows(lattice, oracle, &one);
     }
     let nb = lattice.n.map(|x| x / BLOCK + 1);
