@@ -194,10 +194,8 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     if let Some(o) = &report.octree {
         let d = &o.deviation;
         outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
-        if let (Some(first), Some(last)) = (o.cell_tries.first(), o.cell_tries.last()) {
-            let holds = crate::pipeline::octree::RESOLVE.holds(last);
-            let why = if holds { format!("every solid within {} % of its volume", 100.0 * crate::pipeline::octree::RESOLVE.volume_error) } else { "stopped at the lattice budget (WARNING below)".into() };
-            outln!("  cell chosen    {} tries, {:.4e} → {:.4e}: {why}", o.cell_tries.len(), first.cell, last.cell);
+        if let Some(line) = crate::cli::cell_choice(o) {
+            outln!("  cell chosen    {line}");
         }
         if o.solids > 1 {
             outln!("  solids         {} meshed one by one, each its own region", o.solids - o.empty_solids.len());

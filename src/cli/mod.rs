@@ -337,23 +337,30 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
             names.join(", ")
         ));
     }
-    let resolve = crate::pipeline::octree::RESOLVE;
-    if let Some(last) = o.cell_tries.last().filter(|t| !resolve.holds(t)) {
-        let short = match last.volume_error {
-            Some(e) if e > resolve.volume_error => format!("a solid's volume is {:.3} % off", 100.0 * e),
-            _ => format!("{} solids hold no lattice vertex", last.empty_solids),
-        };
+    let resolve = crate::mesh3d::octree::RESOLVE;
+    let short: Vec<String> = last_tries(o)
+        .into_iter()
+        .filter(|t| !resolve.holds(t))
+        .map(|t| {
+            let solid = t.solid.map(|s| format!("solid {s} ")).unwrap_or_default();
+            match t.volume_error {
+                Some(e) if !t.empty => format!("{solid}at {:.4e}, {:.3} % off", t.cell, 100.0 * e),
+                _ => format!("{solid}at {:.4e}, no lattice vertex inside", t.cell),
+            }
+        })
+        .collect();
+    if !short.is_empty() {
         out.push(format!(
-            "WARNING: the default cell stopped at {:.4e}, where {short} (more than {} % asked): a finer cell would pass the budget of {} lattice vertices; give --size for one",
-            last.cell,
+            "WARNING: the default cell stopped at the budget of {} lattice vertices before the volume was within {} %: {}; give --size for a finer cell",
+            resolve.max_lattice_vertices,
             100.0 * resolve.volume_error,
-            resolve.max_lattice_vertices
+            short.join(", ")
         ));
     }
     let d = &o.deviation;
-    if d.hausdorff > o.cell_size || d.unresolved_feature_edges > 0 {
+    if o.hausdorff_over_cell > 1.0 || d.unresolved_feature_edges > 0 {
         use crate::quality::worst_tet::fmt_point;
-        let mut w = format!("WARNING: the boundary strays {:.4e} from the input at {} (sampled), against the cell size {:.4e}", d.hausdorff, fmt_point(d.hausdorff_at), o.cell_size);
+        let mut w = format!("WARNING: the boundary strays {:.4e} from the input at {} (sampled), {:.3} times the cell size there", d.hausdorff, fmt_point(d.hausdorff_at), o.hausdorff_over_cell);
         if let Some([a, b]) = d.unresolved_examples.first() {
             w += &format!("; {} of {} feature edges are farther than a cell from it, the first from {} to {}", d.unresolved_feature_edges, d.feature_edges, fmt_point(*a), fmt_point(*b));
         }
@@ -361,6 +368,31 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
         out.push(w);
     }
     out
+}
+
+/// The last try of each solid (of the part where its solids were not meshed one by one).
+fn last_tries(o: &crate::mesh3d::octree::OctreeReport) -> Vec<&crate::mesh3d::octree::CellTry> {
+    let t = &o.cell_tries;
+    (0..t.len()).filter(|&i| i + 1 == t.len() || t[i + 1].solid != t[i].solid).map(|i| &t[i]).collect()
+}
+
+/// The line that says how the default cell was chosen; `None` where a size was given.
+pub(crate) fn cell_choice(o: &crate::mesh3d::octree::OctreeReport) -> Option<String> {
+    let first = o.cell_tries.first()?;
+    let last = last_tries(o);
+    let resolve = crate::mesh3d::octree::RESOLVE;
+    let held = last.iter().filter(|t| resolve.holds(t)).count();
+    let why = if held == last.len() {
+        format!("the volume within {} %", 100.0 * resolve.volume_error)
+    } else {
+        format!("{} of {} at the lattice budget short of it (WARNING below)", last.len() - held, last.len())
+    };
+    let (lo, hi) = last.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (lo.min(t.cell), hi.max(t.cell)));
+    Some(if last.len() == 1 {
+        format!("{} tries from {:.4e} to {:.4e}: {why}", o.cell_tries.len(), first.cell, lo)
+    } else {
+        format!("per solid, {} tries from {:.4e} to cells of {:.4e} to {:.4e}: {why}", o.cell_tries.len(), first.cell, lo, hi)
+    })
 }
 
 /// Parses a finite number `> 0`.
@@ -384,18 +416,19 @@ mod tests {
     #[test]
     fn octree_warnings_name_the_place() {
         use crate::mesh3d::octree::OctreeReport;
-        let mut o = OctreeReport { cell_size: 1.0, ..OctreeReport::default() };
+        let mut o = OctreeReport { cell_size: 1.0, hausdorff_over_cell: 0.5, ..OctreeReport::default() };
         o.deviation.hausdorff = 0.5;
         assert!(octree_warnings(Some(&o)).is_empty(), "within the cell");
         assert!(octree_warnings(None).is_empty());
         o.deviation.hausdorff = 2.5;
+        o.hausdorff_over_cell = 2.5;
         o.deviation.hausdorff_at = [1.0, 2.0, 3.0];
         o.deviation.feature_edges = 9;
         o.deviation.unresolved_feature_edges = 2;
         o.deviation.unresolved_examples = vec![[[0.0, 0.0, 0.0], [4.0, 0.0, 0.0]]];
         let w = octree_warnings(Some(&o));
         assert_eq!(w.len(), 1, "{w:?}");
-        assert!(w[0].starts_with("WARNING: the boundary strays 2.5000e0 from the input at (1, 2, 3) (sampled), against the cell size 1.0000e0"), "{}", w[0]);
+        assert!(w[0].starts_with("WARNING: the boundary strays 2.5000e0 from the input at (1, 2, 3) (sampled), 2.500 times the cell size there"), "{}", w[0]);
         assert!(w[0].contains("2 of 9 feature edges are farther than a cell from it, the first from (0, 0, 0) to (4, 0, 0)"), "{}", w[0]);
     }
 
@@ -403,14 +436,22 @@ mod tests {
     fn octree_warnings_say_where_the_default_cell_stopped() {
         use crate::mesh3d::octree::{CellTry, OctreeReport};
         let mut o = OctreeReport { cell_size: 1.0, ..OctreeReport::default() };
-        o.cell_tries = vec![CellTry { cell: 2.0, volume_error: Some(0.3), ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), ..CellTry::default() }];
+        assert_eq!(cell_choice(&o), None, "a size given");
+        o.cell_tries = vec![CellTry { cell: 2.0, empty: true, ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), ..CellTry::default() }];
         assert!(octree_warnings(Some(&o)).is_empty(), "the last try holds");
+        assert_eq!(cell_choice(&o).unwrap(), "2 tries from 2.0000e0 to 1.0000e0: the volume within 1 %");
         o.cell_tries[1].volume_error = Some(0.0234);
         let w = octree_warnings(Some(&o));
         assert_eq!(w.len(), 1, "{w:?}");
-        assert!(w[0].starts_with("WARNING: the default cell stopped at 1.0000e0, where a solid's volume is 2.340 % off (more than 1 % asked)"), "{}", w[0]);
-        o.cell_tries[1] = CellTry { cell: 1.0, volume_error: None, empty_solids: 2, ..CellTry::default() };
-        assert!(octree_warnings(Some(&o))[0].contains("where 2 solids hold no lattice vertex"));
+        assert_eq!(w[0], "WARNING: the default cell stopped at the budget of 8388608 lattice vertices before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
+        // solid by solid: the last try of each
+        o.cell_tries = vec![
+            CellTry { solid: Some(1), cell: 2.0, volume_error: Some(0.2), ..CellTry::default() },
+            CellTry { solid: Some(1), cell: 1.0, volume_error: Some(0.002), ..CellTry::default() },
+            CellTry { solid: Some(2), cell: 2.0, empty: true, ..CellTry::default() },
+        ];
+        assert!(octree_warnings(Some(&o))[0].ends_with("lattice vertices before the volume was within 1 %: solid 2 at 2.0000e0, no lattice vertex inside; give --size for a finer cell"));
+        assert_eq!(cell_choice(&o).unwrap(), "per solid, 3 tries from 2.0000e0 to cells of 1.0000e0 to 2.0000e0: 1 of 2 at the lattice budget short of it (WARNING below)");
     }
 
     #[test]

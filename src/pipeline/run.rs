@@ -123,7 +123,7 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
         return Ok(report);
     }
     let tess = plan.tessellate_options(part);
-    let result = if octree { part.mesh_octree(&field, &tess, &plan.octree, plan.density.size.is_none().then_some(super::octree::RESOLVE)).map(|_| ()) } else { part.mesh(&field, &tess, &plan.mesh).map(|_| ()) };
+    let result = if octree { part.mesh_octree(&field, &tess, &plan.octree, plan.density.size.is_none().then_some(crate::mesh3d::octree::RESOLVE)).map(|_| ()) } else { part.mesh(&field, &tess, &plan.mesh).map(|_| ()) };
     report.certificate_passed = part.certified.as_ref().map(|c| c.certificate.passed);
     result?;
     report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());

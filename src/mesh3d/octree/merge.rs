@@ -33,6 +33,9 @@ impl OctreeReport {
             out.volume += r.volume;
             out.input_volume += r.input_volume;
             out.input_volume_exact &= r.input_volume_exact;
+            out.cell_tries.extend(r.cell_tries.iter().cloned());
+            out.hausdorff_over_cell = out.hausdorff_over_cell.max(r.hausdorff_over_cell);
+            out.bound_over_cell = out.bound_over_cell.max(r.bound_over_cell);
             out.deviation = merged_deviation(&out.deviation, &r.deviation);
             for (stage, s) in &r.stage_seconds {
                 match out.stage_seconds.iter_mut().find(|(n, _)| n == stage) {

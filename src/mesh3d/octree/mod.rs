@@ -22,6 +22,9 @@
 //!    (found by the deviation's first sample of each);
 //! 7. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
 //!
+//! Around them, `resolve.rs` ([`mesh_octree_resolved`]) chooses the cell where no size is
+//! given: finer by √2 until the mesh holds the input's volume.
+//!
 //! # Invariants
 //! - Uniform mode: the stencils are the paper's, with its quadrilateral rules (the apex rule
 //!   and the parity rule, read off one background face, so the mesh is conforming; see
@@ -48,6 +51,7 @@ mod deviation;
 mod graded;
 mod lattice;
 mod merge;
+pub mod resolve;
 mod rows;
 mod stencil;
 mod tags;
@@ -55,6 +59,7 @@ mod winding;
 
 pub use deviation::{Deviation, deviation};
 pub use lattice::Lattice;
+pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
 pub use winding::Winding;
 
 use crate::core::predicates::orient3d;
@@ -160,27 +165,36 @@ pub struct OctreeReport {
     /// surface, whose stuffed volume is where the winding number exceeds one half.
     pub input_volume_exact: bool,
     /// Where no size was given: the cell sizes tried, coarsest first, the last the one
-    /// meshed (see `pipeline::octree`); empty when the cell came from a size.
+    /// meshed ([`resolve`]; solid by solid in an assembly); empty when the cell came from a
+    /// size.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub cell_tries: Vec<CellTry>,
+    /// The sampled Hausdorff distance over the cell size (the largest of the solids', each
+    /// against its own cell).
+    pub hausdorff_over_cell: f64,
+    /// The Hausdorff distance's bound over the cell size (likewise).
+    pub bound_over_cell: f64,
     /// The boundary's deviation from the input.
     pub deviation: Deviation,
     /// Seconds per stage.
     pub stage_seconds: Vec<(String, f64)>,
 }
 
-/// One cell size tried while choosing the default cell.
+/// One cell size tried while choosing the default cell ([`resolve`]).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct CellTry {
+    /// The solid (region tag) of an assembly meshed solid by solid; `None` otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid: Option<u32>,
     /// The cell size.
     pub cell: f64,
-    /// Lattice vertices (all solids).
+    /// Lattice vertices.
     pub lattice_vertices: usize,
-    /// The largest relative volume error of a solid whose input volume is exact
-    /// ([`OctreeReport::input_volume_exact`]); `None` where none is.
+    /// The relative volume error where the input volume is exact
+    /// ([`OctreeReport::input_volume_exact`]); `None` otherwise.
     pub volume_error: Option<f64>,
-    /// Solids holding no lattice vertex at this cell.
-    pub empty_solids: usize,
+    /// No lattice vertex was inside at this cell.
+    pub empty: bool,
 }
 
 /// A solid of an assembly the lattice does not reach into.
@@ -312,6 +326,8 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
         input_volume,
         input_volume_exact,
         cell_tries: Vec::new(),
+        hausdorff_over_cell: dev.hausdorff / h,
+        bound_over_cell: dev.hausdorff_bound / h,
         deviation: dev,
         stage_seconds: stages,
     };
