@@ -110,11 +110,19 @@ fn default_cell_holds(name: &str, solids: usize) {
     for tries in &by_solid {
         assert_eq!(tries[0].solid, if solids > 1 { tries[0].solid.filter(|s| *s >= 1) } else { None }, "{name}");
         assert!(tries.windows(2).all(|w| w[1].cell < w[0].cell), "{name}: {tries:?}");
-        assert!(tries[..tries.len() - 1].iter().all(|t| !RESOLVE.holds(t)) && RESOLVE.holds(tries.last().unwrap()), "{name}: {tries:?}");
+        // none holds before the first that does; one is kept, and it holds; at most
+        // `bound_tries` follow for the Hausdorff bound
+        let first = tries.iter().position(|t| RESOLVE.holds(t)).unwrap();
+        assert!(tries.len() - 1 - first <= RESOLVE.bound_tries, "{name}: {tries:?}");
+        let kept: Vec<_> = tries.iter().filter(|t| t.kept).collect();
+        assert!(kept.len() == 1 && RESOLVE.holds(kept[0]), "{name}: {tries:?}");
+        if kept[0].bound_over_cell <= 1.0 {
+            assert!(std::ptr::eq(*kept[0], *tries.last().unwrap()), "{name}: {tries:?}");
+        }
         // the first try is the mesh path's default size
         assert!((tries[0].cell - diagonal / 25.0).abs() < 1e-9 * diagonal, "{name}: {} vs {}", tries[0].cell, diagonal / 25.0);
     }
-    let finest = by_solid.iter().map(|g| g.last().unwrap().cell).fold(f64::INFINITY, f64::min);
+    let finest = o.cell_tries.iter().filter(|t| t.kept).map(|t| t.cell).fold(f64::INFINITY, f64::min);
     assert_eq!(finest, o.cell_size, "{name}");
 }
 

@@ -338,7 +338,7 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
         ));
     }
     let resolve = crate::mesh3d::octree::RESOLVE;
-    let short: Vec<String> = last_tries(o)
+    let short: Vec<String> = kept_tries(o)
         .into_iter()
         .filter(|t| !resolve.holds(t))
         .map(|t| {
@@ -370,16 +370,15 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
     out
 }
 
-/// The last try of each solid (of the part where its solids were not meshed one by one).
-fn last_tries(o: &crate::mesh3d::octree::OctreeReport) -> Vec<&crate::mesh3d::octree::CellTry> {
-    let t = &o.cell_tries;
-    (0..t.len()).filter(|&i| i + 1 == t.len() || t[i + 1].solid != t[i].solid).map(|i| &t[i]).collect()
+/// The try kept for each solid (for the part where its solids were not meshed one by one).
+fn kept_tries(o: &crate::mesh3d::octree::OctreeReport) -> Vec<&crate::mesh3d::octree::CellTry> {
+    o.cell_tries.iter().filter(|t| t.kept).collect()
 }
 
 /// The line that says how the default cell was chosen; `None` where a size was given.
 pub(crate) fn cell_choice(o: &crate::mesh3d::octree::OctreeReport) -> Option<String> {
     let first = o.cell_tries.first()?;
-    let last = last_tries(o);
+    let last = kept_tries(o);
     let resolve = crate::mesh3d::octree::RESOLVE;
     let held = last.iter().filter(|t| resolve.holds(t)).count();
     let why = if held == last.len() {
@@ -389,9 +388,9 @@ pub(crate) fn cell_choice(o: &crate::mesh3d::octree::OctreeReport) -> Option<Str
     };
     let (lo, hi) = last.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (lo.min(t.cell), hi.max(t.cell)));
     Some(if last.len() == 1 {
-        format!("{} tries from {:.4e} to {:.4e}: {why}", o.cell_tries.len(), first.cell, lo)
+        format!("{} tries from {:.4e}, kept {:.4e}: {why}", o.cell_tries.len(), first.cell, lo)
     } else {
-        format!("per solid, {} tries from {:.4e} to cells of {:.4e} to {:.4e}: {why}", o.cell_tries.len(), first.cell, lo, hi)
+        format!("per solid, {} tries from {:.4e}, kept cells of {:.4e} to {:.4e}: {why}", o.cell_tries.len(), first.cell, lo, hi)
     })
 }
 
@@ -437,9 +436,9 @@ mod tests {
         use crate::mesh3d::octree::{CellTry, OctreeReport};
         let mut o = OctreeReport { cell_size: 1.0, ..OctreeReport::default() };
         assert_eq!(cell_choice(&o), None, "a size given");
-        o.cell_tries = vec![CellTry { cell: 2.0, empty: true, ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), ..CellTry::default() }];
+        o.cell_tries = vec![CellTry { cell: 2.0, empty: true, ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), kept: true, ..CellTry::default() }];
         assert!(octree_warnings(Some(&o)).is_empty(), "the last try holds");
-        assert_eq!(cell_choice(&o).unwrap(), "2 tries from 2.0000e0 to 1.0000e0: the volume within 1 %");
+        assert_eq!(cell_choice(&o).unwrap(), "2 tries from 2.0000e0, kept 1.0000e0: the volume within 1 %");
         o.cell_tries[1].volume_error = Some(0.0234);
         let w = octree_warnings(Some(&o));
         assert_eq!(w.len(), 1, "{w:?}");
@@ -447,11 +446,12 @@ mod tests {
         // solid by solid: the last try of each
         o.cell_tries = vec![
             CellTry { solid: Some(1), cell: 2.0, volume_error: Some(0.2), ..CellTry::default() },
-            CellTry { solid: Some(1), cell: 1.0, volume_error: Some(0.002), ..CellTry::default() },
-            CellTry { solid: Some(2), cell: 2.0, empty: true, ..CellTry::default() },
+            CellTry { solid: Some(1), cell: 1.0, volume_error: Some(0.002), kept: true, ..CellTry::default() },
+            CellTry { solid: Some(1), cell: 0.7, volume_error: Some(0.001), ..CellTry::default() },
+            CellTry { solid: Some(2), cell: 2.0, empty: true, kept: true, ..CellTry::default() },
         ];
         assert!(octree_warnings(Some(&o))[0].ends_with("lattice vertices before the volume was within 1 %: solid 2 at 2.0000e0, no lattice vertex inside; give --size for a finer cell"));
-        assert_eq!(cell_choice(&o).unwrap(), "per solid, 3 tries from 2.0000e0 to cells of 1.0000e0 to 2.0000e0: 1 of 2 at the lattice budget short of it (WARNING below)");
+        assert_eq!(cell_choice(&o).unwrap(), "per solid, 4 tries from 2.0000e0, kept cells of 1.0000e0 to 2.0000e0: 1 of 2 at the lattice budget short of it (WARNING below)");
     }
 
     #[test]

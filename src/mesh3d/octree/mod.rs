@@ -195,6 +195,10 @@ pub struct CellTry {
     pub volume_error: Option<f64>,
     /// No lattice vertex was inside at this cell.
     pub empty: bool,
+    /// The Hausdorff distance's bound over the cell size.
+    pub bound_over_cell: f64,
+    /// This try's mesh is the one kept.
+    pub kept: bool,
 }
 
 /// A solid of an assembly the lattice does not reach into.

@@ -12,7 +12,11 @@
 //! where its input volume is exact ([`OctreeReport::input_volume_exact`]), the mesh is within
 //! [`Resolve::volume_error`] of it; or until the next try would build more than
 //! [`Resolve::max_lattice_vertices`]: then the last mesh is kept and its tries show how far it
-//! got. Counts, never clocks: the same cells on any machine.
+//! got. Where the volume holds but the Hausdorff bound is above the cell (sharp edges and
+//! thin fins rounded off by about a cell: featuretype, wing_fuselage), up to
+//! [`Resolve::bound_tries`] finer tries follow, and the one with the smallest bound over its
+//! cell is kept (a dirty input's inner faces stay as far from the boundary whatever the cell:
+//! there the first is kept). Counts, never clocks: the same cells on any machine.
 
 use super::{CellTry, Lattice, OctreeError, OctreeOptions, OctreeReport, cell_size, mesh_octree};
 use crate::core::{RegionId, SizeField};
@@ -26,11 +30,15 @@ pub struct Resolve {
     pub volume_error: f64,
     /// The most lattice vertices a try may build (per solid).
     pub max_lattice_vertices: u64,
+    /// Tries after the first that holds the volume, while the Hausdorff bound is above the
+    /// cell (sharp features rounded off by a cell); the one with the smallest bound over its
+    /// cell is kept.
+    pub bound_tries: usize,
 }
 
 /// The default: within 1 % of the volume, at most 2^23 lattice vertices a solid (about
-/// 25 million tets where the solid fills its box).
-pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23 };
+/// 25 million tets where the solid fills its box), three tries for the Hausdorff bound.
+pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 3 };
 
 /// Each try's cell is the last one's over this.
 const STEP: f64 = std::f64::consts::SQRT_2;
@@ -68,19 +76,36 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
     let bbox = surface.bbox();
     let count = |h: f64| Lattice::covering(&bbox, h).ok().map(|l| l.num_vertices());
     let mut h = cell_size(surface, size);
-    let mut tries = Vec::new();
+    let mut tries: Vec<CellTry> = Vec::new();
+    // the try kept so far (its index in `tries`): the one that holds the volume with the
+    // smallest bound over its cell; tries after the first that holds, for the bound
+    let mut best: Option<(usize, TetMesh, OctreeReport)> = None;
+    let mut bound_tries = 0;
     loop {
         let result = mesh_octree(surface, &Capped { inner: size, cap: h }, opts);
         let next = h / STEP;
         let room = count(next).is_some_and(|n| n as u64 <= r.max_lattice_vertices);
         match result {
-            Ok((mesh, mut report)) => {
-                let t = CellTry { cell: report.cell_size, lattice_vertices: report.lattice_vertices, volume_error: volume_error(&report), ..CellTry::default() };
-                let done = r.holds(&t) || !room;
+            Ok((mesh, report)) => {
+                let t = CellTry { cell: report.cell_size, lattice_vertices: report.lattice_vertices, volume_error: volume_error(&report), bound_over_cell: report.bound_over_cell, ..CellTry::default() };
+                let holds = r.holds(&t);
+                let within = t.bound_over_cell <= 1.0;
                 tries.push(t);
-                if done {
-                    report.cell_tries = tries;
-                    return Ok((mesh, report));
+                let k = tries.len() - 1;
+                if holds && best.as_ref().is_none_or(|b| report.bound_over_cell < b.2.bound_over_cell) {
+                    best = Some((k, mesh, report));
+                } else if best.is_none() && !room {
+                    // short of the volume at the budget: the last try
+                    best = Some((k, mesh, report));
+                }
+                if best.is_some() {
+                    bound_tries += usize::from(k > 0 && tries[..k].iter().any(|t| r.holds(t)));
+                    if (holds && within) || bound_tries >= r.bound_tries || !room {
+                        let (k, mesh, mut report) = best.take().ok_or_else(|| OctreeError::Internal("no try kept".into()))?;
+                        tries[k].kept = true;
+                        report.cell_tries = tries;
+                        return Ok((mesh, report));
+                    }
                 }
             }
             Err(OctreeError::Empty(_)) if room => tries.push(CellTry { cell: h, lattice_vertices: count(h).unwrap_or(0), empty: true, ..CellTry::default() }),
@@ -99,6 +124,23 @@ pub fn volume_error(r: &OctreeReport) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::core::size_field::UniformSize;
+
+    /// The tries' invariants: none holds before the first that does, exactly one is kept,
+    /// it holds and is the mesh's cell, and at most [`Resolve::bound_tries`] follow the first
+    /// that holds, the last of them only where the kept one's bound is above its cell.
+    pub(crate) fn check_tries(tries: &[CellTry], cell: f64) {
+        let first = tries.iter().position(|t| RESOLVE.holds(t)).unwrap_or_else(|| panic!("none holds: {tries:?}"));
+        let kept: Vec<&CellTry> = tries.iter().filter(|t| t.kept).collect();
+        assert_eq!(kept.len(), 1, "{tries:?}");
+        assert!(RESOLVE.holds(kept[0]) && kept[0].cell == cell, "{tries:?}");
+        assert!(tries.len() - 1 - first <= RESOLVE.bound_tries, "{tries:?}");
+        if kept[0].bound_over_cell <= 1.0 {
+            assert!(std::ptr::eq(kept[0], tries.last().unwrap()), "{tries:?}");
+        } else {
+            let best = tries[first..].iter().filter(|t| RESOLVE.holds(t)).map(|t| t.bound_over_cell).fold(f64::INFINITY, f64::min);
+            assert_eq!(kept[0].bound_over_cell, best, "{tries:?}");
+        }
+    }
 
     #[test]
     fn a_capped_field_is_never_coarser_than_its_cap() {
@@ -131,13 +173,13 @@ mod tests {
         let tries = &report.cell_tries;
         assert!(tries[0].empty && (tries[0].cell - 0.1).abs() < 1e-12, "{tries:?}");
         assert!(tries.windows(2).all(|w| (w[0].cell / w[1].cell - STEP).abs() < 1e-9), "{tries:?}");
-        assert!(RESOLVE.holds(tries.last().unwrap()) && tries[..tries.len() - 1].iter().all(|t| !RESOLVE.holds(t)), "{tries:?}");
+        check_tries(tries, report.cell_size);
         assert!(volume_error(&report).unwrap() <= 0.01);
         // a budget too small for any try that holds: the error names the last cell
         let small = Resolve { max_lattice_vertices: 2_000, ..RESOLVE };
         match mesh_octree_resolved(&s, &UniformSize(0.1), &OctreeOptions::default(), small) {
             Err(OctreeError::Empty(h)) => assert!(h <= 0.1 && Lattice::covering(&s.bbox(), h / STEP).unwrap().num_vertices() > 2_000),
-            Ok((_, r)) => assert!(!RESOLVE.holds(r.cell_tries.last().unwrap()), "{:?}", r.cell_tries),
+            Ok((_, r)) => assert!(r.cell_tries.iter().all(|t| !RESOLVE.holds(t)) && r.cell_tries.last().unwrap().kept, "{:?}", r.cell_tries),
             Err(e) => panic!("{e}"),
         }
     }
