@@ -231,3 +231,21 @@ fn a_solid_thinner_than_the_cell_is_named() {
     // (2.0043e1 against the cell of 12)
     assert!(err.contains("WARNING: the boundary strays 2.0043e1 from the input at ") && err.contains("(sampled), 1.670 times the cell size there"), "{err}");
 }
+
+/// A surface whose triangles face inward (as some tessellated STEP files and STL exports
+/// come) encloses a negative volume and winding number −1: meshed turned outward, and said.
+#[test]
+fn an_inward_surface_is_meshed_turned_outward() {
+    let mut s = fepre::mesh::shapes::plate_with_hole(16, 10.0, 2.0, 2.0);
+    let volume = s.signed_volume();
+    for t in &mut s.triangles {
+        t.swap(1, 2);
+    }
+    let mut part = Part::from_surface(Path::new("inward.stl"), s);
+    let plan = Plan { unit: 1.0, method: Method::Octree, ..Plan::default() };
+    let report = run_plan(&mut part, &plan, false).unwrap();
+    let o = report.octree.unwrap();
+    assert!(o.turned_outward && o.input_volume_exact);
+    assert!((o.volume / volume - 1.0).abs() <= 0.01 && (o.input_volume - volume).abs() < 1e-9 * volume, "{} {} {volume}", o.volume, o.input_volume);
+    part.mesh.as_ref().unwrap().validate().unwrap();
+}

@@ -337,6 +337,9 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
             names.join(", ")
         ));
     }
+    if o.turned_outward {
+        out.push("WARNING: the surface encloses a negative volume (its triangles face inward): meshed turned outward".to_string());
+    }
     let resolve = crate::mesh3d::octree::RESOLVE;
     let short: Vec<String> = kept_tries(o)
         .into_iter()
@@ -436,6 +439,9 @@ mod tests {
         use crate::mesh3d::octree::{CellTry, OctreeReport};
         let mut o = OctreeReport { cell_size: 1.0, ..OctreeReport::default() };
         assert_eq!(cell_choice(&o), None, "a size given");
+        o.turned_outward = true;
+        assert_eq!(octree_warnings(Some(&o)), vec!["WARNING: the surface encloses a negative volume (its triangles face inward): meshed turned outward".to_string()]);
+        o.turned_outward = false;
         o.cell_tries = vec![CellTry { cell: 2.0, empty: true, ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), kept: true, ..CellTry::default() }];
         assert!(octree_warnings(Some(&o)).is_empty(), "the last try holds");
         assert_eq!(cell_choice(&o).unwrap(), "2 tries from 2.0000e0, kept 1.0000e0: the volume within 1 %");

@@ -85,7 +85,7 @@ impl Part {
                         meshes.push(m);
                         reports.push(r);
                     }
-                    Err(e @ OctreeError::Empty(_)) => {
+                    Err(e @ (OctreeError::Empty(_) | OctreeError::EmptyWithin { .. })) => {
                         meshes.push(TetMesh::default());
                         empty.push(EmptySolid { solid: info.tag.0, name: info.name.clone(), volume: one.signed_volume() });
                         first_empty.get_or_insert((k, e));
@@ -108,7 +108,18 @@ impl Part {
             report.empty_solids = empty;
             Ok((mesh, report, contacts))
         } else {
-            let (mut mesh, report) = mesh_one(surface).map_err(octree_error)?;
+            // a surface whose triangles face inward (a negative volume) has winding number −1
+            // inside: meshed turned outward, and said
+            let outward;
+            let turned = surface.signed_volume() < 0.0;
+            let surface = if turned {
+                outward = turned_outward(surface);
+                &outward
+            } else {
+                surface
+            };
+            let (mut mesh, mut report) = mesh_one(surface).map_err(octree_error)?;
+            report.turned_outward = turned;
             if let [solid] = &solids.solids[..] {
                 if let Some(name) = &solid.name {
                     mesh.region_names.insert(RegionId(1), name.clone());
@@ -119,3 +130,22 @@ impl Part {
     }
 }
 
+/// `s` with every triangle turned the other way.
+fn turned_outward(s: &TriSurface) -> TriSurface {
+    let mut t = s.clone();
+    for tri in &mut t.triangles {
+        tri.swap(1, 2);
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_surface_turned_outward_has_the_opposite_volume() {
+        let s = crate::mesh::shapes::plate_with_hole(8, 2.0, 0.5, 0.4);
+        let t = super::turned_outward(&s);
+        assert!(s.signed_volume() > 0.0 && (t.signed_volume() + s.signed_volume()).abs() < 1e-12);
+        assert_eq!(super::turned_outward(&t).triangles, s.triangles);
+    }
+}

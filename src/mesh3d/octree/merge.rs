@@ -33,6 +33,7 @@ impl OctreeReport {
             out.volume += r.volume;
             out.input_volume += r.input_volume;
             out.input_volume_exact &= r.input_volume_exact;
+            out.turned_outward |= r.turned_outward;
             out.cell_tries.extend(r.cell_tries.iter().cloned());
             out.hausdorff_over_cell = out.hausdorff_over_cell.max(r.hausdorff_over_cell);
             out.bound_over_cell = out.bound_over_cell.max(r.bound_over_cell);

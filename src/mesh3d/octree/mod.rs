@@ -159,6 +159,10 @@ pub struct OctreeReport {
     /// The input's signed volume by the divergence theorem (the integral of its winding
     /// number; the enclosed volume for a closed outward surface).
     pub input_volume: f64,
+    /// The surface enclosed a negative volume (its triangles face inward) and was meshed
+    /// turned outward (the pipeline's decision, for one surface meshed whole).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub turned_outward: bool,
     /// Whether `input_volume` is the volume the mesh approximates: the surface is closed and
     /// consistently oriented (a 2-cycle) and its winding number is 0 or 1 at every lattice
     /// vertex (no nested or overlapping shells). Not so for an open or self-overlapping
@@ -222,6 +226,14 @@ pub enum OctreeError {
     /// Nothing is inside.
     #[error("no lattice vertex is inside the surface at cell size {0:.4e}: a finer size, or a surface that encloses a volume")]
     Empty(f64),
+    /// Nothing is inside at the finest default cell the lattice budget allows.
+    #[error("no lattice vertex is inside the surface down to cell size {h:.4e}, where the default cell stops (a finer one would build more than {budget} lattice vertices): give --size, or check that the surface encloses a volume")]
+    EmptyWithin {
+        /// The last cell tried.
+        h: f64,
+        /// The budget of lattice vertices.
+        budget: u64,
+    },
     /// A stencil tet came out flat or inside out.
     #[error("{count} tets came out flat or inverted after warping (first near ({:.6}, {:.6}, {:.6})); the angle guarantee does not hold for this surface at cell size {h:.4e}", at.x, at.y, at.z)]
     Inverted {
@@ -329,6 +341,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
         volume,
         input_volume,
         input_volume_exact,
+        turned_outward: false,
         cell_tries: Vec::new(),
         hausdorff_over_cell: dev.hausdorff / h,
         bound_over_cell: dev.hausdorff_bound / h,

@@ -70,8 +70,8 @@ impl SizeField for Capped<'_> {
 /// the module docs.
 ///
 /// # Errors
-/// As [`mesh_octree`]; [`OctreeError::Empty`] when no try within the budget holds a lattice
-/// vertex.
+/// As [`mesh_octree`]; [`OctreeError::EmptyWithin`] when no try within the budget holds a
+/// lattice vertex.
 pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions, r: Resolve) -> Result<(TetMesh, OctreeReport), OctreeError> {
     let bbox = surface.bbox();
     let count = |h: f64| Lattice::covering(&bbox, h).ok().map(|l| l.num_vertices());
@@ -109,6 +109,7 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
                 }
             }
             Err(OctreeError::Empty(_)) if room => tries.push(CellTry { cell: h, lattice_vertices: count(h).unwrap_or(0), empty: true, ..CellTry::default() }),
+            Err(OctreeError::Empty(_)) => return Err(OctreeError::EmptyWithin { h, budget: r.max_lattice_vertices }),
             Err(e) => return Err(e),
         }
         h = next;
@@ -178,7 +179,7 @@ mod tests {
         // a budget too small for any try that holds: the error names the last cell
         let small = Resolve { max_lattice_vertices: 2_000, ..RESOLVE };
         match mesh_octree_resolved(&s, &UniformSize(0.1), &OctreeOptions::default(), small) {
-            Err(OctreeError::Empty(h)) => assert!(h <= 0.1 && Lattice::covering(&s.bbox(), h / STEP).unwrap().num_vertices() > 2_000),
+            Err(OctreeError::EmptyWithin { h, budget }) => assert!(budget == 2_000 && h <= 0.1 && Lattice::covering(&s.bbox(), h / STEP).unwrap().num_vertices() > 2_000),
             Ok((_, r)) => assert!(r.cell_tries.iter().all(|t| !RESOLVE.holds(t)) && r.cell_tries.last().unwrap().kept, "{:?}", r.cell_tries),
             Err(e) => panic!("{e}"),
         }
