@@ -108,10 +108,11 @@ impl Part {
             report.empty_solids = empty;
             Ok((mesh, report, contacts))
         } else {
-            // a surface whose triangles face inward (a negative volume) has winding number −1
-            // inside: meshed turned outward, and said
+            // a closed surface whose triangles face inward (a negative volume) has winding
+            // number −1 inside: meshed turned outward, and said (an open one's volume has no
+            // sign to go by)
             let outward;
-            let turned = surface.signed_volume() < 0.0;
+            let turned = surface.signed_volume() < 0.0 && crate::mesh3d::octree::is_cycle(surface);
             let surface = if turned {
                 outward = turned_outward(surface);
                 &outward

@@ -60,6 +60,7 @@ mod winding;
 pub use deviation::{Deviation, deviation};
 pub use lattice::Lattice;
 pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
+pub use rows::is_cycle;
 pub use winding::Winding;
 
 use crate::core::predicates::orient3d;
