@@ -337,6 +337,9 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
             names.join(", ")
         ));
     }
+    if let Some(m) = &o.overlap {
+        out.push(format!("WARNING: {m}; each solid was meshed on its own (isosurface stuffing), so the overlap is meshed in both and no contacts are listed"));
+    }
     if o.turned_outward {
         out.push("WARNING: the surface encloses a negative volume (its triangles face inward): meshed turned outward".to_string());
     }
@@ -442,6 +445,9 @@ mod tests {
         o.turned_outward = true;
         assert_eq!(octree_warnings(Some(&o)), vec!["WARNING: the surface encloses a negative volume (its triangles face inward): meshed turned outward".to_string()]);
         o.turned_outward = false;
+        o.overlap = Some("a.step: solid 1 and solid 2 overlap".into());
+        assert_eq!(octree_warnings(Some(&o)), vec!["WARNING: a.step: solid 1 and solid 2 overlap; each solid was meshed on its own (isosurface stuffing), so the overlap is meshed in both and no contacts are listed".to_string()]);
+        o.overlap = None;
         o.cell_tries = vec![CellTry { cell: 2.0, empty: true, ..CellTry::default() }, CellTry { cell: 1.0, volume_error: Some(0.004), kept: true, ..CellTry::default() }];
         assert!(octree_warnings(Some(&o)).is_empty(), "the last try holds");
         assert_eq!(cell_choice(&o).unwrap(), "2 tries from 2.0000e0, kept 1.0000e0: the volume within 1 %");

@@ -12,7 +12,7 @@ use super::PipelineError;
 use super::part::Part;
 use crate::core::{RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{MeshReport, assembly_contacts, merge_solids, solid_surfaces};
+use crate::mesh3d::mesher::{MeshReport, MeshingError, assembly_contacts, merge_solids, solid_surfaces};
 use crate::mesh3d::octree::{EmptySolid, OctreeError, OctreeOptions, OctreeReport, Resolve, mesh_octree, mesh_octree_resolved};
 use crate::tessellate::TessellateOptions;
 use std::time::Instant;
@@ -67,7 +67,13 @@ impl Part {
             None => mesh_octree(one, size, opts),
         };
         if self.model.is_some() && solids.solids.len() > 1 {
-            let mut contacts = assembly_contacts(surface, &solids, gap_of(self)).map_err(|source| self.meshing_error(source))?;
+            // solids that overlap cannot share a conforming mesh, but each has its own
+            // winding number: meshed one by one, the overlap said (it is in both)
+            let (mut contacts, overlap) = match assembly_contacts(surface, &solids, gap_of(self)) {
+                Ok(c) => (c, None),
+                Err(e @ MeshingError::Overlap { .. }) => (Vec::new(), Some(self.meshing_error(e).to_string())),
+                Err(source) => return Err(self.meshing_error(source)),
+            };
             let mut meshes = Vec::with_capacity(solids.solids.len());
             let mut reports = Vec::with_capacity(solids.solids.len());
             // one solid after the other: each is meshed in parallel, and one lattice at a time
@@ -106,6 +112,7 @@ impl Part {
             report.solids = solids.solids.len();
             report.input_volume += empty.iter().map(|e| e.volume).sum::<f64>();
             report.empty_solids = empty;
+            report.overlap = overlap;
             Ok((mesh, report, contacts))
         } else {
             // a closed surface whose triangles face inward (a negative volume) has winding

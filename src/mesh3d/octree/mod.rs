@@ -164,6 +164,10 @@ pub struct OctreeReport {
     /// turned outward (the pipeline's decision, for one surface meshed whole).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub turned_outward: bool,
+    /// Two solids of an assembly overlap (the pipeline's check, its message): each was
+    /// meshed on its own, so the overlap is meshed in both; no contacts are listed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overlap: Option<String>,
     /// Whether `input_volume` is the volume the mesh approximates: the surface is closed and
     /// consistently oriented (a 2-cycle) and its winding number is 0 or 1 at every lattice
     /// vertex (no nested or overlapping shells). Not so for an open or self-overlapping
@@ -343,6 +347,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
         input_volume,
         input_volume_exact,
         turned_outward: false,
+        overlap: None,
         cell_tries: Vec::new(),
         hausdorff_over_cell: dev.hausdorff / h,
         bound_over_cell: dev.hausdorff_bound / h,
