@@ -276,3 +276,25 @@ fn overlapping_solids_mesh_one_by_one_and_the_overlap_is_said() {
     let e = run_plan(&mut part, &Plan { unit: 1.0, ..Plan::default() }, false).unwrap_err().to_string();
     assert!(e.contains("overlap"), "{e}");
 }
+
+/// An open surface (the corpus' `rabbit.obj`, with holes) has no exact volume: at the default
+/// the cell gets finer until the mesh's volume changes by at most 1 % from one cell to the
+/// next (it converges to the winding number's); without that, the first cell was 3.5 % under
+/// the volume it converges to.
+#[test]
+fn an_open_surface_gets_a_cell_whose_volume_has_settled() {
+    use fepre::mesh3d::octree::RESOLVE;
+    let Some(path) = common::corpus_file("rabbit.obj") else { return };
+    let mut part = Part::open(&path).unwrap();
+    let plan = Plan { unit: 1.0, method: Method::Octree, ..Plan::default() };
+    let o = run_plan(&mut part, &plan, false).unwrap().octree.unwrap();
+    assert!(!o.input_volume_exact);
+    let t = &o.cell_tries;
+    assert!(t.len() >= 3 && t.iter().all(|t| t.volume_error.is_none() && !t.empty), "{t:?}");
+    assert!(t[0].volume_change.is_none() && t[1..].iter().all(|t| t.volume_change.is_some()), "{t:?}");
+    let kept: Vec<_> = t.iter().filter(|t| t.kept).collect();
+    assert!(kept.len() == 1 && RESOLVE.holds(kept[0]) && kept[0].cell == o.cell_size, "{t:?}");
+    // none before the kept one holds
+    assert!(t.iter().take_while(|x| !x.kept).all(|x| !RESOLVE.holds(x)), "{t:?}");
+    part.mesh.as_ref().unwrap().validate().unwrap();
+}

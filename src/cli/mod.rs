@@ -349,15 +349,17 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
         .filter(|t| !resolve.holds(t))
         .map(|t| {
             let solid = t.solid.map(|s| format!("solid {s} ")).unwrap_or_default();
-            match t.volume_error {
-                Some(e) if !t.empty => format!("{solid}at {:.4e}, {:.3} % off", t.cell, 100.0 * e),
-                _ => format!("{solid}at {:.4e}, no lattice vertex inside", t.cell),
+            match (t.empty, t.volume_error, t.volume_change) {
+                (true, _, _) => format!("{solid}at {:.4e}, no lattice vertex inside", t.cell),
+                (false, Some(e), _) => format!("{solid}at {:.4e}, {:.3} % off", t.cell, 100.0 * e),
+                (false, None, Some(c)) => format!("{solid}at {:.4e}, its volume still changing by {:.3} % from the cell before", t.cell, 100.0 * c),
+                (false, None, None) => format!("{solid}at {:.4e}, one cell only", t.cell),
             }
         })
         .collect();
     if !short.is_empty() {
         out.push(format!(
-            "WARNING: the default cell stopped at the budget of {} lattice vertices before the volume was within {} %: {}; give --size for a finer cell",
+            "WARNING: the default cell stopped (at the budget of {} lattice vertices, or the tries for a volume without an exact reference) before the volume was within {} %: {}; give --size for a finer cell",
             resolve.max_lattice_vertices,
             100.0 * resolve.volume_error,
             short.join(", ")
@@ -390,7 +392,7 @@ pub(crate) fn cell_choice(o: &crate::mesh3d::octree::OctreeReport) -> Option<Str
     let why = if held == last.len() {
         format!("the volume within {} %", 100.0 * resolve.volume_error)
     } else {
-        format!("{} of {} at the lattice budget short of it (WARNING below)", last.len() - held, last.len())
+        format!("{} of {} stopped short of it (WARNING below)", last.len() - held, last.len())
     };
     let (lo, hi) = last.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (lo.min(t.cell), hi.max(t.cell)));
     Some(if last.len() == 1 {
@@ -454,7 +456,10 @@ mod tests {
         o.cell_tries[1].volume_error = Some(0.0234);
         let w = octree_warnings(Some(&o));
         assert_eq!(w.len(), 1, "{w:?}");
-        assert_eq!(w[0], "WARNING: the default cell stopped at the budget of 8388608 lattice vertices before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
+        assert_eq!(w[0], "WARNING: the default cell stopped (at the budget of 8388608 lattice vertices, or the tries for a volume without an exact reference) before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
+        o.cell_tries[1] = CellTry { cell: 1.0, volume_change: Some(0.05), kept: true, ..CellTry::default() };
+        assert!(octree_warnings(Some(&o))[0].contains(": at 1.0000e0, its volume still changing by 5.000 % from the cell before; give --size"));
+        o.cell_tries[1] = CellTry { cell: 1.0, volume_error: Some(0.0234), kept: true, ..CellTry::default() };
         // solid by solid: the last try of each
         o.cell_tries = vec![
             CellTry { solid: Some(1), cell: 2.0, volume_error: Some(0.2), ..CellTry::default() },
@@ -462,8 +467,8 @@ mod tests {
             CellTry { solid: Some(1), cell: 0.7, volume_error: Some(0.001), ..CellTry::default() },
             CellTry { solid: Some(2), cell: 2.0, empty: true, kept: true, ..CellTry::default() },
         ];
-        assert!(octree_warnings(Some(&o))[0].ends_with("lattice vertices before the volume was within 1 %: solid 2 at 2.0000e0, no lattice vertex inside; give --size for a finer cell"));
-        assert_eq!(cell_choice(&o).unwrap(), "per solid, 4 tries from 2.0000e0, kept cells of 1.0000e0 to 2.0000e0: 1 of 2 at the lattice budget short of it (WARNING below)");
+        assert!(octree_warnings(Some(&o))[0].ends_with("before the volume was within 1 %: solid 2 at 2.0000e0, no lattice vertex inside; give --size for a finer cell"));
+        assert_eq!(cell_choice(&o).unwrap(), "per solid, 4 tries from 2.0000e0, kept cells of 1.0000e0 to 2.0000e0: 1 of 2 stopped short of it (WARNING below)");
     }
 
     #[test]

@@ -202,6 +202,9 @@ pub struct CellTry {
     /// The relative volume error where the input volume is exact
     /// ([`OctreeReport::input_volume_exact`]); `None` otherwise.
     pub volume_error: Option<f64>,
+    /// Where the input volume is not exact: the relative change of the mesh's volume from
+    /// the try before (`None` for the first with lattice vertices inside).
+    pub volume_change: Option<f64>,
     /// No lattice vertex was inside at this cell.
     pub empty: bool,
     /// The Hausdorff distance's bound over the cell size.

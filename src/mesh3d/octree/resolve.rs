@@ -16,7 +16,10 @@
 //! thin fins rounded off by about a cell: featuretype, wing_fuselage), up to
 //! [`Resolve::bound_tries`] finer tries follow, and the one with the smallest bound over its
 //! cell is kept (a dirty input's inner faces stay as far from the boundary whatever the cell:
-//! there the first is kept). Counts, never clocks: the same cells on any machine.
+//! there the first is kept). An input without an exact volume (open, overlapping) has its mesh
+//! volume judged by how little it changes from one cell to the next (the stuffed volume
+//! converges to the winding number's), for at most [`Resolve::change_tries`] tries after the
+//! first with lattice vertices inside. Counts, never clocks: the same cells on any machine.
 
 use super::{CellTry, Lattice, OctreeError, OctreeOptions, OctreeReport, cell_size, mesh_octree};
 use crate::core::{RegionId, SizeField};
@@ -34,19 +37,30 @@ pub struct Resolve {
     /// cell (sharp features rounded off by a cell); the one with the smallest bound over its
     /// cell is kept.
     pub bound_tries: usize,
+    /// Tries at most, after the first with lattice vertices inside, for an input without an
+    /// exact volume (open, overlapping), whose mesh volume is judged by how little it changes
+    /// from one cell to the next.
+    pub change_tries: usize,
 }
 
 /// The default: within 1 % of the volume, at most 2^23 lattice vertices a solid (about
-/// 25 million tets where the solid fills its box), three tries for the Hausdorff bound.
-pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 3 };
+/// 25 million tets where the solid fills its box), three tries for the Hausdorff bound, five
+/// for an inexact volume to settle.
+pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 3, change_tries: 5 };
 
 /// Each try's cell is the last one's over this.
 const STEP: f64 = std::f64::consts::SQRT_2;
 
 impl Resolve {
-    /// Whether a try is accepted: lattice vertices inside, the exact volume within bounds.
+    /// Whether a try is accepted: lattice vertices inside, and the exact volume within bounds
+    /// or, where the input has none, the mesh's volume within bounds of the try before.
     pub fn holds(&self, t: &CellTry) -> bool {
-        !t.empty && t.volume_error.is_none_or(|e| e <= self.volume_error)
+        !t.empty
+            && match (t.volume_error, t.volume_change) {
+                (Some(e), _) => e <= self.volume_error,
+                (None, Some(c)) => c <= self.volume_error,
+                (None, None) => false,
+            }
     }
 }
 
@@ -81,26 +95,35 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
     // smallest bound over its cell; tries after the first that holds, for the bound
     let mut best: Option<(usize, TetMesh, OctreeReport)> = None;
     let mut bound_tries = 0;
+    // the last mesh volume, and how many tries had lattice vertices inside
+    let mut previous: Option<f64> = None;
+    let mut inside = 0;
     loop {
         let result = mesh_octree(surface, &Capped { inner: size, cap: h }, opts);
         let next = h / STEP;
         let room = count(next).is_some_and(|n| n as u64 <= r.max_lattice_vertices);
         match result {
             Ok((mesh, report)) => {
-                let t = CellTry { cell: report.cell_size, lattice_vertices: report.lattice_vertices, volume_error: volume_error(&report), bound_over_cell: report.bound_over_cell, ..CellTry::default() };
+                let error = volume_error(&report);
+                let change = previous.filter(|_| error.is_none()).map(|v| (report.volume / v - 1.0).abs());
+                previous = Some(report.volume);
+                inside += 1;
+                let t = CellTry { cell: report.cell_size, lattice_vertices: report.lattice_vertices, volume_error: error, volume_change: change, bound_over_cell: report.bound_over_cell, ..CellTry::default() };
                 let holds = r.holds(&t);
+                // an inexact volume that does not settle: the last try stands
+                let unsettled = error.is_none() && inside > r.change_tries;
                 let within = t.bound_over_cell <= 1.0;
                 tries.push(t);
                 let k = tries.len() - 1;
                 if holds && best.as_ref().is_none_or(|b| report.bound_over_cell < b.2.bound_over_cell) {
                     best = Some((k, mesh, report));
-                } else if best.is_none() && !room {
+                } else if best.is_none() && (!room || unsettled) {
                     // short of the volume at the budget: the last try
                     best = Some((k, mesh, report));
                 }
                 if best.is_some() {
                     bound_tries += usize::from(k > 0 && tries[..k].iter().any(|t| r.holds(t)));
-                    if (holds && within) || bound_tries >= r.bound_tries || !room {
+                    if (holds && within) || bound_tries >= r.bound_tries || !room || unsettled {
                         let (k, mesh, mut report) = best.take().ok_or_else(|| OctreeError::Internal("no try kept".into()))?;
                         tries[k].kept = true;
                         report.cell_tries = tries;
@@ -161,7 +184,10 @@ mod tests {
         assert!(!RESOLVE.holds(&CellTry { empty: true, ..CellTry::default() }));
         assert!(RESOLVE.holds(&CellTry { volume_error: Some(0.01), ..CellTry::default() }));
         assert!(!RESOLVE.holds(&CellTry { volume_error: Some(0.0101), ..CellTry::default() }));
-        assert!(RESOLVE.holds(&CellTry::default()), "no exact volume: inside is enough");
+        assert!(!RESOLVE.holds(&CellTry::default()), "no exact volume and nothing to compare with");
+        assert!(RESOLVE.holds(&CellTry { volume_change: Some(0.004), ..CellTry::default() }));
+        assert!(!RESOLVE.holds(&CellTry { volume_change: Some(0.04), ..CellTry::default() }));
+        assert!(!RESOLVE.holds(&CellTry { volume_error: Some(0.02), volume_change: Some(0.001), ..CellTry::default() }), "the exact volume decides");
     }
 
     /// A plate 0.05 thick and 1 across with a hole: nothing inside at the first cell (0.1),
