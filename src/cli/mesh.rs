@@ -75,7 +75,8 @@ pub struct Args {
     /// The volume mesher: `delaunay` (a closed, non-self-intersecting surface, kept as the
     /// boundary) or `octree` (isosurface stuffing on a BCC lattice of cell size --size;
     /// without one, diagonal / 25 made finer by √2 until every solid holds lattice vertices
-    /// and its volume within 1 %, then up to three finer tries while the Hausdorff bound is
+    /// and its volume within 1 % (an open surface: its volume settled within 1 % from the
+    /// cell before), then up to three finer tries while the Hausdorff bound is
     /// above the cell, to at most 2^23 lattice vertices a solid; inside is where the
     /// surface's winding number exceeds one half,
     /// so open and self-intersecting surfaces mesh too; the boundary approximates the input
