@@ -41,8 +41,6 @@ pub mod writer;
 
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod tests_tessellated;
 
 pub use error::StepError;
 pub use param::Param;

@@ -4,6 +4,9 @@ use super::*;
 use crate::cad::geom::SurfaceKind;
 use std::path::Path;
 
+/// The tessellated-geometry reader and writer.
+mod tessellated;
+
 fn parse(text: &str) -> Result<StepFile, StepError> {
     parser::parse(Path::new("t.stp"), text.as_bytes())
 }

@@ -1,6 +1,6 @@
 //! Unit tests of the tessellated-geometry reader and writer on small hand-written files.
 
-use super::*;
+use super::super::*;
 use crate::core::FaceId;
 use crate::mesh::TriSurface;
 use crate::mesh::topology::{ReportOptions, surface_report};
