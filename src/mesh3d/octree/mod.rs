@@ -282,24 +282,31 @@ pub fn cell_size(surface: &TriSurface, size: &dyn SizeField) -> f64 {
 /// # Errors
 /// See [`OctreeError`].
 pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions) -> Result<(TetMesh, OctreeReport), OctreeError> {
+    let t = Instant::now();
+    let oracle = Winding::new(surface);
+    let cycle = rows::is_cycle(surface);
+    mesh_at(&oracle, cycle, cell_size(surface, size), opts, t.elapsed().as_secs_f64())
+}
+
+/// [`mesh_octree`] at cell size `h`, with the surface's oracle and whether it is a cycle
+/// ([`rows::is_cycle`]) made once by the caller (`resolve.rs` meshes one surface at several
+/// cells); `prepared` is the seconds that took, reported as the `winding_bvh` stage.
+fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared: f64) -> Result<(TetMesh, OctreeReport), OctreeError> {
+    let surface = oracle.surface();
     let t_all = Instant::now();
-    let mut stages = Vec::new();
+    let mut stages = vec![("winding_bvh".to_string(), prepared)];
     let mut stage = |name: &str, t: &mut Instant| {
         stages.push((name.to_string(), t.elapsed().as_secs_f64()));
         *t = Instant::now();
     };
     let mut t = Instant::now();
-    let h = cell_size(surface, size);
     let lattice = Lattice::covering(&surface.bbox(), h).map_err(OctreeError::Lattice)?;
-    let oracle = Winding::new(surface);
-    stage("winding_bvh", &mut t);
     let n = lattice.num_vertices();
-    let cycle = rows::is_cycle(surface);
-    let w = winding_at_lattice(&lattice, &oracle, cycle);
+    let w = winding_at_lattice(&lattice, oracle, cycle);
     // the divergence theorem gives the stuffed volume where the winding number is 0 or 1
     let input_volume_exact = cycle && w.par_iter().all(|&x| x > -0.5 && x < 1.5);
     stage("winding", &mut t);
-    let cuts = cut::cut_and_warp(&lattice, &oracle, &w, opts.alpha_long, opts.alpha_short);
+    let cuts = cut::cut_and_warp(&lattice, oracle, &w, opts.alpha_long, opts.alpha_short);
     stage("cut_warp", &mut t);
     if !cuts.sign.contains(&-1) {
         return Err(OctreeError::Empty(h));
@@ -308,7 +315,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
     if tree.is_some() {
         stage("octree", &mut t);
     }
-    let (mut mesh, all_zero, inner, minus) = fill(&lattice, tree.as_ref(), &cuts, &oracle)?;
+    let (mut mesh, all_zero, inner, minus) = fill(&lattice, tree.as_ref(), &cuts, oracle)?;
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     stage("boundary", &mut t);
@@ -328,7 +335,7 @@ pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOpti
         })
         .reduce(|| (180.0, 0.0, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
     let input_volume = surface.signed_volume();
-    stages.push(("total".to_string(), t_all.elapsed().as_secs_f64()));
+    stages.push(("total".to_string(), prepared + t_all.elapsed().as_secs_f64()));
     let report = OctreeReport {
         grading: if tree.is_some() { "graded" } else { "uniform" }.into(),
         solids: 1,

@@ -1,6 +1,6 @@
 //! The cell chosen where no size is given: fine enough for the mesh to hold the input's volume.
 //!
-//! Stage: around [`mesh_octree`], for one solid (the pipeline calls it per solid of an
+//! Stage: around [`mesh_octree`](super::mesh_octree), for one solid (the pipeline calls it per solid of an
 //! assembly, so each solid gets its own cell). Input: the surface, the size field whose
 //! smallest size on the surface is the first cell, the options, a [`Resolve`]. Output: the
 //! mesh and report of the last try, its tries in [`OctreeReport::cell_tries`].
@@ -21,10 +21,12 @@
 //! converges to the winding number's), for at most [`Resolve::change_tries`] tries after the
 //! first with lattice vertices inside. Counts, never clocks: the same cells on any machine.
 
-use super::{CellTry, Lattice, OctreeError, OctreeOptions, OctreeReport, cell_size, mesh_octree};
-use crate::core::{RegionId, SizeField};
+use super::rows::is_cycle;
+use super::winding::Winding;
+use super::{CellTry, Lattice, OctreeError, OctreeOptions, OctreeReport, cell_size, mesh_at};
+use crate::core::SizeField;
 use crate::mesh::{TetMesh, TriSurface};
-use glam::DVec3;
+use std::time::Instant;
 
 /// How the default cell is chosen; see the module docs.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -64,42 +66,32 @@ impl Resolve {
     }
 }
 
-/// A size field no coarser than `cap`.
-struct Capped<'a> {
-    inner: &'a dyn SizeField,
-    cap: f64,
-}
-
-impl SizeField for Capped<'_> {
-    fn size_at(&self, p: DVec3) -> f64 {
-        self.inner.size_at(p).min(self.cap)
-    }
-
-    fn size_in(&self, p: DVec3, region: RegionId) -> f64 {
-        self.inner.size_in(p, region).min(self.cap)
-    }
-}
-
-/// [`mesh_octree`] at the coarsest cell from `size`'s down by √2 that holds the volume; see
+/// [`mesh_octree`](super::mesh_octree) at the coarsest cell from `size`'s down by √2 that holds the volume; see
 /// the module docs.
 ///
 /// # Errors
-/// As [`mesh_octree`]; [`OctreeError::EmptyWithin`] when no try within the budget holds a
+/// As [`mesh_octree`](super::mesh_octree); [`OctreeError::EmptyWithin`] when no try within the budget holds a
 /// lattice vertex.
 pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions, r: Resolve) -> Result<(TetMesh, OctreeReport), OctreeError> {
+    // the oracle and the cycle test do not depend on the cell: made once for every try
+    let t = Instant::now();
+    let oracle = Winding::new(surface);
+    let cycle = is_cycle(surface);
+    let prepared = t.elapsed().as_secs_f64();
     let bbox = surface.bbox();
     let count = |h: f64| Lattice::covering(&bbox, h).ok().map(|l| l.num_vertices());
     let mut h = cell_size(surface, size);
     let mut tries: Vec<CellTry> = Vec::new();
     // the try kept so far (its index in `tries`): the one that holds the volume with the
-    // smallest bound over its cell; tries after the first that holds, for the bound
+    // smallest bound over its cell; and the first try that holds (those after it are for
+    // the bound)
     let mut best: Option<(usize, TetMesh, OctreeReport)> = None;
-    let mut bound_tries = 0;
+    let mut first_hold: Option<usize> = None;
     // the last mesh volume, and how many tries had lattice vertices inside
     let mut previous: Option<f64> = None;
     let mut inside = 0;
     loop {
-        let result = mesh_octree(surface, &Capped { inner: size, cap: h }, opts);
+        let result = mesh_at(&oracle, cycle, h, opts, prepared);
         let next = h / STEP;
         let room = count(next).is_some_and(|n| n as u64 <= r.max_lattice_vertices);
         match result {
@@ -115,6 +107,9 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
                 let within = t.bound_over_cell <= 1.0;
                 tries.push(t);
                 let k = tries.len() - 1;
+                if holds {
+                    first_hold.get_or_insert(k);
+                }
                 if holds && best.as_ref().is_none_or(|b| report.bound_over_cell < b.2.bound_over_cell) {
                     best = Some((k, mesh, report));
                 } else if best.is_none() && (!room || unsettled) {
@@ -122,7 +117,7 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
                     best = Some((k, mesh, report));
                 }
                 if best.is_some() {
-                    bound_tries += usize::from(k > 0 && tries[..k].iter().any(|t| r.holds(t)));
+                    let bound_tries = first_hold.map_or(0, |f| k - f);
                     if (holds && within) || bound_tries >= r.bound_tries || !room || unsettled {
                         let (k, mesh, mut report) = best.take().ok_or_else(|| OctreeError::Internal("no try kept".into()))?;
                         tries[k].kept = true;
@@ -164,16 +159,6 @@ mod tests {
             let best = tries[first..].iter().filter(|t| RESOLVE.holds(t)).map(|t| t.bound_over_cell).fold(f64::INFINITY, f64::min);
             assert_eq!(kept[0].bound_over_cell, best, "{tries:?}");
         }
-    }
-
-    #[test]
-    fn a_capped_field_is_never_coarser_than_its_cap() {
-        let inner = UniformSize(2.0);
-        let c = Capped { inner: &inner, cap: 0.5 };
-        assert_eq!(c.size_at(DVec3::ZERO), 0.5);
-        assert_eq!(c.size_in(DVec3::ONE, RegionId(3)), 0.5);
-        let c = Capped { inner: &inner, cap: 5.0 };
-        assert_eq!(c.size_at(DVec3::ZERO), 2.0);
     }
 
     #[test]
