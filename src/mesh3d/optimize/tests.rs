@@ -272,3 +272,26 @@ fn invalid_meshes_are_refused_and_left_alone() {
     m.tets[0][0] = 1000;
     assert!(matches!(optimize(&mut m, &OptimizeOptions::default()), Err(OptimizeError::InvalidMesh(_))));
 }
+
+#[test]
+fn the_polish_raises_a_mesh_that_met_its_targets_and_lowers_nothing() {
+    // jittered Kuhn tets: some under 30°, every one reachable by smoothing
+    let m = with_hull_boundary(kuhn_cube(5, 0.3, 7));
+    let opts = OptimizeOptions::default().with_min_dihedral(30.0).with_max_dihedral(135.0).with_max_passes(16);
+    let mut plain = m.clone();
+    let r0 = optimize(&mut plain, &opts.clone().with_polish(0.0)).unwrap();
+    let (lo0, hi0) = min_max_dihedral(&plain);
+    // the work without the polish met both targets, so the polish runs
+    assert!(lo0 >= 30.0 && hi0 <= 135.0 && r0.polish_attempts == 0, "{lo0} {hi0} {r0:?}");
+    let mut out = m.clone();
+    let r = optimize(&mut out, &opts.clone().with_polish(0.1)).unwrap();
+    check_kept(&m, &out, &r);
+    let (lo, hi) = min_max_dihedral(&out);
+    assert!(r.polish_attempts > 0, "{r:?}");
+    assert!(lo > lo0, "the polish left the smallest angle at {lo}° (without it {lo0}°)");
+    // a largest angle passes its target by at most (180° − 135°)(1 − least score)
+    assert!(hi <= 135.0 + 45.0 * (1.0 - lo0 / 33.0), "{hi}");
+    // the report is of the plain targets: nothing missed them
+    assert_eq!(r.bad_after, 0);
+    assert!(!r.out_of_attempts);
+}

@@ -330,6 +330,16 @@ impl Work {
         self.judged[t as usize] = j;
     }
 
+    /// Scores every live tet again under the targets `tg`, which later work uses.
+    pub(crate) fn retarget(&mut self, tg: Targets) {
+        self.tg = tg;
+        for t in 0..self.tets.len() {
+            if self.tets[t][0] != NONE {
+                self.q[t] = self.judged[t].score(&tg);
+            }
+        }
+    }
+
     /// Counts a move of a vertex: call before [`Work::touch`]ing the tets it changed.
     #[inline]
     pub(crate) fn tick(&mut self) {
