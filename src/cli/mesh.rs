@@ -76,11 +76,12 @@ pub struct Args {
     /// boundary) or `octree` (isosurface stuffing on a BCC lattice of cell size --size;
     /// without one, diagonal / 25 made finer by √2 until every solid holds lattice vertices
     /// and its volume within 1 % (an open surface: its volume settled within 1 % from the
-    /// cell before), then up to three finer tries while the Hausdorff bound is
+    /// cell before), then up to four finer tries while the Hausdorff bound is
     /// above the cell, to at most 2^23 lattice vertices a solid; inside is where the
     /// surface's winding number exceeds one half,
     /// so open and self-intersecting surfaces mesh too; the boundary approximates the input
-    /// within the reported Hausdorff distance; dihedral angles measured against the paper's
+    /// within the reported Hausdorff distance, its vertices snapped onto sharp edges and
+    /// corners where the angles stay within [15°, 160°]; dihedral angles measured against the paper's
     /// [10.7°, 164.8°]).
     #[arg(long, value_name = "M", default_value = "delaunay", value_parser = ["delaunay", "octree"])]
     pub method: String,
@@ -196,6 +197,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     if let Some(o) = &report.octree {
         let d = &o.deviation;
         outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
+        outln!("                 {} boundary vertices snapped onto feature corners, {} onto feature edges ({} moves refused to keep the angle bounds and the boundary near the input)", o.snapped.corners, o.snapped.edge_vertices, o.snapped.refused);
         if let Some(line) = crate::cli::cell_choice(o) {
             outln!("  cell chosen    {line}");
         }

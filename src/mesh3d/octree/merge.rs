@@ -25,6 +25,9 @@ impl OctreeReport {
             out.cut_points += r.cut_points;
             out.bisected_cut_points += r.bisected_cut_points;
             out.warped_vertices += r.warped_vertices;
+            out.snapped.corners += r.snapped.corners;
+            out.snapped.edge_vertices += r.snapped.edge_vertices;
+            out.snapped.refused += r.snapped.refused;
             out.all_zero_tets += r.all_zero_tets;
             out.tets += r.tets;
             out.nodes += r.nodes;

@@ -20,7 +20,9 @@
 //! 5. `stencil.rs`: the stencils filling each boundary background tet;
 //! 6. `tags.rs`: boundary triangles tagged by the input triangle nearest to their centroid
 //!    (found by the deviation's first sample of each);
-//! 7. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
+//! 7. `snap.rs`: boundary vertices moved onto the input's feature corners and edges where
+//!    the angle bounds allow;
+//! 8. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
 //!
 //! Around them, `resolve.rs` ([`mesh_octree_resolved`]) chooses the cell where no size is
 //! given: finer by √2 until the mesh holds the input's volume.
@@ -53,6 +55,7 @@ mod lattice;
 mod merge;
 pub mod resolve;
 mod rows;
+pub mod snap;
 mod stencil;
 mod tags;
 mod winding;
@@ -61,6 +64,7 @@ pub use deviation::{Deviation, deviation};
 pub use lattice::Lattice;
 pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
 pub use rows::is_cycle;
+pub use snap::Snapped;
 pub use winding::Winding;
 
 use crate::core::predicates::orient3d;
@@ -106,11 +110,14 @@ pub struct OctreeOptions {
     pub alpha_short: f64,
     /// Input edges whose faces turn by more than this (degrees) are feature edges.
     pub feature_angle_deg: f64,
+    /// Move boundary vertices onto the feature edges and corners where the angle bounds
+    /// allow (`snap.rs`).
+    pub snap: bool,
 }
 
 impl Default for OctreeOptions {
     fn default() -> Self {
-        OctreeOptions { grading: Grading::Uniform, alpha_long: ALPHA_LONG, alpha_short: ALPHA_SHORT, feature_angle_deg: 30.0 }
+        OctreeOptions { grading: Grading::Uniform, alpha_long: ALPHA_LONG, alpha_short: ALPHA_SHORT, feature_angle_deg: 30.0, snap: true }
     }
 }
 
@@ -141,6 +148,8 @@ pub struct OctreeReport {
     pub bisected_cut_points: usize,
     /// Lattice vertices warped onto the surface.
     pub warped_vertices: usize,
+    /// Boundary vertices snapped onto the input's feature corners and edges.
+    pub snapped: Snapped,
     /// Background tets whose four vertices were all warped onto the surface, kept whole
     /// because their centroid is inside and their angles within the paper's bounds (the
     /// others, slivers flat on the surface, are left out).
@@ -319,6 +328,10 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     stage("boundary", &mut t);
+    let snapped = if opts.snap { snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg) } else { Snapped::default() };
+    if opts.snap {
+        stage("snap", &mut t);
+    }
     let (dev, nearest) = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg);
     mesh.face_tags = tags::tags_of(surface, &nearest);
     mesh.face_names = surface.face_names.clone();
@@ -347,6 +360,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         cut_points: cuts.edges.len(),
         bisected_cut_points: cuts.bisected,
         warped_vertices: cuts.num_warped,
+        snapped,
         all_zero_tets: all_zero,
         tets: mesh.tets.len(),
         nodes: mesh.vertices.len(),

@@ -46,9 +46,11 @@ pub struct Resolve {
 }
 
 /// The default: within 1 % of the volume, at most 2^23 lattice vertices a solid (about
-/// 25 million tets where the solid fills its box), three tries for the Hausdorff bound, five
+/// 25 million tets where the solid fills its box), four tries for the Hausdorff bound (snapped
+/// boundaries hold the volume at a coarser cell than before, so the tries for the bound start
+/// coarser: featuretype.STL needs the fourth), five
 /// for an inexact volume to settle.
-pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 3, change_tries: 5 };
+pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 4, change_tries: 5 };
 
 /// Each try's cell is the last one's over this.
 const STEP: f64 = std::f64::consts::SQRT_2;
