@@ -463,18 +463,7 @@ impl Optimizer<'_> {
             None
         };
         if let Some((limit, below)) = rescue.filter(|_| max_attempts != usize::MAX) {
-            let mut try_all = true;
-            for _ in 0..self.opts.max_passes {
-                let bad: Vec<(f64, u32)> = self.bad_tets().into_iter().filter(|&(q, _)| q < below).collect();
-                if bad.is_empty() || self.report.attempts >= limit {
-                    break;
-                }
-                let changed = self.pass(&bad, try_all, self.opts.insert, limit);
-                try_all = false;
-                if !changed {
-                    break;
-                }
-            }
+            self.passes_below(below, limit);
         }
         if self.opts.polish > 0.0 {
             self.polish();
@@ -483,6 +472,23 @@ impl Optimizer<'_> {
 }
 
 impl Optimizer<'_> {
+    /// Passes with insertion over the tets scoring under `below`, every one tried in the
+    /// first, until one changes nothing, the passes run out or `limit` attempts are made.
+    fn passes_below(&mut self, below: f64, limit: usize) {
+        let mut try_all = true;
+        for _ in 0..self.opts.max_passes {
+            let bad: Vec<(f64, u32)> = self.bad_tets().into_iter().filter(|&(q, _)| q < below).collect();
+            if bad.is_empty() || self.report.attempts >= limit {
+                break;
+            }
+            let changed = self.pass(&bad, try_all, self.opts.insert, limit);
+            try_all = false;
+            if !changed {
+                break;
+            }
+        }
+    }
+
     /// With every tet at both dihedral targets, raises the smallest-angle target by
     /// [`OptimizeOptions::polish`] and works on the tets under it, up to [`POLISH_TRIES`]
     /// attempts each, then restores the targets.
@@ -505,18 +511,7 @@ impl Optimizer<'_> {
         let start = self.report.attempts;
         let limit = start.saturating_add(POLISH_TRIES.saturating_mul(self.bad_tets().len()));
         let out_of_attempts = self.report.out_of_attempts;
-        let mut try_all = true;
-        for _ in 0..self.opts.max_passes {
-            let bad = self.bad_tets();
-            if bad.is_empty() || self.report.attempts >= limit {
-                break;
-            }
-            let changed = self.pass(&bad, try_all, self.opts.insert, limit);
-            try_all = false;
-            if !changed {
-                break;
-            }
-        }
+        self.passes_below(1.0, limit);
         // the polish's own limit is not the budget running out
         self.report.out_of_attempts = out_of_attempts;
         self.report.polish_attempts = self.report.attempts - start;
