@@ -366,9 +366,11 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
         ));
     }
     let d = &o.deviation;
-    if o.hausdorff_over_cell > 1.0 || d.unresolved_feature_edges > 0 {
+    // the bound, not only the sample: it is what the default cell is chosen by
+    if o.hausdorff_over_cell > 1.0 || o.bound_over_cell > 1.0 || d.unresolved_feature_edges > 0 {
         use crate::quality::worst_tet::fmt_point;
         let mut w = format!("WARNING: the boundary strays {:.4e} from the input at {} (sampled), {:.3} times the cell size there", d.hausdorff, fmt_point(d.hausdorff_at), o.hausdorff_over_cell);
+        w += &format!(" (at most {:.3} times)", o.bound_over_cell);
         if let Some([a, b]) = d.unresolved_examples.first() {
             w += &format!("; {} of {} feature edges are farther than a cell from it, the first from {} to {}", d.unresolved_feature_edges, d.feature_edges, fmt_point(*a), fmt_point(*b));
         }
@@ -427,6 +429,10 @@ mod tests {
         o.deviation.hausdorff = 0.5;
         assert!(octree_warnings(Some(&o)).is_empty(), "within the cell");
         assert!(octree_warnings(None).is_empty());
+        // the sample within the cell, its bound not: said, with the bound
+        o.bound_over_cell = 1.2;
+        let w = octree_warnings(Some(&o));
+        assert!(w.len() == 1 && w[0].contains("0.500 times the cell size there (at most 1.200 times)"), "{w:?}");
         o.deviation.hausdorff = 2.5;
         o.hausdorff_over_cell = 2.5;
         o.deviation.hausdorff_at = [1.0, 2.0, 3.0];
