@@ -1,5 +1,6 @@
 //! Feature snapping: boundary vertices of the stuffed mesh moved onto the input's feature
-//! edges and corners, where every tet they touch keeps the paper's angle bounds.
+//! edges and corners, where every tet they touch keeps its angles in [15°, 160°] (inside the
+//! paper's bounds) or no worse than they were.
 //!
 //! Why: isosurface stuffing treats the surface as a smooth isosurface, so it cuts sharp edges
 //! and corners off by up to about a cell (a bevel of boundary triangles across the edge):
@@ -16,13 +17,13 @@
 //!   feature angle.
 //! - Only boundary vertices move, each at most once, onto a point of a feature edge (its
 //!   closest) or onto a corner, within [`REACH`] cells. Corners go first (each takes its
-//!   nearest boundary vertex if it is that vertex's nearest corner), then the other boundary vertices by their distance to the
-//!   features, nearest first, ties by index: serial, so the result is the same bytes on any
-//!   thread count. A vertex whose boundary neighbour was snapped within half a cell of its own
-//!   target is left (the edge has a vertex there).
+//!   nearest boundary vertex if it is that vertex's nearest corner), then the other boundary
+//!   vertices by their distance to the features, nearest first, ties by index: serial, so the
+//!   result is the same bytes on any thread count. A vertex whose boundary neighbour was
+//!   snapped within half a cell of its own target is left (the edge has a vertex there).
 //! - A move is kept only when every tet at the vertex stays positively oriented (exact
-//!   [`orient3d`]), its dihedral angles stay within [`MIN_DIHEDRAL`], [`MAX_DIHEDRAL`] (or no
-//!   worse than before for a tet already outside), no boundary triangle at the vertex
+//!   [`orient3d`]), its dihedral angles stay within [`FLOOR`] (or no worse than before for a
+//!   tet already outside), no boundary triangle at the vertex
 //!   turns by 90° or more, the vertex's old place (a point of the input) and every feature
 //!   corner within a cell of it stay within half a cell of those triangles (or, a corner, no
 //!   farther than before), and they stay near the input (centroids and edge midpoints at
@@ -47,9 +48,9 @@ use serde::Serialize;
 pub const REACH: f64 = 1.5;
 
 /// The dihedral angles a move may take a tet to (degrees), or no worse than it was: well
-/// inside the paper's [`MIN_DIHEDRAL`], [`MAX_DIHEDRAL`], so that snapping does not spend the
-/// stencils' margin (at the paper's bounds themselves the corpus' smallest angles fell from
-/// 15–20° to 10.7°).
+/// inside the paper's [`super::MIN_DIHEDRAL`], [`super::MAX_DIHEDRAL`], so that snapping does
+/// not spend the stencils' margin (at the paper's bounds themselves the corpus' smallest
+/// angles fell from 15–20° to 10.7°).
 pub const FLOOR: [f64; 2] = [15.0, 160.0];
 
 /// What snapping did.
