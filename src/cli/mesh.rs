@@ -81,8 +81,8 @@ pub struct Args {
     /// surface's winding number exceeds one half,
     /// so open and self-intersecting surfaces mesh too; the boundary approximates the input
     /// within the reported Hausdorff distance, its vertices snapped onto sharp edges and
-    /// corners where the angles stay within [15°, 160°]; dihedral angles measured against the paper's
-    /// [10.7°, 164.8°]).
+    /// corners where the angles stay within [15°, 160°]; dihedral angles measured against the
+    /// paper's [10.7°, 164.8°]).
     #[arg(long, value_name = "M", default_value = "delaunay", value_parser = ["delaunay", "octree"])]
     pub method: String,
     /// With --method octree: `uniform` (one cell size everywhere) or `graded` (the same

@@ -328,8 +328,9 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     stage("boundary", &mut t);
-    let snapped = if opts.snap { snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg) } else { Snapped::default() };
+    let mut snapped = Snapped::default();
     if opts.snap {
+        snapped = snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg);
         stage("snap", &mut t);
     }
     let (dev, nearest) = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg);

@@ -1,7 +1,7 @@
 //! The cell chosen where no size is given: fine enough for the mesh to hold the input's volume.
 //!
-//! Stage: around [`mesh_octree`](super::mesh_octree), for one solid (the pipeline calls it per solid of an
-//! assembly, so each solid gets its own cell). Input: the surface, the size field whose
+//! Stage: around [`mesh_octree`](super::mesh_octree), for one solid (the pipeline calls it per
+//! solid of an assembly, so each solid gets its own cell). Input: the surface, the size field whose
 //! smallest size on the surface is the first cell, the options, a [`Resolve`]. Output: the
 //! mesh and report of the last try, its tries in [`OctreeReport::cell_tries`].
 //!
@@ -48,8 +48,7 @@ pub struct Resolve {
 /// The default: within 1 % of the volume, at most 2^23 lattice vertices a solid (about
 /// 25 million tets where the solid fills its box), four tries for the Hausdorff bound (snapped
 /// boundaries hold the volume at a coarser cell than before, so the tries for the bound start
-/// coarser: featuretype.STL needs the fourth), five
-/// for an inexact volume to settle.
+/// coarser: featuretype.STL needs the fourth), five for an inexact volume to settle.
 pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 4, change_tries: 5 };
 
 /// Each try's cell is the last one's over this.

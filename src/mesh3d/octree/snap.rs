@@ -128,9 +128,7 @@ struct Near<'a> {
 
 impl Near<'_> {
     fn distance(&self, p: DVec3) -> f64 {
-        self.bvh
-            .nearest_within(p, f64::INFINITY, |t| point_triangle_distance(p, self.surface.corners(t as usize)))
-            .map_or(f64::INFINITY, |(_, d)| d)
+        self.bvh.nearest(p, |t| point_triangle_distance(p, self.surface.corners(t as usize))).map_or(f64::INFINITY, |(_, d)| d)
     }
 
     /// The centroid and the edge midpoints at `v` of boundary triangle `f`.
@@ -148,22 +146,22 @@ impl Near<'_> {
 /// farther than before).
 fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], near: &Near) -> bool {
     let old = mesh.vertices[v as usize];
-    let place = |t: &[u32; 4], at: DVec3| t.map(|w| if w == v { at } else { mesh.vertices[w as usize] });
+    // the position of vertex `w` with `v` at `to`
+    let at = |to: DVec3| move |w: u32| if w == v { to } else { mesh.vertices[w as usize] };
     for &t in star {
         let tet = &mesh.tets[t as usize];
-        let p = place(tet, q);
+        let p = tet.map(at(q));
         if !orient3d(p[0], p[1], p[2], p[3]).is_positive() {
             return false;
         }
         let (lo, hi) = tet_min_max_dihedral(&p);
         if lo < FLOOR[0] || hi > FLOOR[1] {
-            let (lo0, hi0) = tet_min_max_dihedral(&place(tet, old));
+            let (lo0, hi0) = tet_min_max_dihedral(&tet.map(at(old)));
             if lo < lo0.min(FLOOR[0]) || hi > hi0.max(FLOOR[1]) {
                 return false;
             }
         }
     }
-    let at = |to: DVec3| move |w: u32| if w == v { to } else { mesh.vertices[w as usize] };
     let normal = |f: &[u32; 3], to: DVec3| {
         let p = f.map(at(to));
         (p[1] - p[0]).cross(p[2] - p[0])
@@ -276,9 +274,8 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
         }
     }
     let mut snapped_to: Vec<Option<DVec3>> = vec![None; nv];
-    let mut moved = vec![false; nv];
     for (kind, _, v, q) in moves {
-        if moved[v as usize] {
+        if snapped_to[v as usize].is_some() {
             continue;
         }
         let tris = &tri_at[v as usize];
@@ -299,7 +296,6 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
         };
         if let Some(to) = to {
             mesh.vertices[v as usize] = to;
-            moved[v as usize] = true;
             snapped_to[v as usize] = Some(to);
             if kind == 0 {
                 out.corners += 1;

@@ -1,4 +1,5 @@
 //! Unit tests of the tessellated-geometry reader and writer on small hand-written files.
+#![cfg(test)]
 
 use super::super::*;
 use crate::core::FaceId;
