@@ -339,15 +339,19 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     stage("deviation_tags", &mut t);
     mesh.validate()?;
     stage("validate", &mut t);
-    let (lo, hi, volume) = mesh
-        .tets
-        .par_iter()
-        .map(|t| {
-            let p = t.map(|v| mesh.vertices[v as usize]);
-            let (lo, hi) = tet_min_max_dihedral(&p);
-            (lo, hi, crate::quality::tetrahedron::tet_volume(&p))
-        })
-        .reduce(|| (180.0, 0.0, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2));
+    // fixed chunks summed in order: the volume's last bits do not depend on the threads
+    let (lo, hi, volume) = crate::quality::summary::chunked_reduce(
+        mesh.tets.len(),
+        (180.0f64, 0.0f64, 0.0f64),
+        |a, b| {
+            mesh.tets[a..b].iter().fold((180.0f64, 0.0f64, 0.0f64), |acc, t| {
+                let p = t.map(|v| mesh.vertices[v as usize]);
+                let (lo, hi) = tet_min_max_dihedral(&p);
+                (acc.0.min(lo), acc.1.max(hi), acc.2 + crate::quality::tetrahedron::tet_volume(&p))
+            })
+        },
+        |acc, x| *acc = (acc.0.min(x.0), acc.1.max(x.1), acc.2 + x.2),
+    );
     let input_volume = surface.signed_volume();
     stages.push(("total".to_string(), prepared + t_all.elapsed().as_secs_f64()));
     let report = OctreeReport {
