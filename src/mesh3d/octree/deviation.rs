@@ -11,7 +11,10 @@
 //!   by longest-edge bisection, each new midpoint measured, until every piece is *settled*:
 //!   with `r` its covering radius (below) and `m` its largest corner distance,
 //!   `m + r ≤ h / 2`, or `r ≤ h / 8`, or the triangle's budget of 65,536 midpoints
-//!   (`MAX_SPLITS`) is spent. Every point of a piece lies within `r` of one of its corners, and the distance to
+//!   (`MAX_SPLITS`) is spent. A piece so settled with `m ≤ h < m + r` (its samples within the
+//!   cell, its bound past it) is measured again *finely*, to `r ≤ h / 64` (and the thin rule
+//!   below at `h / 64`): the bound is tight where it decides whether the boundary is within
+//!   the cell, and the pieces far inside or far outside it cost no more. Every point of a piece lies within `r` of one of its corners, and the distance to
 //!   a surface is 1-Lipschitz, so the true one-sided distance is at most the largest `m + r`
 //!   over the pieces: `hausdorff_bound` is that upper bound, never an estimate below the
 //!   truth; `hausdorff` is the largest distance actually found.
@@ -128,6 +131,10 @@ fn nearest_from(s: &TriSurface, bvh: &Bvh, p: DVec3, hint: Option<u32>) -> Optio
 /// Most midpoints measured per triangle (its bound stays honest, only looser, past them).
 const MAX_SPLITS: usize = 1 << 16;
 
+/// The fine measure's covering radius, thin test and side spacing, in cells: a piece whose
+/// coarse bound passes the cell is measured again to this.
+const FINE: f64 = 1.0 / 64.0;
+
 /// Largest sampled distance from `from` to `to` and where it is reached (the first such
 /// sample in triangle order), its upper bound, the number of samples, and with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
 /// The corners are sampled once per vertex (shared by the triangles around it).
@@ -146,7 +153,10 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         .map(|(&p, &u)| if u { nearest_from(to, to_bvh, p, None).map_or((f64::INFINITY, None), |x| (x.1, Some(x.0))) } else { (0.0, None) })
         .collect();
     let corners = used.iter().filter(|&&u| u).count();
-    let settled = |m: f64, r: f64| m + r <= 0.5 * h || r <= h / 8.0;
+    // a piece is measured coarsely first; one whose samples are within the cell but whose
+    // bound would pass it is measured again finely (`fine`): the bound is tight where it
+    // decides the cell's line
+    let settled = |m: f64, r: f64, fine: bool| m + r <= 0.5 * h || r <= if fine { FINE * h } else { h / 8.0 };
     let measure = |t: usize| {
         let tri = from.triangles[t];
         let centroid = centroids.then(|| {
@@ -171,24 +181,30 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         let mut bound: f64 = 0.0;
         let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
         // pieces: corners, their distances, a hint for their midpoints
-        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>)> = vec![(from.corners(t), d, hint)];
+        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, bool)> = vec![(from.corners(t), d, hint, false)];
         let mut splits = 0;
-        while let Some((p, d, hint)) = stack.pop() {
+        while let Some((p, d, hint, fine)) = stack.pop() {
             let len = [p[1].distance(p[2]), p[2].distance(p[0]), p[0].distance(p[1])];
             // the longest edge is opposite corner `k` (the first of equal lengths)
             let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
             let m = d[0].max(d[1]).max(d[2]);
             let r = covering_radius(&p, len);
-            if settled(m, r) || splits >= MAX_SPLITS {
+            if settled(m, r, fine) || splits >= MAX_SPLITS {
+                if !fine && m <= h && m + r > h && splits < MAX_SPLITS {
+                    stack.push((p, d, hint, true));
+                    continue;
+                }
                 bound = bound.max(m + r);
                 continue;
             }
             let (i, j) = ((k + 1) % 3, (k + 2) % 3);
             let altitude = (p[1] - p[0]).cross(p[2] - p[0]).length() / len[k];
-            if altitude <= h / 16.0 {
+            // the thin test and the side's spacing, coarse or fine
+            let (thin, spacing) = if fine { (FINE * h, FINE * h) } else { (h / 16.0, h / 8.0) };
+            if altitude <= thin {
                 // thin: every point is within the altitude of a point of the longest side
-                // (its angles at both ends are acute); sample that side at h / 8
-                let steps = ((len[k] / (h / 8.0)).ceil() as usize).clamp(1, MAX_SPLITS - splits);
+                // (its angles at both ends are acute); sample that side at the spacing
+                let steps = ((len[k] / spacing).ceil() as usize).clamp(1, MAX_SPLITS - splits);
                 let mut side = d[i].max(d[j]);
                 let mut hint = hint;
                 for q in 1..steps {
@@ -200,7 +216,12 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                     n += 1;
                     splits += 1;
                 }
-                bound = bound.max((side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9));
+                let piece = (side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9);
+                if !fine && side <= h && piece > h && splits < MAX_SPLITS {
+                    stack.push((p, d, hint, true));
+                    continue;
+                }
+                bound = bound.max(piece);
                 continue;
             }
             let mid = (p[i] + p[j]) * 0.5;
@@ -208,10 +229,10 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             splits += 1;
             n += 1;
             farther(&mut worst, dm, mid);
-            let mut left = (p, d, near);
+            let mut left = (p, d, near, fine);
             left.0[j] = mid;
             left.1[j] = dm;
-            let mut right = (p, d, near);
+            let mut right = (p, d, near, fine);
             right.0[i] = mid;
             right.1[i] = dm;
             stack.push(right);
@@ -374,6 +395,25 @@ mod tests {
             }
             let longest = len.iter().copied().fold(0.0, f64::max);
             assert!(reached >= r - longest / 30.0, "{p:?}: {reached} far below {r}");
+        }
+    }
+
+    /// Planes 0.95 cells apart: the coarse bound (up to 0.95 + h / 8) would pass the cell, so
+    /// the pieces are measured finely and the bound is within 1.5 h / 64 of the truth (the
+    /// thin rule's half spacing and altitude); planes 1.5
+    /// cells apart are measured coarsely (no finer bound could bring them within the cell).
+    #[test]
+    fn a_bound_that_straddles_the_cell_is_measured_finely() {
+        let sq = |z: f64| vec![DVec3::new(0.0, 0.0, z), DVec3::new(2.0, 0.0, z), DVec3::new(2.0, 2.0, z), DVec3::new(0.0, 2.0, z)];
+        let (a, _) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
+        for (gap, slack) in [(0.95, 1.5 / 64.0), (1.5, 1.0 / 8.0)] {
+            let (b, b_bvh) = surface(sq(gap), vec![[0, 1, 2], [0, 2, 3]]);
+            let ((worst, _), bound, n, _) = one_sided(&a, &b, &b_bvh, 1.0, false);
+            assert!((worst - gap).abs() < 1e-12, "{worst}");
+            assert!(bound >= gap && bound <= gap + slack + 1e-9, "{gap}: {bound}");
+            if gap < 1.0 {
+                assert!(bound <= 1.0 && n > 1000, "{bound} with {n} samples");
+            }
         }
     }
 
