@@ -106,13 +106,12 @@ pub(crate) struct Summarised {
 /// Summarises a meshed part. `face_table` names the faces (unique names, as the writers give
 /// them); a tag not in it keeps the mesh's own name.
 pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry], cad_volume: Option<f64>) -> Summarised {
-    let q = tet_mesh_quality(mesh);
     let bound = plan.require_min_dihedral.unwrap_or(plan.mesh.min_dihedral);
     // the angles of the surface the mesher took: where it repaired caps, repaired the same
-    // way (their zero angles are gone)
+    // way (their zero angles are gone); found while the tets are judged
     let repaired = if report.input_caps_repaired > 0 { surface.and_then(crate::mesh::caps::repair_caps) } else { None };
     let surface = repaired.as_ref().map(|r| &r.0).or(surface);
-    let angles = surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default();
+    let (q, angles) = rayon::join(|| tet_mesh_quality(mesh), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
     let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
@@ -176,20 +175,33 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
     use crate::quality::tetrahedron::tet_min_max_dihedral;
     use crate::quality::worst_tet::touches_angle_below;
     let limits = [1.0, 5.0, 10.0, bound];
-    let mut out = Unexplained::default();
-    for t in &mesh.tets {
-        let p = t.map(|v| mesh.vertices[v as usize]);
-        let lo = tet_min_max_dihedral(&p).0;
-        for (k, &limit) in limits.iter().enumerate() {
-            if lo < limit {
-                out.under[k].0 += 1;
-                if !touches_angle_below(&p, angles, limit) {
-                    out.under[k].1 += 1;
+    // counts, summed over chunks in parallel
+    crate::quality::summary::chunked_reduce(
+        mesh.tets.len(),
+        Unexplained::default(),
+        |a, b| {
+            let mut out = Unexplained::default();
+            for t in &mesh.tets[a..b] {
+                let p = t.map(|v| mesh.vertices[v as usize]);
+                let lo = tet_min_max_dihedral(&p).0;
+                for (k, &limit) in limits.iter().enumerate() {
+                    if lo < limit {
+                        out.under[k].0 += 1;
+                        if !touches_angle_below(&p, angles, limit) {
+                            out.under[k].1 += 1;
+                        }
+                    }
                 }
             }
-        }
-    }
-    out
+            out
+        },
+        |acc, part| {
+            for (x, y) in acc.under.iter_mut().zip(part.under) {
+                x.0 += y.0;
+                x.1 += y.1;
+            }
+        },
+    )
 }
 
 /// Names a face tag: the face table's unique name, else the mesh's.
