@@ -144,6 +144,30 @@ fn closed_meshes_within_one_percent_at_a_fine_cell() {
     }
 }
 
+/// Dirty input (issue 15): the self-intersecting `Duck.glb`, `rabbit.obj` (overlapping
+/// shells, one inward) and `pins.glb` (dowels through a plate), and the open
+/// `bunny_binary.stl`, mesh at the default cell into valid tets whose volume is within 2 % of
+/// the winding number's (the measure of `w > 1/2` by stratified sampling, its own error
+/// under 0.2 %). Measured: −0.45 %, −0.36 %, −0.65 % and −0.41 %; against the divergence
+/// theorem's figure, which counts overlaps twice and is not a volume for an open surface,
+/// rabbit is −2.0 % and bunny −2.2 %.
+#[test]
+#[ignore = "heavy: run in release with --include-ignored"]
+fn dirty_meshes_hold_the_winding_numbers_volume() {
+    for name in ["Duck.glb", "rabbit.obj", "pins.glb", "bunny_binary.stl"] {
+        let Some(path) = common::corpus_file(name) else { return };
+        let mut part = Part::open(&path).unwrap();
+        let plan = Plan { unit: 1.0, method: Method::Octree, ..Plan::default() };
+        let o = run_plan(&mut part, &plan, false).unwrap().octree.unwrap();
+        part.mesh.as_ref().unwrap().validate().unwrap();
+        let w = fepre::mesh3d::octree::winding_volume(part.surface.as_ref().unwrap(), 128).unwrap();
+        assert!(w.error < 0.002 * w.volume, "{name}: {w:?}");
+        let err = o.volume / w.volume - 1.0;
+        eprintln!("{name}: mesh {:.6e}, winding number's {:.6e} ± {:.1e}: {:+.3} %", o.volume, w.volume, w.error, 100.0 * err);
+        assert!(err.abs() < 0.02, "{name}: {} against {w:?}: {err}", o.volume);
+    }
+}
+
 /// Graded against uniform on a STEP sphere at diagonal / 100: the same volume to rounding
 /// (the same boundary), the angles within the bounds by both measures, at most a third of
 /// the tets, cells of at least four sizes.

@@ -59,6 +59,7 @@ pub mod snap;
 mod stencil;
 mod tags;
 mod winding;
+mod winding_volume;
 
 pub use deviation::{Deviation, deviation};
 pub use lattice::Lattice;
@@ -66,6 +67,7 @@ pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
 pub use rows::is_cycle;
 pub use snap::Snapped;
 pub use winding::Winding;
+pub use winding_volume::{WindingVolume, winding_volume};
 
 use crate::core::predicates::orient3d;
 use crate::core::{Aabb, RegionId, SizeField};
