@@ -21,6 +21,7 @@ Examples:
   fepre inspect part.stl                          closed? manifold? genus? volume? self-intersections?
   fepre inspect part.stl --json | jq .genus       one JSON object for scripts
   fepre inspect big.obj --no-self-intersections   skip the exact pairwise test on huge inputs
+  fepre inspect scan.stl                          open or overlapping: also the volume its winding number encloses
   fepre inspect mesh.1.ele                        a tet mesh: quality statistics and a dihedral-angle histogram";
 
 /// Arguments of `fepre inspect`.
