@@ -27,12 +27,19 @@
 //!   corner) is the circumradius of a triangle without an obtuse angle; with an obtuse angle
 //!   at `C`, the farthest points lie on the longest side `AB`, where the perpendicular
 //!   bisectors of `AC` and `BC` meet it, at `|AC| / (2 cos A)` and `|BC| / (2 cos B)`.
+//! - Input that is not the boundary of the stuffed volume (`buried.rs`: a sheet inside it,
+//!   where bodies overlap, or an inward shell outside it) is not measured: an input triangle
+//!   whose measure passes the cell is measured again, its buried pieces left out and the
+//!   samples taken from the pieces kept. Pieces the judge is unsure of (another triangle
+//!   meets them) are kept, so the bound stays an upper bound over the boundary. A feature
+//!   edge between two buried triangles is not counted.
 //! - A feature edge is an input edge of exactly two triangles whose normals turn by more
 //!   than the feature angle. It is *resolved* when every sample along it (spacing at most
 //!   `h / 4`) lies within `h` of the mesh's boundary.
 //! - Distances come from exact closest points on triangles and branch and bound on BVHs:
 //!   the report depends only on the input; it is computed in parallel, reduced by `max`.
 
+use super::buried::{Buried, Side};
 use crate::core::Aabb;
 use crate::core::bvh::Bvh;
 use crate::core::closest::point_triangle_distance;
@@ -75,12 +82,12 @@ pub struct Deviation {
 /// Measures the deviation of `mesh`'s boundary from `surface`; see the module docs. Also
 /// returns, per boundary triangle, the input triangle nearest to its centroid (the first
 /// sample of that triangle; ties to the lower index): the tags come from it.
-pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64) -> (Deviation, Vec<Option<u32>>) {
+pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64, buried: Option<&Buried>) -> (Deviation, Vec<Option<u32>>) {
     let bnd = TriSurface::with_single_tag(mesh.vertices.clone(), mesh.boundary.clone(), crate::core::FaceId(1));
     let bnd_boxes: Vec<Aabb> = (0..bnd.triangles.len()).map(|t| Aabb::from_points(&bnd.corners(t))).collect();
     let bnd_bvh = Bvh::from_boxes(&bnd_boxes);
-    let (m2i, m2i_bound, n1, nearest) = one_sided(&bnd, surface, surface_bvh, h, true);
-    let (i2m, i2m_bound, n2, _) = one_sided(surface, &bnd, &bnd_bvh, h, false);
+    let (m2i, m2i_bound, n1, nearest) = one_sided(&bnd, surface, surface_bvh, h, true, None);
+    let (i2m, i2m_bound, n2, _) = one_sided(surface, &bnd, &bnd_bvh, h, false, buried);
     let ((m2i, m2i_at), (i2m, i2m_at)) = (m2i, i2m);
     let mut d = Deviation {
         mesh_to_input: m2i,
@@ -92,11 +99,11 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
         feature_angle_deg,
         ..Deviation::default()
     };
-    let features = feature_edges(surface, feature_angle_deg);
+    let features = feature_edges_with_triangles(surface, feature_angle_deg);
     d.feature_edges = features.len();
     let per_edge: Vec<f64> = features
         .par_iter()
-        .map(|&[a, b]| {
+        .map(|&([a, b], tris)| {
             let (pa, pb) = (surface.vertices[a as usize], surface.vertices[b as usize]);
             let k = ((pa.distance(pb) / (0.25 * h)).ceil() as usize).clamp(1, 1024);
             let mut hint = None;
@@ -107,10 +114,14 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
                     hint = Some(t);
                 }
             }
+            // an edge between two buried triangles is no edge of the stuffed volume
+            if worst > h && buried.is_some_and(|b| tris.iter().all(|&t| b.piece(t as usize, &surface.corners(t as usize)) == Side::Buried)) {
+                return 0.0;
+            }
             worst
         })
         .collect();
-    for (e, &dist) in features.iter().zip(&per_edge) {
+    for ((e, _), &dist) in features.iter().zip(&per_edge) {
         d.feature_max_distance = d.feature_max_distance.max(dist);
         if dist > h {
             d.unresolved_feature_edges += 1;
@@ -138,7 +149,7 @@ const FINE: f64 = 1.0 / 64.0;
 /// Largest sampled distance from `from` to `to` and where it is reached (the first such
 /// sample in triangle order), its upper bound, the number of samples, and with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
 /// The corners are sampled once per vertex (shared by the triangles around it).
-fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool) -> ((f64, DVec3), f64, usize, Vec<Option<u32>>) {
+fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool, buried: Option<&Buried>) -> ((f64, DVec3), f64, usize, Vec<Option<u32>>) {
     let mut used = vec![false; from.vertices.len()];
     for t in &from.triangles {
         for &v in t {
@@ -157,7 +168,9 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
     // bound would pass it is measured again finely (`fine`): the bound is tight where it
     // decides the cell's line
     let settled = |m: f64, r: f64, fine: bool| m + r <= 0.5 * h || r <= if fine { FINE * h } else { h / 8.0 };
-    let measure = |t: usize| {
+    // `aware`: the pieces buried in the stuffed volume (or outside it) are left out, and the
+    // samples are those of the pieces kept
+    let measure_as = |t: usize, aware: Option<&Buried>| {
         let tri = from.triangles[t];
         let centroid = centroids.then(|| {
             let p = tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0;
@@ -172,8 +185,10 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 *worst = (d, at);
             }
         };
-        for (k, &v) in tri.iter().enumerate() {
-            farther(&mut worst, d[k], from.vertices[v as usize]);
+        if aware.is_none() {
+            for (k, &v) in tri.iter().enumerate() {
+                farther(&mut worst, d[k], from.vertices[v as usize]);
+            }
         }
         if let Some(Some((_, dc))) = centroid {
             farther(&mut worst, dc, tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0);
@@ -181,9 +196,18 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         let mut bound: f64 = 0.0;
         let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
         // pieces: corners, their distances, a hint for their midpoints
-        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, bool)> = vec![(from.corners(t), d, hint, false)];
+        // pieces: corners, their distances, a hint for their midpoints, fine, and (aware)
+        // whether the piece is known to be on the boundary
+        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, bool, bool)> = vec![(from.corners(t), d, hint, false, false)];
         let mut splits = 0;
-        while let Some((p, d, hint, fine)) = stack.pop() {
+        while let Some((p, d, hint, fine, mut on_boundary)) = stack.pop() {
+            if let Some(b) = aware.filter(|_| !on_boundary) {
+                match b.piece(t, &p) {
+                    Side::Buried => continue,
+                    Side::Boundary => on_boundary = true,
+                    Side::Unsure => {}
+                }
+            }
             let len = [p[1].distance(p[2]), p[2].distance(p[0]), p[0].distance(p[1])];
             // the longest edge is opposite corner `k` (the first of equal lengths)
             let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
@@ -191,8 +215,13 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             let r = covering_radius(&p, len);
             if settled(m, r, fine) || splits >= MAX_SPLITS {
                 if !fine && m <= h && m + r > h && splits < MAX_SPLITS {
-                    stack.push((p, d, hint, true));
+                    stack.push((p, d, hint, true, on_boundary));
                     continue;
+                }
+                if aware.is_some() {
+                    for q in 0..3 {
+                        farther(&mut worst, d[q], p[q]);
+                    }
                 }
                 bound = bound.max(m + r);
                 continue;
@@ -206,6 +235,11 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 // (its angles at both ends are acute); sample that side at the spacing
                 let steps = ((len[k] / spacing).ceil() as usize).clamp(1, MAX_SPLITS - splits);
                 let mut side = d[i].max(d[j]);
+                if aware.is_some() {
+                    for q in 0..3 {
+                        farther(&mut worst, d[q], p[q]);
+                    }
+                }
                 let mut hint = hint;
                 for q in 1..steps {
                     let at = p[i] + (p[j] - p[i]) * (q as f64 / steps as f64);
@@ -218,7 +252,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 }
                 let piece = (side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9);
                 if !fine && side <= h && piece > h && splits < MAX_SPLITS {
-                    stack.push((p, d, hint, true));
+                    stack.push((p, d, hint, true, on_boundary));
                     continue;
                 }
                 bound = bound.max(piece);
@@ -228,17 +262,30 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             let (near, dm) = nearest_from(to, to_bvh, mid, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
             splits += 1;
             n += 1;
-            farther(&mut worst, dm, mid);
-            let mut left = (p, d, near, fine);
+            if aware.is_none() {
+                farther(&mut worst, dm, mid);
+            }
+            let mut left = (p, d, near, fine, on_boundary);
             left.0[j] = mid;
             left.1[j] = dm;
-            let mut right = (p, d, near, fine);
+            let mut right = (p, d, near, fine, on_boundary);
             right.0[i] = mid;
             right.1[i] = dm;
             stack.push(right);
             stack.push(left);
         }
         ((worst.0, worst.1, t), bound, n, centroid.flatten().map(|x| x.0))
+    };
+    // a triangle whose measure passes the cell is measured again leaving out what is buried
+    let measure = |t: usize| {
+        let first = measure_as(t, None);
+        match buried {
+            Some(b) if first.1 > h || first.0.0 > h => {
+                let again = measure_as(t, Some(b));
+                (again.0, again.1, first.2 + again.2, first.3)
+            }
+            _ => first,
+        }
     };
     // the larger distance, of equal ones the lower triangle's: associative and commutative,
     // so the parallel reduction gives the same answer for any split
@@ -297,6 +344,11 @@ fn covering_radius(p: &[DVec3; 3], len: [f64; 3]) -> f64 {
 
 /// The input edges of exactly two triangles whose normals turn by more than `angle_deg`.
 pub fn feature_edges(s: &TriSurface, angle_deg: f64) -> Vec<[u32; 2]> {
+    feature_edges_with_triangles(s, angle_deg).into_iter().map(|(e, _)| e).collect()
+}
+
+/// [`feature_edges`], each with its two triangles.
+fn feature_edges_with_triangles(s: &TriSurface, angle_deg: f64) -> Vec<([u32; 2], [u32; 2])> {
     let mut rec: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * s.triangles.len());
     for (t, tri) in s.triangles.iter().enumerate() {
         for k in 0..3 {
@@ -320,7 +372,7 @@ pub fn feature_edges(s: &TriSurface, angle_deg: f64) -> Vec<[u32; 2]> {
         if j - i == 2 {
             let (n1, n2) = (normal(rec[i].1), normal(rec[i + 1].1));
             if n1 != DVec3::ZERO && n2 != DVec3::ZERO && n1.dot(n2) < cos {
-                out.push(rec[i].0);
+                out.push((rec[i].0, [rec[i].1, rec[i + 1].1]));
             }
         }
         i = j;
@@ -356,7 +408,7 @@ mod tests {
         ];
         let (to, to_bvh) = surface(tv, vec![[0, 1, 2], [3, 4, 5]]);
         let h = 1.0;
-        let ((worst, at), bound, n, _) = one_sided(&from, &to, &to_bvh, h, false);
+        let ((worst, at), bound, n, _) = one_sided(&from, &to, &to_bvh, h, false, None);
         assert!((at.x - 50.0).abs() <= h / 8.0, "the farthest sample at {at}");
         // the truth: the middle of the long edge, (50, 0.005), is this far from the corners
         // (0.5, 0) and (99.5, 0) of the ends' triangles; every corner is within 0.01 of them
@@ -408,13 +460,37 @@ mod tests {
         let (a, _) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
         for (gap, slack) in [(0.95, 1.5 / 64.0), (1.5, 1.0 / 8.0)] {
             let (b, b_bvh) = surface(sq(gap), vec![[0, 1, 2], [0, 2, 3]]);
-            let ((worst, _), bound, n, _) = one_sided(&a, &b, &b_bvh, 1.0, false);
+            let ((worst, _), bound, n, _) = one_sided(&a, &b, &b_bvh, 1.0, false, None);
             assert!((worst - gap).abs() < 1e-12, "{worst}");
             assert!(bound >= gap && bound <= gap + slack + 1e-9, "{gap}: {bound}");
             if gap < 1.0 {
                 assert!(bound <= 1.0 && n > 1000, "{bound} with {n} samples");
             }
         }
+    }
+
+    /// A cube inside a cube: the inner one's faces are buried in the stuffed volume, 1.5 from
+    /// the boundary. Measured plainly they are the farthest input; left out as buried, the
+    /// input is on the boundary.
+    #[test]
+    fn buried_sheets_are_left_out() {
+        use super::super::winding::Winding;
+        let cube = |o: f64, s: f64| -> (Vec<DVec3>, Vec<[u32; 3]>) {
+            let v: Vec<DVec3> = (0..8).map(|i| DVec3::splat(o) + s * DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
+            (v, vec![[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]])
+        };
+        let (mut v, mut t) = cube(0.0, 4.0);
+        let (v2, t2) = cube(1.5, 1.0);
+        t.extend(t2.iter().map(|f| f.map(|i| i + 8)));
+        v.extend(v2);
+        let (input, _) = surface(v, t);
+        let (outer, outer_bvh) = { let (v, t) = cube(0.0, 4.0); surface(v, t) };
+        let w = Winding::new(&input);
+        let b = Buried::new(&w);
+        let ((plain, _), plain_bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);
+        assert!((plain - 1.5).abs() < 1e-12 && plain_bound >= 1.5, "{plain} {plain_bound}");
+        let ((kept, _), bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
+        assert!(kept == 0.0 && bound <= 0.5, "{kept} {bound}");
     }
 
     /// Parallel planes one apart: every sample is 1 away, and the bound is within the slack.
@@ -424,7 +500,7 @@ mod tests {
         let (a, a_bvh) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
         let (b, b_bvh) = surface(sq(1.0), vec![[0, 1, 2], [0, 2, 3]]);
         for (from, to, bvh) in [(&a, &b, &b_bvh), (&b, &a, &a_bvh)] {
-            let ((worst, _), bound, _, near) = one_sided(from, to, bvh, 0.5, true);
+            let ((worst, _), bound, _, near) = one_sided(from, to, bvh, 0.5, true, None);
             assert!((worst - 1.0).abs() < 1e-12, "{worst}");
             assert!((1.0..=1.0 + 0.5 / 8.0 + 1e-12).contains(&bound), "{bound}");
             assert_eq!(near.len(), 2);

@@ -48,6 +48,7 @@
 //!   in index order; the output is the same bytes for any thread count. No clock steers
 //!   anything.
 
+mod buried;
 mod cut;
 mod deviation;
 mod graded;
@@ -61,6 +62,7 @@ mod tags;
 mod winding;
 mod winding_volume;
 
+pub use buried::{Buried, Side};
 pub use deviation::{Deviation, deviation};
 pub use lattice::Lattice;
 pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
@@ -335,7 +337,8 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         snapped = snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg);
         stage("snap", &mut t);
     }
-    let (dev, nearest) = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg);
+    let buried = buried::Buried::new(oracle);
+    let (dev, nearest) = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg, Some(&buried));
     mesh.face_tags = tags::tags_of(surface, &nearest);
     mesh.face_names = surface.face_names.clone();
     stage("deviation_tags", &mut t);

@@ -61,6 +61,8 @@ pub struct Winding<'a> {
     surface: &'a TriSurface,
     bvh: Bvh,
     dipoles: Vec<Dipole>,
+    /// Per triangle, the triangles that meet it; computed when first asked.
+    meets: std::sync::OnceLock<Vec<Vec<u32>>>,
 }
 
 /// How a segment meets the surface: the parameter along it and the winding number's jump.
@@ -114,7 +116,22 @@ impl<'a> Winding<'a> {
             let radius = if bbox.is_empty() { 0.0 } else { far.length() };
             dipoles[n as usize] = Dipole { centre, normal, radius };
         }
-        Winding { surface, bvh, dipoles }
+        Winding { surface, bvh, dipoles, meets: std::sync::OnceLock::new() }
+    }
+
+    /// Per triangle, the other triangles that meet it (the exact pairwise test of
+    /// [`crate::mesh::topology::intersecting_pairs`]: shared vertices and edges allowed),
+    /// each list increasing; computed once, when first asked.
+    pub fn meets(&self) -> &[Vec<u32>] {
+        self.meets.get_or_init(|| {
+            let mut m = vec![Vec::new(); self.surface.triangles.len()];
+            for [a, b] in crate::mesh::topology::intersecting_pairs(self.surface) {
+                m[a as usize].push(b);
+                m[b as usize].push(a);
+            }
+            m.iter_mut().for_each(|l| l.sort_unstable());
+            m
+        })
     }
 
     /// The surface.
