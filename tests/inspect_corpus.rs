@@ -79,6 +79,10 @@ fn every_corpus_mesh_matches_the_recorded_trimesh_counts() {
             // the union is smaller (6.539 by the winding number)
             let w = v["winding_volume"]["volume"].as_f64().unwrap();
             assert!((w - 6.539).abs() < 0.01 && w < v["volume"].as_f64().unwrap(), "{w}");
+            // and skipped when asked
+            let out = Command::new(env!("CARGO_BIN_EXE_fepre")).args(["inspect", "--json", "--no-winding-volume"]).arg(&path).output().unwrap();
+            let skipped: Value = serde_json::from_slice(&out.stdout).unwrap();
+            assert!(skipped.get("winding_volume").is_none() && skipped["triangles"] == v["triangles"], "{skipped}");
         }
     }
 }
