@@ -209,7 +209,17 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
             outln!("  cells          {}", cells.join(", "));
         }
         outln!("  dihedral       [{:.2}°, {:.2}°] measured; the paper's bounds [{}°, {}°] (its stencils; where warping moves vertices our tests find down to 9.3°, so this is measured)", o.dihedral[0], o.dihedral[1], o.promised_dihedral[0], o.promised_dihedral[1]);
-        outln!("  volume         {:.6e} (input by the divergence theorem {:.6e}, {:+.3} %)", o.volume, o.input_volume, 100.0 * (o.volume - o.input_volume) / o.input_volume.abs().max(f64::MIN_POSITIVE));
+        match o.winding_volume {
+            Some(w) => outln!(
+                "  volume         {:.6e} (the input's winding number encloses {:.6e} ± {:.1e}, {:+.3} %; the divergence theorem's {:.6e} is no volume for an open or overlapping surface)",
+                o.volume,
+                w.volume,
+                w.error,
+                100.0 * (o.volume - w.volume) / w.volume.abs().max(f64::MIN_POSITIVE),
+                o.input_volume
+            ),
+            None => outln!("  volume         {:.6e} (input by the divergence theorem {:.6e}, {:+.3} %)", o.volume, o.input_volume, 100.0 * (o.volume - o.input_volume) / o.input_volume.abs().max(f64::MIN_POSITIVE)),
+        }
         let [x, y, z] = d.hausdorff_at;
         outln!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}; farthest at ({x:.6}, {y:.6}, {z:.6})), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
         outln!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);

@@ -4,7 +4,7 @@
 //! [`OctreeReport`]s in solid order. Output: one [`OctreeReport`] (seconds summed per stage
 //! name, in the order they first appear).
 
-use super::{Deviation, OctreeReport};
+use super::{Deviation, OctreeReport, WindingVolume};
 
 impl OctreeReport {
     /// The report of several solids meshed one by one; see the module docs. `None` for no
@@ -36,6 +36,11 @@ impl OctreeReport {
             out.volume += r.volume;
             out.input_volume += r.input_volume;
             out.input_volume_exact &= r.input_volume_exact;
+            // a sum only where every solid has one
+            out.winding_volume = match (out.winding_volume, r.winding_volume) {
+                (Some(a), Some(b)) => Some(WindingVolume { volume: a.volume + b.volume, error: a.error + b.error, ..a }),
+                _ => None,
+            };
             out.turned_outward |= r.turned_outward;
             out.cell_tries.extend(r.cell_tries.iter().cloned());
             out.hausdorff_over_cell = out.hausdorff_over_cell.max(r.hausdorff_over_cell);
@@ -90,5 +95,17 @@ mod tests {
         assert_eq!(m.deviation.hausdorff, 0.5);
         assert_eq!(m.stage_seconds, vec![("winding".to_string(), 1.0)]);
         assert!(OctreeReport::merged(&[]).is_none());
+    }
+
+    /// The winding number's volumes add where every solid has one; one exact solid leaves
+    /// the assembly without one.
+    #[test]
+    fn winding_volumes_add_where_every_solid_has_one() {
+        let w = |v: f64, e: f64| Some(WindingVolume { volume: v, error: e, cells_per_axis: 64 });
+        let r = |wv| OctreeReport { winding_volume: wv, ..OctreeReport::default() };
+        let m = OctreeReport::merged(&[r(w(1.0, 0.1)), r(w(2.0, 0.2))]).unwrap();
+        assert_eq!(m.winding_volume, w(3.0, 0.30000000000000004));
+        assert_eq!(OctreeReport::merged(&[r(w(1.0, 0.1)), r(None)]).unwrap().winding_volume, None);
+        assert_eq!(OctreeReport::merged(&[r(None), r(w(1.0, 0.1))]).unwrap().winding_volume, None);
     }
 }

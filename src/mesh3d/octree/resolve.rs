@@ -123,6 +123,7 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
                         let (k, mesh, mut report) = best.take().ok_or_else(|| OctreeError::Internal("no try kept".into()))?;
                         tries[k].kept = true;
                         report.cell_tries = tries;
+                        super::add_winding_volume(&mut report, &oracle);
                         return Ok((mesh, report));
                     }
                 }

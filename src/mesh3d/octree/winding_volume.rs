@@ -50,6 +50,12 @@ fn unit(h: u64) -> f64 {
 /// The measure of `w > 1/2` of `surface` on `n³` cells (see the module docs); `None` for a
 /// surface without triangles or with a flat box, or `n` of 0.
 pub fn winding_volume(surface: &TriSurface, n: usize) -> Option<WindingVolume> {
+    winding_volume_of(&Winding::new(surface), n)
+}
+
+/// [`winding_volume`] with the surface's oracle made by the caller.
+pub(super) fn winding_volume_of(w: &Winding, n: usize) -> Option<WindingVolume> {
+    let surface = w.surface();
     if surface.triangles.is_empty() || n == 0 {
         return None;
     }
@@ -61,7 +67,6 @@ pub fn winding_volume(surface: &TriSurface, n: usize) -> Option<WindingVolume> {
     }
     let cell = size / n as f64;
     let cell_volume = cell.x * cell.y * cell.z;
-    let w = Winding::new(surface);
     let inside: Vec<bool> = (0..n * n * n)
         .into_par_iter()
         .map(|idx| {
