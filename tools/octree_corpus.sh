@@ -5,7 +5,7 @@
 # judge's min/max dihedral (shared/tools/cgal_ref/tetquality), the volume against the input's
 # (divergence theorem on the surface meshed; for a STEP part the certified tessellation's;
 # marked w: where the input has no exact volume, open or overlapping, the volume its winding
-# number encloses, from `fepre inspect`),
+# number encloses, from the report),
 # the sampled Hausdorff distance and its upper bound against the cell size (status ok: angles
 # inside [10.7°, 164.8°], volume within 1 %, the bound within the cell, each solid's own), unresolved
 # feature edges, seconds. With -g: graded octrees, and the uniform mesh's tet count at the same
@@ -71,15 +71,14 @@ for name in "${files[@]}"; do
       uniform=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["octree"]["tets"])' "$tmp/u.json" 2> /dev/null)
     fi
     read -r tets lo hi < <("$judge" "$tmp/o.mesh" | awk '$1=="tets"{t=$2} $1=="min_dihedral_deg"{a=$2} $1=="max_dihedral_deg"{b=$2} END{print t, a, b}')
-    # an input without an exact volume (open, overlapping): the winding number's volume
-    # from `fepre inspect` (mesh files; STEP surface models keep the divergence theorem's)
-    "$fepre" inspect "$f" --json > "$tmp/i.json" 2> /dev/null || echo '{}' > "$tmp/i.json"
-    python3 - "$tmp/o.json" "$name" "$tets" "$lo" "$hi" "$start" "$end" "$uniform" "$tmp/i.json" <<'PY'
+    python3 - "$tmp/o.json" "$name" "$tets" "$lo" "$hi" "$start" "$end" "$uniform" <<'PY'
 import json,sys
 j=json.load(open(sys.argv[1])); o=j["octree"]; d=o["deviation"]
 name,tets,lo,hi,s,e,uni=sys.argv[2:9]
-w=json.load(open(sys.argv[9])).get("winding_volume")
-ref=w["volume"] if (w and not o["input_volume_exact"]) else o["input_volume"]
+# an input without an exact volume (open, overlapping): the winding number's volume, which
+# the report carries for it
+w=o.get("winding_volume")
+ref=w["volume"] if w else o["input_volume"]
 ve=100*(o["volume"]-ref)/abs(ref)
 # each solid's bound against its own cell (the default cell is chosen solid by solid)
 ok=float(lo)>=10.7 and float(hi)<=164.8 and abs(ve)<=1.0 and o["bound_over_cell"]<=1.0
