@@ -375,6 +375,9 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
             w += &format!("; {} of {} feature edges are farther than a cell from it, the first from {} to {}", d.unresolved_feature_edges, d.feature_edges, fmt_point(*a), fmt_point(*b));
         }
         w += ": walls or features thinner or sharper than a cell; a smaller size follows them closer";
+        if let Some(n) = o.input_crossings.filter(|&n| n > 0) {
+            w += &format!(" (but {n} input triangles cross or touch others: the gaps between crossing walls may be thinner than any cell; `fepre inspect` lists them)");
+        }
         out.push(w);
     }
     out
@@ -443,6 +446,11 @@ mod tests {
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(w[0].starts_with("WARNING: the boundary strays 2.5000e0 from the input at (1, 2, 3) (sampled), 2.500 times the cell size there"), "{}", w[0]);
         assert!(w[0].contains("2 of 9 feature edges are farther than a cell from it, the first from (0, 0, 0) to (4, 0, 0)"), "{}", w[0]);
+        assert!(!w[0].contains("cross"), "{}", w[0]);
+        // an input whose triangles cross: said, since a smaller size may not help
+        o.input_crossings = Some(12);
+        let w = octree_warnings(Some(&o));
+        assert!(w[0].ends_with("a smaller size follows them closer (but 12 input triangles cross or touch others: the gaps between crossing walls may be thinner than any cell; `fepre inspect` lists them)"), "{}", w[0]);
     }
 
     #[test]

@@ -36,6 +36,10 @@ impl OctreeReport {
             out.volume += r.volume;
             out.input_volume += r.input_volume;
             out.input_volume_exact &= r.input_volume_exact;
+            out.input_crossings = match (out.input_crossings, r.input_crossings) {
+                (None, None) => None,
+                (a, b) => Some(a.unwrap_or(0) + b.unwrap_or(0)),
+            };
             // a sum only where every solid has one
             out.winding_volume = match (out.winding_volume, r.winding_volume) {
                 (Some(a), Some(b)) => Some(WindingVolume { volume: a.volume + b.volume, error: a.error + b.error, ..a }),

@@ -191,6 +191,11 @@ pub struct OctreeReport {
     /// the mesh's volume; in an assembly, where every solid has one, their sum.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub winding_volume: Option<WindingVolume>,
+    /// Where the boundary's bound passes the cell: how many input triangles another input
+    /// triangle crosses or touches away from what they share (walls that cross leave gaps a
+    /// cell cannot follow at any size); in an assembly, summed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub input_crossings: Option<usize>,
     /// Where no size was given: the cell sizes tried, coarsest first, the last the one
     /// meshed ([`resolve`]; solid by solid in an assembly); empty when the cell came from a
     /// size.
@@ -399,6 +404,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         input_volume,
         input_volume_exact,
         winding_volume: None,
+        input_crossings: (dev.hausdorff_bound > h).then(|| oracle.meets().iter().filter(|l| !l.is_empty()).count()),
         turned_outward: false,
         overlap: None,
         cell_tries: Vec::new(),
