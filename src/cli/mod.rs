@@ -394,8 +394,12 @@ pub(crate) fn cell_choice(o: &crate::mesh3d::octree::OctreeReport) -> Option<Str
     let last = kept_tries(o);
     let resolve = crate::mesh3d::octree::RESOLVE;
     let held = last.iter().filter(|t| resolve.holds(t)).count();
-    let why = if held == last.len() {
+    let why = if held == last.len() && last.iter().all(|t| t.volume_error.is_some()) {
         format!("the volume within {} %", 100.0 * resolve.volume_error)
+    } else if held == last.len() {
+        // no exact reference: what was checked, and where the winding number's volume stands
+        let against = o.winding_volume.map(|w| format!(", {:+.3} % from the winding number's", 100.0 * (o.volume / w.volume - 1.0))).unwrap_or_default();
+        format!("the volume settled within {} % of the cell before{against}", 100.0 * resolve.volume_error)
     } else {
         format!("{} of {} stopped short of it (WARNING below)", last.len() - held, last.len())
     };
@@ -473,6 +477,10 @@ mod tests {
         assert_eq!(w[0], "WARNING: the default cell stopped (at the budget of 8388608 lattice vertices, or the tries for a volume without an exact reference) before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
         o.cell_tries[1] = CellTry { cell: 1.0, volume_change: Some(0.05), kept: true, ..CellTry::default() };
         assert!(octree_warnings(Some(&o))[0].contains(": at 1.0000e0, its volume still changing by 5.000 % from the cell before; give --size"));
+        // an inexact volume that settled: said so, with the winding number's figure
+        o.cell_tries[1].volume_change = Some(0.004);
+        (o.volume, o.winding_volume) = (0.99, Some(crate::mesh3d::octree::WindingVolume { volume: 1.0, error: 0.001, cells_per_axis: 64 }));
+        assert_eq!(cell_choice(&o).unwrap(), "2 tries from 2.0000e0, kept 1.0000e0: the volume settled within 1 % of the cell before, -1.000 % from the winding number's");
         o.cell_tries[1] = CellTry { cell: 1.0, volume_error: Some(0.0234), kept: true, ..CellTry::default() };
         // solid by solid: the last try of each
         o.cell_tries = vec![
