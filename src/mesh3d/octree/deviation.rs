@@ -195,7 +195,6 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         }
         let mut bound: f64 = 0.0;
         let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
-        // pieces: corners, their distances, a hint for their midpoints
         // pieces: corners, their distances, a hint for their midpoints, fine, and (aware)
         // whether the piece is known to be on the boundary
         let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, bool, bool)> = vec![(from.corners(t), d, hint, false, false)];
