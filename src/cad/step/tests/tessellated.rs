@@ -25,11 +25,15 @@ fn shape(text: &str) -> Result<Shape, StepError> {
 }
 
 fn tessellated(text: &str) -> Tessellated {
-    match shape(text).unwrap() {
-        Shape::Tessellated(t) => t,
-        Shape::Brep(_) => panic!("expected tessellated geometry"),
+    match shape(text) {
+        Ok(Shape::Tessellated(t)) => t,
+        Ok(Shape::Brep(_)) => panic!("expected tessellated geometry"),
+        Err(e) => panic!("{e}"),
     }
 }
+
+/// What the tests below may fail with.
+type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 /// Closed, manifold, oriented outward; its volume and area.
 fn closed_volume_area(s: &TriSurface) -> (f64, f64) {
@@ -113,7 +117,7 @@ fn a_cube_of_complex_triangulated_faces_with_strips_and_fans() {
 }
 
 #[test]
-fn an_index_out_of_range_names_the_instance_and_its_line() {
+fn an_index_out_of_range_names_the_instance_and_its_line() -> TestResult {
     let body = format!("#10=COORDINATES_LIST('',4,{TETRA_POINTS});\n#11=TRIANGULATED_FACE('f',#10,4,(),$,(),((1,3,5)));\n#20=TESSELLATED_SOLID('',(#11),$);\n");
     let e = shape(&file(".MILLI.,.METRE.", &body, "#20")).unwrap_err();
     let msg = e.to_string();
@@ -126,16 +130,17 @@ fn an_index_out_of_range_names_the_instance_and_its_line() {
     assert!(shape(&file(".MILLI.,.METRE.", &body, "#20")).unwrap_err().to_string().contains("index 3 is outside the 2 entries of pnindex"));
     // the B-rep reader says what the file holds
     let text = cube_text();
-    let e = to_model(&parser::parse(Path::new("t.stp"), text.as_bytes()).unwrap()).unwrap_err();
+    let e = to_model(&parser::parse(Path::new("t.stp"), text.as_bytes())?).unwrap_err();
     assert!(e.to_string().contains("tessellated geometry only (6 faces, 12 triangles)"), "{e}");
+    Ok(())
 }
 
 #[test]
-fn the_writer_round_trips_a_tagged_surface() {
+fn the_writer_round_trips_a_tagged_surface() -> TestResult {
     // the cube read back, written with faces 2 and 5 complex, read again
     let cube = tessellated(&cube_text()).surface;
-    let text = tessellated_to_string(&cube, "cube", &[FaceId(2), FaceId(5)]).unwrap();
-    assert_eq!(text, tessellated_to_string(&cube, "cube", &[FaceId(2), FaceId(5)]).unwrap(), "deterministic");
+    let text = tessellated_to_string(&cube, "cube", &[FaceId(2), FaceId(5)])?;
+    assert_eq!(text, tessellated_to_string(&cube, "cube", &[FaceId(2), FaceId(5)])?, "deterministic");
     assert_eq!(text.matches("COMPLEX_TRIANGULATED_FACE(").count(), 2);
     assert_eq!(text.matches("TRIANGULATED_FACE(").count(), 6);
     let back = tessellated(&text);
@@ -156,23 +161,26 @@ fn the_writer_round_trips_a_tagged_surface() {
     let mut bad = cube.clone();
     bad.vertices[0] = DVec3::new(f64::NAN, 0.0, 0.0);
     assert!(tessellated_to_string(&bad, "x", &[]).is_err());
+    Ok(())
 }
 
 #[test]
-fn a_file_with_a_brep_and_tessellation_gives_the_brep_and_lists_the_tessellation() {
-    let model = crate::cad::parts::Block::default().build().unwrap();
-    let text = writer::to_string(&model, "block").unwrap();
-    let rep = text.lines().find(|l| l.contains("=ADVANCED_BREP_SHAPE_REPRESENTATION(")).and_then(|l| l.split('=').next()).unwrap().to_string();
-    let ctx = text.lines().find(|l| l.contains("GEOMETRIC_REPRESENTATION_CONTEXT")).and_then(|l| l.split('=').next()).unwrap().to_string();
+fn a_file_with_a_brep_and_tessellation_gives_the_brep_and_lists_the_tessellation() -> TestResult {
+    let model = crate::cad::parts::Block::default().build()?;
+    let text = writer::to_string(&model, "block")?;
+    let id_of = |entity: &str| text.lines().find(|l| l.contains(entity)).and_then(|l| l.split('=').next()).map(str::to_string).ok_or(format!("no {entity} in the written file"));
+    let rep = id_of("=ADVANCED_BREP_SHAPE_REPRESENTATION(")?;
+    let ctx = id_of("GEOMETRIC_REPRESENTATION_CONTEXT")?;
     let extra = format!(
         "#9010=COORDINATES_LIST('',4,{TETRA_POINTS});\n#9011=TRIANGULATED_FACE('f',#9010,4,(),$,(),((1,3,2),(1,2,4),(1,4,3),(2,3,4)));\n\
          #9020=TESSELLATED_SOLID('',(#9011),$);\n#9030=TESSELLATED_SHAPE_REPRESENTATION('',(#9020),{ctx});\n\
          #9031=SHAPE_REPRESENTATION_RELATIONSHIP('','',{rep},#9030);\nENDSEC;\nEND-ISO-10303-21;\n"
     );
     let both = text.replace("ENDSEC;\nEND-ISO-10303-21;\n", &extra);
-    let Shape::Brep(m) = shape(&both).unwrap() else { panic!("expected the B-rep") };
+    let Shape::Brep(m) = shape(&both)? else { panic!("expected the B-rep") };
     assert_eq!(m.faces.len(), model.faces.len());
     let d: Vec<_> = m.dropped.iter().filter(|d| d.id.0 == 9020).collect();
     assert_eq!(d.len(), 1, "{:?}", m.dropped);
     assert!(d[0].why.contains("fepre reads the B-rep"));
+    Ok(())
 }
