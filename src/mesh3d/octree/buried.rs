@@ -100,24 +100,13 @@ impl<'a> Buried<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::FaceId;
-    use crate::mesh::TriSurface;
-
-    fn cube(o: DVec3, s: f64) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-        let v: Vec<DVec3> = (0..8).map(|i| o + s * DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
-        let t = vec![[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]];
-        (v, t)
-    }
+    use crate::mesh3d::octree::tests::{cube_at, together};
 
     /// A small cube wholly inside a big one: its faces are buried; the big cube's are the
     /// boundary; a piece of the big cube's face is the boundary too.
     #[test]
     fn a_cube_inside_a_cube_is_buried() {
-        let (mut v, mut t) = cube(DVec3::ZERO, 4.0);
-        let (v2, t2) = cube(DVec3::splat(1.0), 1.0);
-        t.extend(t2.iter().map(|f| f.map(|i| i + 8)));
-        v.extend(v2);
-        let s = TriSurface::with_single_tag(v, t, FaceId(1));
+        let s = together(&[cube_at(DVec3::ZERO, 4.0), cube_at(DVec3::splat(1.0), 1.0)]);
         let w = Winding::new(&s);
         let b = Buried::new(&w);
         for k in 0..24 {
@@ -132,25 +121,25 @@ mod tests {
     /// a piece of one wholly inside the other is buried, one wholly outside is the boundary.
     #[test]
     fn overlapping_cubes_are_unsure_where_they_cross() {
-        let (mut v, mut t) = cube(DVec3::ZERO, 1.0);
-        let (v2, t2) = cube(DVec3::new(0.5, 0.0, 0.0), 1.0);
-        t.extend(t2.iter().map(|f| f.map(|i| i + 8)));
-        v.extend(v2);
-        let s = TriSurface::with_single_tag(v, t, FaceId(1));
+        let s = together(&[cube_at(DVec3::ZERO, 1.0), cube_at(DVec3::new(0.5, 0.0, 0.0), 1.0)]);
         let w = Winding::new(&s);
         let b = Buried::new(&w);
-        // triangle 10 is the first cube's face x = 1, inside the second cube: buried, but
-        // the second cube's faces y = 0 ... meet it along its edges
-        let x1 = s.corners(10);
-        let c = (x1[0] + x1[1] + x1[2]) / 3.0;
-        let small = x1.map(|q| c + (q - c) * 0.2);
-        assert_eq!(b.piece(10, &small), Side::Buried);
-        // the first cube's face y = 0 (triangle 4): half inside the second cube, unsure whole
-        assert_eq!(b.piece(4, &s.corners(4)), Side::Unsure);
-        // a piece of it near x = 0, outside the second cube: the boundary
-        let y0 = s.corners(4);
-        let near0 = [DVec3::new(0.05, 0.0, 0.05), DVec3::new(0.2, 0.0, 0.05), DVec3::new(0.05, 0.0, 0.2)];
-        assert!(y0.iter().all(|q| q.y == 0.0));
-        assert_eq!(b.piece(4, &near0), Side::Boundary);
+        // the first cube's triangle on x = 1, inside the second cube: buried, but the second
+        // cube's faces y = 0 ... meet it along its edges
+        let on = |t: usize, axis: usize, at: f64| s.corners(t).iter().all(|q| q[axis] == at);
+        let x1 = (0..12).find(|&t| on(t, 0, 1.0)).unwrap();
+        let p = s.corners(x1);
+        let c = (p[0] + p[1] + p[2]) / 3.0;
+        let small = p.map(|q| c + (q - c) * 0.2);
+        assert_eq!(b.piece(x1, &small), Side::Buried);
+        // the first cube's triangle on y = 0: half inside the second cube, unsure whole
+        let y0 = (0..12).find(|&t| on(t, 1, 0.0)).unwrap();
+        assert_eq!(b.piece(y0, &s.corners(y0)), Side::Unsure);
+        // a piece of it at its corner on x = 0, outside the second cube: the boundary
+        let p = s.corners(y0);
+        let k = (0..3).find(|&k| p[k].x == 0.0).unwrap();
+        let a = p[k];
+        let near0 = [a, a + (p[(k + 1) % 3] - a) * 0.2, a + (p[(k + 2) % 3] - a) * 0.2];
+        assert_eq!(b.piece(y0, &near0), Side::Boundary);
     }
 }

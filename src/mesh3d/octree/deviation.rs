@@ -473,17 +473,10 @@ mod tests {
     /// input is on the boundary.
     #[test]
     fn buried_sheets_are_left_out() {
+        use super::super::tests::{cube_at, together};
         use super::super::winding::Winding;
-        let cube = |o: f64, s: f64| -> (Vec<DVec3>, Vec<[u32; 3]>) {
-            let v: Vec<DVec3> = (0..8).map(|i| DVec3::splat(o) + s * DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
-            (v, vec![[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]])
-        };
-        let (mut v, mut t) = cube(0.0, 4.0);
-        let (v2, t2) = cube(1.5, 1.0);
-        t.extend(t2.iter().map(|f| f.map(|i| i + 8)));
-        v.extend(v2);
-        let (input, _) = surface(v, t);
-        let (outer, outer_bvh) = { let (v, t) = cube(0.0, 4.0); surface(v, t) };
+        let input = together(&[cube_at(DVec3::ZERO, 4.0), cube_at(DVec3::splat(1.5), 1.0)]);
+        let (outer, outer_bvh) = { let c = cube_at(DVec3::ZERO, 4.0); surface(c.vertices, c.triangles) };
         let w = Winding::new(&input);
         let b = Buried::new(&w);
         let ((plain, _), plain_bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);

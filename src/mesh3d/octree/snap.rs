@@ -314,9 +314,9 @@ mod tests {
 
     /// A box `[0, a] × [0, b] × [0, c]`, twelve triangles, outward.
     fn cuboid(a: f64, b: f64, c: f64) -> TriSurface {
-        let v: Vec<DVec3> = (0..8).map(|i| DVec3::new(a * (i & 1) as f64, b * ((i >> 1) & 1) as f64, c * (i >> 2) as f64)).collect();
-        let t = vec![[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]];
-        TriSurface::with_single_tag(v, t, crate::core::FaceId(1))
+        let mut s = crate::mesh3d::octree::tests::cube_surface(1);
+        s.vertices.iter_mut().for_each(|p| *p *= DVec3::new(a, b, c));
+        s
     }
 
     /// On a box whose sides are no multiple of the cell, stuffing bevels the edges; snapping

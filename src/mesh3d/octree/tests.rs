@@ -12,6 +12,20 @@ pub(crate) fn cube_surface(n: usize) -> TriSurface {
     s
 }
 
+/// The cube `[lo, lo + size]³`: [`cube_surface`]`(1)`, twelve triangles, outward.
+pub(crate) fn cube_at(lo: DVec3, size: f64) -> TriSurface {
+    let mut s = cube_surface(1);
+    s.vertices.iter_mut().for_each(|p| *p = lo + *p * size);
+    s
+}
+
+/// The surfaces one after the other (overlapping or nested shells).
+pub(crate) fn together(parts: &[TriSurface]) -> TriSurface {
+    let mut s = parts[0].clone();
+    parts[1..].iter().for_each(|p| s.append(p));
+    s
+}
+
 fn sphere(n: usize) -> TriSurface {
     // a cube's boundary pushed onto the sphere of radius 1 around its centre
     let mut s = cube_surface(n);

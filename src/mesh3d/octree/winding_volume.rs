@@ -97,22 +97,13 @@ pub(super) fn winding_volume_of(w: &Winding, n: usize) -> Option<WindingVolume> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::core::FaceId;
+    use crate::mesh3d::octree::tests::{cube_at, together};
 
     /// Two unit cubes overlapping by half: the divergence theorem counts the overlap twice
     /// (2), the winding number's volume is the union's (1.5).
     #[test]
     fn overlapping_cubes_count_once() {
-        let cube = |o: DVec3| -> (Vec<DVec3>, Vec<[u32; 3]>) {
-            let v: Vec<DVec3> = (0..8).map(|i| o + DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64)).collect();
-            let t = vec![[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]];
-            (v, t)
-        };
-        let (mut v, mut t) = cube(DVec3::ZERO);
-        let (v2, t2) = cube(DVec3::new(0.5, 0.0, 0.0));
-        t.extend(t2.iter().map(|f| f.map(|i| i + 8)));
-        v.extend(v2);
-        let s = TriSurface::with_single_tag(v, t, FaceId(1));
+        let s = together(&[cube_at(DVec3::ZERO, 1.0), cube_at(DVec3::new(0.5, 0.0, 0.0), 1.0)]);
         assert!((s.signed_volume() - 2.0).abs() < 1e-12);
         let wv = winding_volume(&s, 64).unwrap();
         assert!((wv.volume - 1.5).abs() <= wv.error && wv.error < 0.02, "{wv:?}");
