@@ -1,7 +1,8 @@
 //! Quality requirements and the always-on quality summary of `fepre mesh` and `fepre run`: a
 //! requirement the input cannot reach fails (exit 1, nothing written) naming the worst tet's
-//! place, its CAD face and edge and the input angle it touches; without one the summary says
-//! the same, warns on standard error about tets under 1°, and says when refinement stopped.
+//! place, its CAD face and edge and the input angle it touches; without one a tet under 1°
+//! that touches no input angle under 1° fails the same way, and the summary says the same,
+//! warns on standard error about tets under 1°, and says when refinement stopped.
 
 mod common;
 
@@ -156,9 +157,18 @@ fn the_summary_locates_the_worst_tet_and_warns_under_one_degree() {
     assert_eq!(w["input_angle"]["names"], serde_json::json!(["side_a", "side_c"]), "{w}");
     assert!(v["refinement_stopped"].is_boolean() && v.get("tets_under_1_deg").is_some() && v.get("near_degenerate").is_some(), "{v}");
 
-    // 0.5°: tets under 1° that nobody required: a WARNING on standard error, still exit 0
+    // 0.5°: tets under 1° across the knife edge's wedge, some of them off its edge: without a
+    // requirement they fail the run, naming the place by the knife edge
     let input = wedge(dir.path(), 0.5);
+    std::fs::remove_file(&out).unwrap();
     let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let stderr = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert!(!out.exists(), "nothing may be written");
+    assert!(stderr.contains("touch no input angle under 1°") && stderr.contains("--require-min-dihedral 0"), "{stderr}");
+    assert!(near_the_knife_edge(point_after(&stderr, "worst tet"), 5.0), "{stderr}");
+    // accepted with --require-min-dihedral 0: a WARNING on standard error, exit 0
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-min-dihedral", "0"]);
     let (stdout, stderr) = (text(&o.stdout), text(&o.stderr));
     assert!(o.status.success(), "{stderr}");
     let under1 = stdout.lines().find(|l| l.starts_with("dihedral")).unwrap().to_string();
@@ -208,4 +218,31 @@ fn a_volume_far_from_the_cad_solids_is_reported_and_can_be_required() {
     // a size that follows the circles meets it
     let o = fepre(&["mesh", step.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "0.5", "--require-volume-error", "0.01"]);
     assert!(o.status.success() && out.exists(), "{}", text(&o.stderr));
+}
+
+/// Without a requirement, a tet under 1° that touches no input angle under 1° fails the run
+/// (exit 1, nothing written, its place named); `--require-min-dihedral 0` accepts the mesh and
+/// keeps the warning. The corpus' part.step has such tets where its face 20 narrows to a 0.56°
+/// corner (tets across the strip, a few tenths from the corner): when a change meshes that
+/// strip without them, this test needs another input with tets the input does not explain.
+#[test]
+fn an_unexplained_tet_under_one_degree_fails_unless_accepted() {
+    let Some(input) = common::corpus_file("part.step") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("part.vtu");
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(only(dir.path()).is_empty(), "nothing may be written: {:?}", only(dir.path()));
+    assert!(err.contains("part.step") && err.contains("touch no input angle under 1°") && err.contains("nothing written") && err.contains("--require-min-dihedral 0"), "{err}");
+    let worst = number_after(&err, "(the smallest");
+    assert!(worst < 1.0 && number_after(&err, "min dihedral") == worst, "{err}");
+    assert!(err.contains("nearest face") && err.contains("nearest edge") && err.contains("input angle    none that the tet touches"), "{err}");
+    // accepted: written, exit 0, the warning says not all of them touch a small input angle
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-min-dihedral", "0"]);
+    let err = text(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(out.exists());
+    let warning = err.lines().find(|l| l.starts_with("WARNING: ")).unwrap_or_else(|| panic!("no WARNING line: {err}"));
+    assert!(warning.contains("under 1°") && !warning.contains("each touching"), "{warning}");
 }

@@ -14,7 +14,7 @@ printf "%-28s | %-36s | %-36s\n" file "fepre: tets min max <5 s" "tetgen: tets m
 for f in "${files[@]}"; do
   [ -f "$f" ] || continue
   n=$(basename "$f"); rm -f $w/*
-  printf '[input]\nfile = "%s"\n[[output]]\nfile = "s.obj"\n[[output]]\nfile = "m.mesh"\n' "$f" > $w/job.toml
+  printf '[input]\nfile = "%s"\n[require]\nmin_dihedral = 0\n[[output]]\nfile = "s.obj"\n[[output]]\nfile = "m.mesh"\n' "$f" > $w/job.toml
   s=$(date +%s.%N); (cd $w && timeout 300 $F run job.toml > /dev/null 2>&1); rc=$?; e=$(date +%s.%N)
   if [ $rc -ne 0 ] || [ ! -f $w/m.mesh ]; then printf "%-28s | fepre exit %s\n" "$n" "$rc"; continue; fi
   a="$(judge $w/m.mesh) $(printf %.2f $(echo "$e - $s" | bc))"

@@ -25,9 +25,9 @@ printf "%-28s | %-18s | %-30s | %s\n" file "tetgen: tets s" "fepre: size tets s"
 for f in "${files[@]}"; do
   [ -f "$f" ] || continue
   n=$(basename "$f"); rm -f $w/*
-  printf '[input]\nfile = "%s"\n[[output]]\nfile = "s.obj"\n' "$f" > $w/job.toml
+  printf '[input]\nfile = "%s"\n[require]\nmin_dihedral = 0\n[[output]]\nfile = "s.obj"\n' "$f" > $w/job.toml
   (cd $w && timeout 300 $F run job.toml > /dev/null 2>&1) || { printf "%-28s | fepre exit\n" "$n"; continue; }
-  timeout 300 $F mesh "$f" -o $w/d.mesh --json > $w/d.json 2>/dev/null || { printf "%-28s | fepre mesh exit\n" "$n"; continue; }
+  timeout 300 $F mesh "$f" -o $w/d.mesh --json --require-min-dihedral 0 > $w/d.json 2>/dev/null || { printf "%-28s | fepre mesh exit\n" "$n"; continue; }
   $F convert $w/s.obj $w/s.poly > /dev/null 2>&1
   tt=$(timed timeout 300 tetgen -pq1.414/18Q $w/s.poly); rc=$?
   if [ $rc -ne 0 ] || [ ! -f $w/s.1.ele ]; then printf "%-28s | tetgen fails\n" "$n"; continue; fi

@@ -31,8 +31,10 @@ Examples:
 Every boundary triangle of the result carries the tag of the input triangle it lies in (STL
 solid, OBJ group, glTF primitive, .poly facet marker, CAD face); each tet carries its region.
 The summary gives the tets under 5° and 1°, where the worst tet sits (nearest CAD face and
-feature edge, the small input angle it touches) and whether refinement stopped at its budget;
-a tet under 1° that no --require option asked about is a WARNING on standard error.";
+feature edge, the small input angle it touches) and whether refinement stopped at its budget.
+Without --require-min-dihedral, a tet under 1° that touches no input angle under 1° fails the
+run (exit 1, nothing written, the place named; --require-min-dihedral 0 writes such a mesh),
+and tets under 1° at input angles that small are a WARNING on standard error.";
 
 /// Arguments of `fepre mesh`.
 #[derive(Debug, clap::Args)]
@@ -59,7 +61,8 @@ pub struct Args {
     pub min_dihedral: f64,
     /// Fail (exit 1, nothing written) when a tet's smallest dihedral angle is below D degrees;
     /// the error names the worst tet's place, its CAD face and edge, and the small input angle
-    /// it touches.
+    /// it touches. Without it, the run fails on a tet under 1° that touches no input angle
+    /// under 1°; 0 accepts any mesh.
     #[arg(long, value_name = "D", value_parser = dihedral)]
     pub require_min_dihedral: Option<f64>,
     /// Fail (exit 1, nothing written) when a tet's radius-edge ratio is above R.

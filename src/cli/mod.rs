@@ -312,7 +312,8 @@ pub(crate) fn warn_mesh_summary(m: &crate::pipeline::run::MeshSummary, require: 
         let face = w.nearest_face.as_ref().map(|f| format!(", near face {}{}", f.face.0, f.name.as_ref().map(|n| format!(" \"{n}\"")).unwrap_or_default())).unwrap_or_default();
         format!(" (the smallest {}° at {}{face})", crate::quality::worst_tet::fmt_num(w.min_dihedral_deg), crate::quality::worst_tet::fmt_point(w.point))
     });
-    eprintln!("WARNING: {} tets have a dihedral angle under 1°{}; {require} makes this an error", m.tets_under_1_deg, at.unwrap_or_default());
+    let why = if m.tets_under_1_deg_unexplained == 0 { ", each touching an input angle under 1°" } else { "" };
+    eprintln!("WARNING: {} tets have a dihedral angle under 1°{}{why}; {require} makes this an error", m.tets_under_1_deg, at.unwrap_or_default());
 }
 
 /// Warns on standard error about the solids of an assembly the octree mesher left out, and

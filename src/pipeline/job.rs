@@ -145,7 +145,8 @@ pub struct MeshSection {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Require {
-    /// Smallest dihedral angle of every tet, degrees (0 to 35).
+    /// Smallest dihedral angle of every tet, degrees (0 to 35). Unset: no tet under 1° that
+    /// touches no input angle under 1°.
     pub min_dihedral: Option<Spanned<f64>>,
     /// Largest radius-edge ratio of every tet.
     pub max_radius_edge: Option<Positive>,

@@ -30,7 +30,8 @@ pub struct Plan {
     pub mesh: MeshOptions,
     /// Octree mesher options (`method` octree).
     pub octree: crate::mesh3d::octree::OctreeOptions,
-    /// Smallest dihedral angle every tet must have (degrees), or the run fails.
+    /// Smallest dihedral angle every tet must have (degrees), or the run fails. `None`: the
+    /// run fails on a tet under 1° that touches no input angle under 1°.
     pub require_min_dihedral: Option<f64>,
     /// Largest radius-edge ratio every tet must have, or the run fails.
     pub require_max_radius_edge: Option<f64>,

@@ -85,6 +85,9 @@ pub struct MeshSummary {
     pub smallest_input_angle: Option<InputAngle>,
     /// The tet with the smallest dihedral angle, and where it sits.
     pub worst_tet: Option<TetPlace>,
+    /// Of the tets under 1° that touch no input angle under 1°, the one with the smallest
+    /// angle, and where it sits: what fails a run that did not set its own requirement.
+    pub worst_unexplained_tet: Option<TetPlace>,
     /// Input triangles that were caps (flat up to rounding, a vertex on their long side),
     /// each repaired with its neighbour before meshing.
     pub input_caps_repaired: usize,
@@ -124,6 +127,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     } else {
         unexplained(mesh, &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
+    let worst_unexplained_tet = counts.worst.map(|(_, t)| boundary.locate(mesh, t, &angles, &name));
     let r_bound = plan.mesh.max_radius_edge;
     let above = mesh.tets.par_iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
     let opt = report.optimize.as_ref();
@@ -156,6 +160,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         small_input_angles: angles.len(),
         smallest_input_angle: angles.first().cloned(),
         worst_tet,
+        worst_unexplained_tet,
         input_caps_repaired: report.input_caps_repaired,
         flattening_volume: report.flattening_volume,
     };
@@ -167,6 +172,9 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
 #[derive(Default)]
 struct Unexplained {
     under: [(usize, usize); 4],
+    /// Of the tets under 1° that touch no input angle under 1°, the smallest angle's: (angle,
+    /// tet); the first tet on a tie.
+    worst: Option<(f64, usize)>,
 }
 
 /// The counts of [`Unexplained`]; `angles` smallest first, every input angle under 10° and
@@ -181,7 +189,7 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
         Unexplained::default(),
         |a, b| {
             let mut out = Unexplained::default();
-            for t in &mesh.tets[a..b] {
+            for (i, t) in mesh.tets[a..b].iter().enumerate() {
                 let p = t.map(|v| mesh.vertices[v as usize]);
                 let lo = tet_min_max_dihedral(&p).0;
                 for (k, &limit) in limits.iter().enumerate() {
@@ -189,6 +197,9 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
                         out.under[k].0 += 1;
                         if !touches_angle_below(&p, angles, limit) {
                             out.under[k].1 += 1;
+                            if k == 0 && out.worst.is_none_or(|(w, _)| lo < w) {
+                                out.worst = Some((lo, a + i));
+                            }
                         }
                     }
                 }
@@ -199,6 +210,12 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
             for (x, y) in acc.under.iter_mut().zip(part.under) {
                 x.0 += y.0;
                 x.1 += y.1;
+            }
+            // chunks come in order: a later one wins only with a smaller angle
+            if let Some((w, t)) = part.worst {
+                if acc.worst.is_none_or(|(v, _)| w < v) {
+                    acc.worst = Some((w, t));
+                }
             }
         },
     )
@@ -229,6 +246,15 @@ impl Summarised {
                 );
                 return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, s.worst_tet.as_ref()) });
             }
+        } else if s.tets_under_1_deg_unexplained > 0 {
+            // the default requirement: no tet under 1° that no input angle under 1° explains
+            let head = format!(
+                "{} tets have a dihedral angle under 1° and touch no input angle under 1° (the smallest {}°; {} tets under 1° in all): a solver would get near-singular elements; nothing written (--require-min-dihedral 0 writes the mesh as it is)",
+                s.tets_under_1_deg_unexplained,
+                fmt_num(s.worst_unexplained_tet.as_ref().map_or(0.0, |w| w.min_dihedral_deg)),
+                s.tets_under_1_deg
+            );
+            return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, s.worst_unexplained_tet.as_ref()) });
         }
         if let (Some(r), Some(e), Some(v)) = (plan.require_volume_error, s.volume_error, s.cad_volume) {
             if !(e.abs() <= r) {
