@@ -6,7 +6,6 @@
 //! refinement or the optimisation stopped at a budget. A requirement that fails is an error
 //! naming the same place.
 
-use rayon::prelude::*;
 use super::PipelineError;
 use super::run::Plan;
 use crate::cad::brep::FaceEntry;
@@ -14,7 +13,7 @@ use crate::core::FaceId;
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{MeshReport, RefinementStop};
 use crate::quality::input_angles::{InputAngle, small_input_angles};
-use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality};
+use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality_against};
 use crate::quality::tetrahedron::tet_radius_edge;
 use crate::quality::worst_tet::{BoundaryIndex, TetPlace, fmt_num};
 use serde::Serialize;
@@ -114,7 +113,8 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     // way (their zero angles are gone); found while the tets are judged
     let repaired = if report.input_caps_repaired > 0 { surface.and_then(crate::mesh::caps::repair_caps) } else { None };
     let surface = repaired.as_ref().map(|r| &r.0).or(surface);
-    let (q, angles) = rayon::join(|| tet_mesh_quality(mesh), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
+    let r_bound = plan.mesh.max_radius_edge;
+    let ((q, against), angles) = rayon::join(|| tet_mesh_quality_against(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
     let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
@@ -122,14 +122,17 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     // lower
     let counts = if !(q.min_dihedral_deg < bound.max(10.0)) {
         Unexplained::default()
+    } else if bound >= 10.0 && angles.is_empty() {
+        // no input angle under the bound: no tet touches one, the quality pass counted them
+        let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
+        Unexplained { under, worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
     } else if bound >= 10.0 {
         unexplained(mesh, &angles, bound)
     } else {
         unexplained(mesh, &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
     let worst_unexplained_tet = counts.worst.map(|(_, t)| boundary.locate(mesh, t, &angles, &name));
-    let r_bound = plan.mesh.max_radius_edge;
-    let above = mesh.tets.par_iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r_bound)).count();
+    let above = against.above_radius_edge;
     let opt = report.optimize.as_ref();
     let summary = MeshSummary {
         nodes: mesh.vertices.len(),
