@@ -64,12 +64,33 @@ impl TetMesh {
         if self.region_tags.len() != self.tets.len() {
             return Err(MeshError::LengthMismatch { what: "region_tags", found: self.region_tags.len(), expected: self.tets.len() });
         }
+        self.validate_face_tags()?;
+        self.validate_cells()
+    }
+
+    /// The face tags' part of [`TetMesh::validate`]: one tag per boundary triangle.
+    ///
+    /// # Errors
+    /// [`MeshError::LengthMismatch`].
+    pub fn validate_face_tags(&self) -> Result<(), MeshError> {
         if self.face_tags.len() != self.boundary.len() {
             return Err(MeshError::LengthMismatch {
                 what: "face_tags",
                 found: self.face_tags.len(),
                 expected: self.boundary.len(),
             });
+        }
+        Ok(())
+    }
+
+    /// [`TetMesh::validate`] but for the face tags (a mesher that tags its boundary while
+    /// this runs checks them after with [`TetMesh::validate_face_tags`]).
+    ///
+    /// # Errors
+    /// As [`TetMesh::validate`].
+    pub fn validate_cells(&self) -> Result<(), MeshError> {
+        if self.region_tags.len() != self.tets.len() {
+            return Err(MeshError::LengthMismatch { what: "region_tags", found: self.region_tags.len(), expected: self.tets.len() });
         }
         check_finite(&self.vertices)?;
         let n = self.vertices.len();

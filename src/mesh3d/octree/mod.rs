@@ -361,12 +361,14 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         stage("snap", &mut t);
     }
     let buried = buried::Buried::new(oracle);
-    let (dev, nearest) = deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg, Some(&buried));
+    // the cells are checked while the boundary is measured (both read the mesh), the tags
+    // after
+    let ((dev, nearest), valid) = rayon::join(|| deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg, Some(&buried)), || mesh.validate_cells());
+    valid?;
     mesh.face_tags = tags::tags_of(surface, &nearest);
     mesh.face_names = surface.face_names.clone();
-    stage("deviation_tags", &mut t);
-    mesh.validate()?;
-    stage("validate", &mut t);
+    mesh.validate_face_tags()?;
+    stage("deviation_tags_validate", &mut t);
     // fixed chunks summed in order: the volume's last bits do not depend on the threads
     let (lo, hi, volume) = crate::quality::summary::chunked_reduce(
         mesh.tets.len(),
