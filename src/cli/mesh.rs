@@ -7,7 +7,7 @@ use crate::attributes::values::Positive;
 use crate::cli::progress::Progress;
 use crate::cli::{positive, usage_error};
 use crate::io::Format;
-use crate::pipeline::run::{Plan, RunReport, run_plan};
+use crate::pipeline::run::{Plan, RunReport, run_plan_to};
 use crate::pipeline::{Part, PipelineError};
 use anyhow::Result;
 use serde::Serialize;
@@ -163,12 +163,10 @@ pub fn run(args: &Args) -> Result<()> {
         ..Plan::default()
     };
     progress.stage("meshing");
-    let report = run_plan(&mut part, &plan, false).map_err(|e| match e {
+    let report = run_plan_to(&mut part, &plan, out).map_err(|e| match e {
         PipelineError::Usage { .. } => usage_error(e.to_string()),
         e => anyhow::Error::new(e),
     })?;
-    progress.stage(&format!("writing {}", out.display()));
-    part.write(out)?;
     progress.finish();
     print(args, &part, &report)
 }

@@ -2,9 +2,55 @@
 //! target and renames it at the end.
 
 use crate::io::IoError;
+use std::cell::RefCell;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use tempfile::NamedTempFile;
+
+/// Files written whole to temporaries (flushed and synced) and not yet renamed onto their
+/// paths: [`Pending::commit`] renames them; dropping a `Pending` removes them, leaving the
+/// paths as they were.
+#[must_use = "dropping it removes the files written"]
+#[derive(Debug, Default)]
+pub struct Pending {
+    files: Vec<(NamedTempFile, PathBuf)>,
+}
+
+impl Pending {
+    /// Renames the temporary files onto their paths.
+    ///
+    /// # Errors
+    /// [`IoError::Write`] where a rename fails (the files not yet renamed are removed).
+    pub fn commit(self) -> Result<(), IoError> {
+        for (t, path) in self.files {
+            t.persist(&path).map_err(|e| IoError::Write { path: path.clone(), source: e.error })?;
+        }
+        Ok(())
+    }
+}
+
+thread_local! {
+    /// Where [`write_atomic_many`] leaves its temporaries inside [`deferred`] on this thread.
+    static DEFERRED: RefCell<Option<Vec<(NamedTempFile, PathBuf)>>> = const { RefCell::new(None) };
+}
+
+/// Runs `write` (any writer of [`crate::io`]) with the renames held back: its files are
+/// written whole to temporaries and the returned [`Pending`] renames them, so a caller can
+/// write while it decides whether the output may stand. The writers' renames happen on the
+/// thread that calls them, which is this one: `write` must not hand whole writes to other
+/// threads, and this thread must not write other files meanwhile (a rayon job it steals
+/// while `write` waits would be deferred too; the pipeline runs beside it only jobs that
+/// write nothing).
+///
+/// # Errors
+/// The error of `write`; the temporaries written before it are removed.
+pub fn deferred<E>(write: impl FnOnce() -> Result<(), E>) -> Result<Pending, E> {
+    let outer = DEFERRED.with(|d| d.replace(Some(Vec::new())));
+    let result = write();
+    let files = DEFERRED.with(|d| d.replace(outer)).unwrap_or_default();
+    result.map(|()| Pending { files })
+}
 
 /// Writes `path` through a temporary file in the same directory, renamed on success.
 /// On any error the temporary file is removed and `path` is left as it was.
@@ -58,10 +104,16 @@ where
         w.get_ref().sync_data().ok();
     }
     drop(writers);
-    for (t, path) in temps.into_iter().zip(paths) {
-        t.persist(path).map_err(|e| werr(path, e.error))?;
-    }
-    Ok(())
+    let pending = Pending { files: temps.into_iter().zip(paths.iter().cloned()).collect() };
+    // inside `deferred`: the renames wait for its caller
+    let pending = DEFERRED.with(|d| match d.borrow_mut().as_mut() {
+        Some(held) => {
+            held.extend(pending.files);
+            None
+        }
+        None => Some(pending),
+    });
+    pending.map_or(Ok(()), Pending::commit)
 }
 
 /// Shorthand for turning a `std::io::Error` while writing `path` into an [`IoError`].
@@ -72,6 +124,45 @@ pub fn write_err(path: &Path) -> impl Fn(std::io::Error) -> IoError + '_ {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn deferred_writes_appear_on_commit_and_vanish_on_drop() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        std::fs::write(&b, "old").unwrap();
+        let names = || {
+            let mut v: Vec<String> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+            v.sort();
+            v
+        };
+        // written whole to temporaries; nothing renamed yet
+        let pending = deferred(|| -> Result<(), IoError> {
+            write_atomic(&a, |w| w.write_all(b"one").map_err(write_err(&a)))?;
+            write_atomic(&b, |w| w.write_all(b"two").map_err(write_err(&b)))
+        })
+        .unwrap();
+        assert!(!a.exists());
+        assert_eq!(std::fs::read_to_string(&b).unwrap(), "old");
+        assert_eq!(names().len(), 3, "{:?}", names());
+        pending.commit().unwrap();
+        assert_eq!((std::fs::read_to_string(&a).unwrap(), std::fs::read_to_string(&b).unwrap()), ("one".into(), "two".into()));
+        assert_eq!(names(), ["a.txt", "b.txt"]);
+        // dropped: the paths stay as they were, no temporary is left
+        drop(deferred(|| write_atomic(&a, |w| w.write_all(b"three").map_err(write_err(&a)))).unwrap());
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "one");
+        assert_eq!(names(), ["a.txt", "b.txt"]);
+        // an error inside: the earlier temporaries are removed too
+        let r = deferred(|| -> Result<(), IoError> {
+            write_atomic(&a, |w| w.write_all(b"four").map_err(write_err(&a)))?;
+            write_atomic(&b, |_| Err(IoError::Write { path: b.clone(), source: std::io::Error::other("no") }))
+        });
+        assert!(r.is_err());
+        assert_eq!(names(), ["a.txt", "b.txt"]);
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "one");
+        // outside `deferred` a write renames at once again
+        write_atomic(&a, |w| w.write_all(b"five").map_err(write_err(&a))).unwrap();
+        assert_eq!(std::fs::read_to_string(&a).unwrap(), "five");
+    }
 
     #[cfg(unix)]
     #[test]

@@ -13,7 +13,7 @@ use crate::mesh3d::mesher::{MeshOptions, MeshReport};
 use crate::tessellate::TessellateOptions;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// What to do with a part.
 #[derive(Clone, Debug, Default)]
@@ -104,6 +104,20 @@ pub fn evaluate_selectors(part: &Part, selectors: &BTreeMap<String, Selector>) -
 /// # Errors
 /// A selector or density error, a failed certificate, a mesher error, a requirement not met.
 pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunReport, PipelineError> {
+    run_plan_writing(part, plan, check_only, None)
+}
+
+/// [`run_plan`], then writes the tet mesh to `out` (its extension picks the format) unless a
+/// requirement fails: the file is written while the quality is summarised and appears only
+/// once the requirements hold (otherwise nothing is left, and a file already at `out` stays).
+///
+/// # Errors
+/// As [`run_plan`]; a format that cannot hold tets, a failed write.
+pub fn run_plan_to(part: &mut Part, plan: &Plan, out: &Path) -> Result<RunReport, PipelineError> {
+    run_plan_writing(part, plan, false, Some(out))
+}
+
+fn run_plan_writing(part: &mut Part, plan: &Plan, check_only: bool, out: Option<&Path>) -> Result<RunReport, PipelineError> {
     let selected = evaluate_selectors(part, &plan.selectors).map_err(|source| PipelineError::Select { path: part.path.clone(), source })?;
     let octree = plan.method == super::job::Method::Octree;
     let density_octree;
@@ -133,13 +147,20 @@ pub fn run_plan(part: &mut Part, plan: &Plan, check_only: bool) -> Result<RunRep
     };
     let r = part.mesh_report.clone().unwrap_or_default();
     let cad_volume = part.certified.as_ref().map(|c| c.certificate.volume[1]);
-    let summarised = summarise(mesh, part.surface.as_ref(), &r, plan, &report.face_table, cad_volume);
+    // the file is written beside the summary (which writes nothing: see io::atomic::deferred)
+    let (summarised, written) = rayon::join(
+        || summarise(mesh, part.surface.as_ref(), &r, plan, &report.face_table, cad_volume),
+        || out.map(|o| crate::io::atomic::deferred(|| part.write(o))),
+    );
     report.mesh = Some(summarised.summary.clone());
     report.mesher = Some(r);
     report.contacts = part.contacts.clone();
     report.seconds = part.seconds.clone();
     report.octree = part.octree_report.clone();
     summarised.check(&part.path, mesh, plan, &report.face_table)?;
+    if let Some(w) = written {
+        w?.commit()?;
+    }
     Ok(report)
 }
 
