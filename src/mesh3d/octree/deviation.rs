@@ -174,7 +174,8 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         let tri = from.triangles[t];
         let centroid = centroids.then(|| {
             let p = tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0;
-            nearest_from(to, to_bvh, p, None)
+            // a corner's nearest triangle bounds the search (the answer is the same)
+            nearest_from(to, to_bvh, p, tri.iter().find_map(|&v| at_vertex[v as usize].1))
         });
         let mut n = usize::from(centroid.is_some());
         let d = tri.map(|v| at_vertex[v as usize].0);
