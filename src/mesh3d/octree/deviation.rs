@@ -13,8 +13,9 @@
 //!   `m + r ≤ h / 2`, or `r ≤ h / 8`, or the triangle's budget of 65,536 midpoints
 //!   (`MAX_SPLITS`) is spent. A piece so settled with `m ≤ h < m + r` (its samples within the
 //!   cell, its bound past it) is measured again *finely*, to `r ≤ h / 64` (and the thin rule
-//!   below at `h / 64`): the bound is tight where it decides whether the boundary is within
-//!   the cell, and the pieces far inside or far outside it cost no more. Every point of a piece lies within `r` of one of its corners, and the distance to
+//!   below at `h / 64`), and if its fine bound still passes the cell, *closely*, to
+//!   `r ≤ h / 256`: the bound is tight where it decides whether the boundary is within the
+//!   cell, and the pieces far inside or far outside it cost no more. Every point of a piece lies within `r` of one of its corners, and the distance to
 //!   a surface is 1-Lipschitz, so the true one-sided distance is at most the largest `m + r`
 //!   over the pieces: `hausdorff_bound` is that upper bound, never an estimate below the
 //!   truth; `hausdorff` is the largest distance actually found.
@@ -30,8 +31,12 @@
 //! - Input that is not the boundary of the stuffed volume (`buried.rs`: a sheet inside it,
 //!   where bodies overlap, or an inward shell outside it) is not measured: an input triangle
 //!   whose measure passes the cell is measured again, its buried pieces left out and the
-//!   samples taken from the pieces kept. Pieces the judge is unsure of (another triangle
-//!   meets them) are kept, so the bound stays an upper bound over the boundary. A feature
+//!   samples taken from the pieces kept (a thin piece's side samples only where it is
+//!   bounded there). Pieces the judge is unsure of (another triangle meets them) are kept, so
+//!   the bound stays an upper bound over the boundary; one whose measure passes the cell is
+//!   cut further, at the fine level even with its samples past the cell, and not bounded by
+//!   the thin rule past the coarse level, so that its pieces clear of the triangles that
+//!   meet it are judged (rabbit.obj: the sheets inside its overlapping bodies). A feature
 //!   edge between two buried triangles is not counted.
 //! - A feature edge is an input edge of exactly two triangles whose normals turn by more
 //!   than the feature angle. It is *resolved* when every sample along it (spacing at most
@@ -146,6 +151,19 @@ const MAX_SPLITS: usize = 1 << 16;
 /// coarse bound passes the cell is measured again to this.
 const FINE: f64 = 1.0 / 64.0;
 
+/// The measures' levels: coarse, fine, close. A piece whose samples are within the cell and
+/// whose bound at one level passes it is measured again at the next.
+const LEVELS: usize = 3;
+
+/// Per level, the covering radius (in cells) at which a piece is settled.
+const SETTLE: [f64; LEVELS] = [1.0 / 8.0, FINE, FINE / 4.0];
+
+/// Per level, the altitude (in cells) under which a piece is thin.
+const THIN: [f64; LEVELS] = [1.0 / 16.0, FINE, FINE / 4.0];
+
+/// Per level, the spacing (in cells) of the samples on a thin piece's longest side.
+const SPACING: [f64; LEVELS] = [1.0 / 8.0, FINE, FINE / 4.0];
+
 /// Largest sampled distance from `from` to `to` and where it is reached (the first such
 /// sample in triangle order), its upper bound, the number of samples, and with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
 /// The corners are sampled once per vertex (shared by the triangles around it).
@@ -164,10 +182,10 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         .map(|(&p, &u)| if u { nearest_from(to, to_bvh, p, None).map_or((f64::INFINITY, None), |x| (x.1, Some(x.0))) } else { (0.0, None) })
         .collect();
     let corners = used.iter().filter(|&&u| u).count();
-    // a piece is measured coarsely first; one whose samples are within the cell but whose
-    // bound would pass it is measured again finely (`fine`): the bound is tight where it
-    // decides the cell's line
-    let settled = |m: f64, r: f64, fine: bool| m + r <= 0.5 * h || r <= if fine { FINE * h } else { h / 8.0 };
+    // a piece is measured coarsely first (level 0); one whose samples are within the cell but
+    // whose bound would pass it is measured again finely (level 1), and again closely (level
+    // 2) if its fine bound still passes it: the bound is tight where it decides the cell's line
+    let settled = |m: f64, r: f64, level: usize| m + r <= 0.5 * h || r <= SETTLE[level] * h;
     // `aware`: the pieces buried in the stuffed volume (or outside it) are left out, and the
     // samples are those of the pieces kept
     let measure_as = |t: usize, aware: Option<&Buried>| {
@@ -196,11 +214,11 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         }
         let mut bound: f64 = 0.0;
         let hint = centroid.flatten().map(|x| x.0).or_else(|| tri.iter().find_map(|&v| at_vertex[v as usize].1));
-        // pieces: corners, their distances, a hint for their midpoints, fine, and (aware)
+        // pieces: corners, their distances, a hint for their midpoints, the level, and (aware)
         // whether the piece is known to be on the boundary
-        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, bool, bool)> = vec![(from.corners(t), d, hint, false, false)];
+        let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, usize, bool)> = vec![(from.corners(t), d, hint, 0, false)];
         let mut splits = 0;
-        while let Some((p, d, hint, fine, mut on_boundary)) = stack.pop() {
+        while let Some((p, d, hint, level, mut on_boundary)) = stack.pop() {
             if let Some(b) = aware.filter(|_| !on_boundary) {
                 match b.piece(t, &p) {
                     Side::Buried => continue,
@@ -213,9 +231,15 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
             let m = d[0].max(d[1]).max(d[2]);
             let r = covering_radius(&p, len);
-            if settled(m, r, fine) || splits >= MAX_SPLITS {
-                if !fine && m <= h && m + r > h && splits < MAX_SPLITS {
-                    stack.push((p, d, hint, true, on_boundary));
+            // (aware) a piece the judge could not place whose measure passes the cell is cut
+            // further at the fine level even with its samples past the cell, and never bounded
+            // by the thin rule while it is larger than the close measure: its pieces away from
+            // the triangles that meet it are judged
+            let unplaced = aware.is_some() && !on_boundary && m + r > h;
+            let deeper = level < LEVELS - 1 && splits < MAX_SPLITS;
+            if settled(m, r, level) || splits >= MAX_SPLITS {
+                if deeper && (m <= h || (unplaced && level == 0)) && m + r > h {
+                    stack.push((p, d, hint, level + 1, on_boundary));
                     continue;
                 }
                 if aware.is_some() {
@@ -228,33 +252,34 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             }
             let (i, j) = ((k + 1) % 3, (k + 2) % 3);
             let altitude = (p[1] - p[0]).cross(p[2] - p[0]).length() / len[k];
-            // the thin test and the side's spacing, coarse or fine
-            let (thin, spacing) = if fine { (FINE * h, FINE * h) } else { (h / 16.0, h / 8.0) };
-            if altitude <= thin {
+            if altitude <= THIN[level] * h && !(unplaced && level > 0) {
                 // thin: every point is within the altitude of a point of the longest side
                 // (its angles at both ends are acute); sample that side at the spacing
-                let steps = ((len[k] / spacing).ceil() as usize).clamp(1, MAX_SPLITS - splits);
+                let steps = ((len[k] / (SPACING[level] * h)).ceil() as usize).clamp(1, MAX_SPLITS - splits);
                 let mut side = d[i].max(d[j]);
-                if aware.is_some() {
-                    for q in 0..3 {
-                        farther(&mut worst, d[q], p[q]);
-                    }
-                }
+                // the samples, kept for `worst` only where this piece is bounded here
+                let mut far = (0.0, p[i]);
                 let mut hint = hint;
                 for q in 1..steps {
                     let at = p[i] + (p[j] - p[i]) * (q as f64 / steps as f64);
                     let (near, dq) = nearest_from(to, to_bvh, at, hint).map_or((hint, f64::INFINITY), |x| (Some(x.0), x.1));
                     hint = near;
                     side = side.max(dq);
-                    farther(&mut worst, dq, at);
+                    farther(&mut far, dq, at);
                     n += 1;
                     splits += 1;
                 }
                 let piece = (side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9);
-                if !fine && side <= h && piece > h && splits < MAX_SPLITS {
-                    stack.push((p, d, hint, true, on_boundary));
+                if deeper && side <= h && piece > h {
+                    stack.push((p, d, hint, level + 1, on_boundary));
                     continue;
                 }
+                if aware.is_some() {
+                    for q in 0..3 {
+                        farther(&mut worst, d[q], p[q]);
+                    }
+                }
+                farther(&mut worst, far.0, far.1);
                 bound = bound.max(piece);
                 continue;
             }
@@ -265,10 +290,10 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             if aware.is_none() {
                 farther(&mut worst, dm, mid);
             }
-            let mut left = (p, d, near, fine, on_boundary);
+            let mut left = (p, d, near, level, on_boundary);
             left.0[j] = mid;
             left.1[j] = dm;
-            let mut right = (p, d, near, fine, on_boundary);
+            let mut right = (p, d, near, level, on_boundary);
             right.0[i] = mid;
             right.1[i] = dm;
             stack.push(right);
@@ -484,6 +509,36 @@ mod tests {
         assert!((plain - 1.5).abs() < 1e-12 && plain_bound >= 1.5, "{plain} {plain_bound}");
         let ((kept, _), bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
         assert!(kept == 0.0 && bound <= 0.5, "{kept} {bound}");
+    }
+
+    /// Two boxes crossing inside a cube (all their walls buried, the cube's faces the
+    /// boundary): the wall of the second box that goes down into the first from their crossing
+    /// line (0.9 under the cube's top) is 1 or more from the boundary just below the line, so
+    /// the pieces that the judge cannot place there (the first box's top meets them) pass the
+    /// cell when measured as a whole. Cut further, their pieces clear of the crossing are
+    /// judged buried and those along it are within the cell.
+    #[test]
+    fn pieces_along_a_crossing_inside_are_cut_until_judged() {
+        use super::super::tests::{cube_at, together};
+        use super::super::winding::Winding;
+        let boxed = |lo: DVec3, size: DVec3| {
+            let mut c = cube_at(DVec3::ZERO, 1.0);
+            c.vertices.iter_mut().for_each(|p| *p = lo + *p * size);
+            c
+        };
+        let first = boxed(DVec3::splat(0.5), DVec3::new(3.0, 3.0, 2.6));
+        let second = boxed(DVec3::new(2.0, 1.0, 2.0), DVec3::new(1.7, 2.0, 1.7));
+        let input = together(&[cube_at(DVec3::ZERO, 4.0), first, second]);
+        let (outer, outer_bvh) = {
+            let c = cube_at(DVec3::ZERO, 4.0);
+            surface(c.vertices, c.triangles)
+        };
+        let w = Winding::new(&input);
+        let b = Buried::new(&w);
+        let ((plain, _), _, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);
+        assert!(plain >= 1.5, "{plain}");
+        let ((kept, _), bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
+        assert!(kept <= 0.95 && bound <= 1.0, "{kept} {bound}");
     }
 
     /// Parallel planes one apart: every sample is 1 away, and the bound is within the slack.
