@@ -126,42 +126,46 @@ mod tests {
     use super::*;
 
     #[test]
-    fn deferred_writes_appear_on_commit_and_vanish_on_drop() {
-        let dir = tempfile::tempdir().unwrap();
+    fn deferred_writes_appear_on_commit_and_vanish_on_drop() -> Result<(), Box<dyn std::error::Error>> {
+        let dir = tempfile::tempdir()?;
         let (a, b) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
-        std::fs::write(&b, "old").unwrap();
-        let names = || {
-            let mut v: Vec<String> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+        std::fs::write(&b, "old")?;
+        let names = || -> std::io::Result<Vec<String>> {
+            let mut v = Vec::new();
+            for e in std::fs::read_dir(dir.path())? {
+                v.push(e?.file_name().to_string_lossy().into_owned());
+            }
             v.sort();
-            v
+            Ok(v)
         };
+        let read = |p: &Path| std::fs::read_to_string(p);
         // written whole to temporaries; nothing renamed yet
         let pending = deferred(|| -> Result<(), IoError> {
             write_atomic(&a, |w| w.write_all(b"one").map_err(write_err(&a)))?;
             write_atomic(&b, |w| w.write_all(b"two").map_err(write_err(&b)))
-        })
-        .unwrap();
+        })?;
         assert!(!a.exists());
-        assert_eq!(std::fs::read_to_string(&b).unwrap(), "old");
-        assert_eq!(names().len(), 3, "{:?}", names());
-        pending.commit().unwrap();
-        assert_eq!((std::fs::read_to_string(&a).unwrap(), std::fs::read_to_string(&b).unwrap()), ("one".into(), "two".into()));
-        assert_eq!(names(), ["a.txt", "b.txt"]);
+        assert_eq!(read(&b)?, "old");
+        assert_eq!(names()?.len(), 3, "{:?}", names()?);
+        pending.commit()?;
+        assert_eq!((read(&a)?, read(&b)?), ("one".into(), "two".into()));
+        assert_eq!(names()?, ["a.txt", "b.txt"]);
         // dropped: the paths stay as they were, no temporary is left
-        drop(deferred(|| write_atomic(&a, |w| w.write_all(b"three").map_err(write_err(&a)))).unwrap());
-        assert_eq!(std::fs::read_to_string(&a).unwrap(), "one");
-        assert_eq!(names(), ["a.txt", "b.txt"]);
+        drop(deferred(|| write_atomic(&a, |w| w.write_all(b"three").map_err(write_err(&a))))?);
+        assert_eq!(read(&a)?, "one");
+        assert_eq!(names()?, ["a.txt", "b.txt"]);
         // an error inside: the earlier temporaries are removed too
         let r = deferred(|| -> Result<(), IoError> {
             write_atomic(&a, |w| w.write_all(b"four").map_err(write_err(&a)))?;
             write_atomic(&b, |_| Err(IoError::Write { path: b.clone(), source: std::io::Error::other("no") }))
         });
         assert!(r.is_err());
-        assert_eq!(names(), ["a.txt", "b.txt"]);
-        assert_eq!(std::fs::read_to_string(&a).unwrap(), "one");
+        assert_eq!(names()?, ["a.txt", "b.txt"]);
+        assert_eq!(read(&a)?, "one");
         // outside `deferred` a write renames at once again
-        write_atomic(&a, |w| w.write_all(b"five").map_err(write_err(&a))).unwrap();
-        assert_eq!(std::fs::read_to_string(&a).unwrap(), "five");
+        write_atomic(&a, |w| w.write_all(b"five").map_err(write_err(&a)))?;
+        assert_eq!(read(&a)?, "five");
+        Ok(())
     }
 
     #[cfg(unix)]
