@@ -131,7 +131,11 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     } else {
         unexplained(mesh, &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
-    let worst_unexplained_tet = counts.worst.map(|(_, t)| boundary.locate(mesh, t, &angles, &name));
+    // most often the worst tet itself, already located
+    let worst_unexplained_tet = counts.worst.map(|(_, t)| match &worst_tet {
+        Some(w) if w.tet == t => w.clone(),
+        _ => boundary.locate(mesh, t, &angles, &name),
+    });
     let above = against.above_radius_edge;
     let opt = report.optimize.as_ref();
     let summary = MeshSummary {

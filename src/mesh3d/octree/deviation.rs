@@ -204,6 +204,12 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 *worst = (d, at);
             }
         };
+        // (aware) a piece's corners count only once the piece is bounded (kept)
+        let corners_kept = |worst: &mut (f64, DVec3), p: &[DVec3; 3], d: &[f64; 3]| {
+            if aware.is_some() {
+                (0..3).for_each(|q| farther(worst, d[q], p[q]));
+            }
+        };
         if aware.is_none() {
             for (k, &v) in tri.iter().enumerate() {
                 farther(&mut worst, d[k], from.vertices[v as usize]);
@@ -242,11 +248,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                     stack.push((p, d, hint, level + 1, on_boundary));
                     continue;
                 }
-                if aware.is_some() {
-                    for q in 0..3 {
-                        farther(&mut worst, d[q], p[q]);
-                    }
-                }
+                corners_kept(&mut worst, &p, &d);
                 bound = bound.max(m + r);
                 continue;
             }
@@ -274,11 +276,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                     stack.push((p, d, hint, level + 1, on_boundary));
                     continue;
                 }
-                if aware.is_some() {
-                    for q in 0..3 {
-                        farther(&mut worst, d[q], p[q]);
-                    }
-                }
+                corners_kept(&mut worst, &p, &d);
                 farther(&mut worst, far.0, far.1);
                 bound = bound.max(piece);
                 continue;
