@@ -223,6 +223,9 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         }
         let [x, y, z] = d.hausdorff_at;
         outln!("  deviation      Hausdorff {:.4e} sampled ({} points; mesh→input {:.4e}, input→mesh {:.4e}; farthest at ({x:.6}, {y:.6}, {z:.6})), at most {:.4e}", d.hausdorff, d.samples, d.mesh_to_input, d.input_to_mesh, d.hausdorff_bound);
+        if d.sealed_area > 0.0 {
+            outln!("  sealed gaps    {:.4e} of input area left out of input→mesh: gaps under {:.4e} between crossing shells, taken as closed", d.sealed_area, d.seal);
+        }
         outln!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);
     }
     if part.open_surface_faces > 0 {

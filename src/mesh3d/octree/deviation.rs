@@ -36,7 +36,10 @@
 //!   the bound stays an upper bound over the boundary; one whose measure passes the cell is
 //!   cut further, at the fine level even with its samples past the cell, and not bounded by
 //!   the thin rule past the coarse level, so that its pieces clear of the triangles that
-//!   meet it are judged (rabbit.obj: the sheets inside its overlapping bodies). A feature
+//!   meet it are judged (rabbit.obj: the sheets inside its overlapping bodies); at the
+//!   coarse level a thin piece so unplaced is cut the same way, not bounded along its side.
+//!   Pieces in gaps narrower than the seal between crossing shells are left out too
+//!   (`buried.rs`), their area reported. A feature
 //!   edge between two buried triangles is not counted.
 //! - A feature edge is an input edge of exactly two triangles whose normals turn by more
 //!   than the feature angle. It is *resolved* when every sample along it (spacing at most
@@ -72,6 +75,11 @@ pub struct Deviation {
     pub hausdorff_bound: f64,
     /// Points sampled on both surfaces.
     pub samples: usize,
+    /// Gaps narrower than this between input shells that cross each other are closed: their
+    /// walls are left out of the input's distance to the mesh (`buried.rs`; 0: none).
+    pub seal: f64,
+    /// The input area so left out.
+    pub sealed_area: f64,
     /// The feature angle, degrees.
     pub feature_angle_deg: f64,
     /// Input feature edges.
@@ -91,8 +99,8 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
     let bnd = TriSurface::with_single_tag(mesh.vertices.clone(), mesh.boundary.clone(), crate::core::FaceId(1));
     let bnd_boxes: Vec<Aabb> = (0..bnd.triangles.len()).map(|t| Aabb::from_points(&bnd.corners(t))).collect();
     let bnd_bvh = Bvh::from_boxes(&bnd_boxes);
-    let (m2i, m2i_bound, n1, nearest) = one_sided(&bnd, surface, surface_bvh, h, true, None);
-    let (i2m, i2m_bound, n2, _) = one_sided(surface, &bnd, &bnd_bvh, h, false, buried);
+    let (m2i, m2i_bound, n1, nearest, _) = one_sided(&bnd, surface, surface_bvh, h, true, None);
+    let (i2m, i2m_bound, n2, _, sealed_area) = one_sided(surface, &bnd, &bnd_bvh, h, false, buried);
     let ((m2i, m2i_at), (i2m, i2m_at)) = (m2i, i2m);
     let mut d = Deviation {
         mesh_to_input: m2i,
@@ -101,6 +109,8 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
         hausdorff_at: if i2m > m2i { i2m_at } else { m2i_at }.to_array(),
         hausdorff_bound: m2i_bound.max(i2m_bound),
         samples: n1 + n2,
+        seal: buried.map_or(0.0, Buried::seal),
+        sealed_area,
         feature_angle_deg,
         ..Deviation::default()
     };
@@ -167,7 +177,7 @@ const SPACING: [f64; LEVELS] = [1.0 / 8.0, FINE, FINE / 4.0];
 /// Largest sampled distance from `from` to `to` and where it is reached (the first such
 /// sample in triangle order), its upper bound, the number of samples, and with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
 /// The corners are sampled once per vertex (shared by the triangles around it).
-fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool, buried: Option<&Buried>) -> ((f64, DVec3), f64, usize, Vec<Option<u32>>) {
+fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool, buried: Option<&Buried>) -> ((f64, DVec3), f64, usize, Vec<Option<u32>>, f64) {
     let mut used = vec![false; from.vertices.len()];
     for t in &from.triangles {
         for &v in t {
@@ -224,10 +234,16 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         // whether the piece is known to be on the boundary
         let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, usize, bool)> = vec![(from.corners(t), d, hint, 0, false)];
         let mut splits = 0;
+        // (aware) the area of the pieces left out as sealed gaps
+        let mut sealed = 0.0;
         while let Some((p, d, hint, level, mut on_boundary)) = stack.pop() {
             if let Some(b) = aware.filter(|_| !on_boundary) {
                 match b.piece(t, &p) {
                     Side::Buried => continue,
+                    Side::Sealed => {
+                        sealed += 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
+                        continue;
+                    }
                     Side::Boundary => on_boundary = true,
                     Side::Unsure => {}
                 }
@@ -272,7 +288,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                     splits += 1;
                 }
                 let piece = (side + 0.5 * len[k] / steps as f64 + altitude) * (1.0 + 1e-9);
-                if deeper && side <= h && piece > h {
+                if deeper && (side <= h || (unplaced && level == 0)) && piece > h {
                     stack.push((p, d, hint, level + 1, on_boundary));
                     continue;
                 }
@@ -297,7 +313,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             stack.push(right);
             stack.push(left);
         }
-        ((worst.0, worst.1, t), bound, n, centroid.flatten().map(|x| x.0))
+        ((worst.0, worst.1, t), bound, n, centroid.flatten().map(|x| x.0), sealed)
     };
     // a triangle whose measure passes the cell is measured again leaving out what is buried
     let measure = |t: usize| {
@@ -305,7 +321,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         match buried {
             Some(b) if first.1 > h || first.0.0 > h => {
                 let again = measure_as(t, Some(b));
-                (again.0, again.1, first.2 + again.2, first.3)
+                (again.0, again.1, first.2 + again.2, first.3, again.4)
             }
             _ => first,
         }
@@ -319,28 +335,31 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
     };
     let none: Stats = ((0.0, from.vertices.first().copied().unwrap_or(DVec3::ZERO), usize::MAX), 0.0, 0);
     let triangles = 0..from.triangles.len();
+    let mut sealed = 0.0;
     let (stats, nearest) = if centroids {
         // one nearest triangle per triangle is kept (the tags); the rest is reduced
         let (stats, nearest): (Vec<Stats>, Vec<Option<u32>>) = triangles
             .into_par_iter()
             .map(|t| {
-                let (w, b, n, near) = measure(t);
+                let (w, b, n, near, _) = measure(t);
                 ((w, b, n), near)
             })
             .unzip();
         (stats.into_iter().fold(none, join), nearest)
     } else {
-        let stats = triangles
+        // the sealed areas summed in triangle order: the same bits for any threads
+        let (stats, areas): (Vec<Stats>, Vec<f64>) = triangles
             .into_par_iter()
             .map(|t| {
-                let (w, b, n, _) = measure(t);
-                (w, b, n)
+                let (w, b, n, _, sealed) = measure(t);
+                ((w, b, n), sealed)
             })
-            .reduce(|| none, join);
-        (stats, Vec::new())
+            .unzip();
+        sealed = areas.iter().sum();
+        (stats.into_iter().fold(none, join), Vec::new())
     };
     let ((worst, at, _), bound, n) = stats;
-    ((worst, at), bound, n + corners, nearest)
+    ((worst, at), bound, n + corners, nearest, sealed)
 }
 
 /// The largest distance from a point of triangle `p` to its nearest corner (module docs),
@@ -431,7 +450,7 @@ mod tests {
         ];
         let (to, to_bvh) = surface(tv, vec![[0, 1, 2], [3, 4, 5]]);
         let h = 1.0;
-        let ((worst, at), bound, n, _) = one_sided(&from, &to, &to_bvh, h, false, None);
+        let ((worst, at), bound, n, _, _) = one_sided(&from, &to, &to_bvh, h, false, None);
         assert!((at.x - 50.0).abs() <= h / 8.0, "the farthest sample at {at}");
         // the truth: the middle of the long edge, (50, 0.005), is this far from the corners
         // (0.5, 0) and (99.5, 0) of the ends' triangles; every corner is within 0.01 of them
@@ -483,7 +502,7 @@ mod tests {
         let (a, _) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
         for (gap, slack) in [(0.95, 1.5 / 64.0), (1.5, 1.0 / 8.0)] {
             let (b, b_bvh) = surface(sq(gap), vec![[0, 1, 2], [0, 2, 3]]);
-            let ((worst, _), bound, n, _) = one_sided(&a, &b, &b_bvh, 1.0, false, None);
+            let ((worst, _), bound, n, _, _) = one_sided(&a, &b, &b_bvh, 1.0, false, None);
             assert!((worst - gap).abs() < 1e-12, "{worst}");
             assert!(bound >= gap && bound <= gap + slack + 1e-9, "{gap}: {bound}");
             if gap < 1.0 {
@@ -502,10 +521,10 @@ mod tests {
         let input = together(&[cube_at(DVec3::ZERO, 4.0), cube_at(DVec3::splat(1.5), 1.0)]);
         let (outer, outer_bvh) = { let c = cube_at(DVec3::ZERO, 4.0); surface(c.vertices, c.triangles) };
         let w = Winding::new(&input);
-        let b = Buried::new(&w);
-        let ((plain, _), plain_bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);
+        let b = Buried::new(&w, 0.0);
+        let ((plain, _), plain_bound, _, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);
         assert!((plain - 1.5).abs() < 1e-12 && plain_bound >= 1.5, "{plain} {plain_bound}");
-        let ((kept, _), bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
+        let ((kept, _), bound, _, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
         assert!(kept == 0.0 && bound <= 0.5, "{kept} {bound}");
     }
 
@@ -532,10 +551,10 @@ mod tests {
             surface(c.vertices, c.triangles)
         };
         let w = Winding::new(&input);
-        let b = Buried::new(&w);
-        let ((plain, _), _, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);
+        let b = Buried::new(&w, 0.0);
+        let ((plain, _), _, _, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, None);
         assert!(plain >= 1.5, "{plain}");
-        let ((kept, _), bound, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
+        let ((kept, _), bound, _, _, _) = one_sided(&input, &outer, &outer_bvh, 1.0, false, Some(&b));
         assert!(kept <= 0.95 && bound <= 1.0, "{kept} {bound}");
     }
 
@@ -546,7 +565,7 @@ mod tests {
         let (a, a_bvh) = surface(sq(0.0), vec![[0, 1, 2], [0, 2, 3]]);
         let (b, b_bvh) = surface(sq(1.0), vec![[0, 1, 2], [0, 2, 3]]);
         for (from, to, bvh) in [(&a, &b, &b_bvh), (&b, &a, &a_bvh)] {
-            let ((worst, _), bound, _, near) = one_sided(from, to, bvh, 0.5, true, None);
+            let ((worst, _), bound, _, near, _) = one_sided(from, to, bvh, 0.5, true, None);
             assert!((worst - 1.0).abs() < 1e-12, "{worst}");
             assert!((1.0..=1.0 + 0.5 / 8.0 + 1e-12).contains(&bound), "{bound}");
             assert_eq!(near.len(), 2);

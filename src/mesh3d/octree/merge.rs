@@ -62,7 +62,8 @@ impl OctreeReport {
     }
 }
 
-/// The deviation of two solids' boundaries together: the larger distances, the counts summed.
+/// The deviation of two solids' boundaries together: the larger distances (and seal), the
+/// counts and areas summed.
 fn merged_deviation(a: &Deviation, b: &Deviation) -> Deviation {
     let mut examples = a.unresolved_examples.clone();
     examples.extend(b.unresolved_examples.iter().take(super::deviation::EXAMPLES.saturating_sub(examples.len())));
@@ -73,6 +74,8 @@ fn merged_deviation(a: &Deviation, b: &Deviation) -> Deviation {
         hausdorff_at: if b.hausdorff > a.hausdorff { b.hausdorff_at } else { a.hausdorff_at },
         hausdorff_bound: a.hausdorff_bound.max(b.hausdorff_bound),
         samples: a.samples + b.samples,
+        seal: a.seal.max(b.seal),
+        sealed_area: a.sealed_area + b.sealed_area,
         feature_angle_deg: a.feature_angle_deg,
         feature_edges: a.feature_edges + b.feature_edges,
         unresolved_feature_edges: a.unresolved_feature_edges + b.unresolved_feature_edges,

@@ -360,7 +360,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         snapped = snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg);
         stage("snap", &mut t);
     }
-    let buried = buried::Buried::new(oracle);
+    let buried = buried::Buried::new(oracle, h / 16.0);
     // the cells are checked while the boundary is measured (both read the mesh), the tags
     // after
     let ((dev, nearest), valid) = rayon::join(|| deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg, Some(&buried)), || mesh.validate_cells());

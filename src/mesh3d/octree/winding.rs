@@ -63,6 +63,8 @@ pub struct Winding<'a> {
     dipoles: Vec<Dipole>,
     /// Per triangle, the triangles that meet it; computed when first asked.
     meets: std::sync::OnceLock<Vec<Vec<u32>>>,
+    /// Per triangle, its shell; and the pairs of shells that cross; when first asked.
+    crossing: std::sync::OnceLock<(Vec<u32>, Vec<(u32, u32)>)>,
 }
 
 /// How a segment meets the surface: the parameter along it and the winding number's jump.
@@ -116,7 +118,7 @@ impl<'a> Winding<'a> {
             let radius = if bbox.is_empty() { 0.0 } else { far.length() };
             dipoles[n as usize] = Dipole { centre, normal, radius };
         }
-        Winding { surface, bvh, dipoles, meets: std::sync::OnceLock::new() }
+        Winding { surface, bvh, dipoles, meets: std::sync::OnceLock::new(), crossing: std::sync::OnceLock::new() }
     }
 
     /// Per triangle, the other triangles that meet it (the exact pairwise test of
@@ -132,6 +134,39 @@ impl<'a> Winding<'a> {
             m.iter_mut().for_each(|l| l.sort_unstable());
             m
         })
+    }
+
+    /// Whether the shells (edge-connected components) of triangles `a` and `b` cross each
+    /// other (the same shell: crosses itself) somewhere, by [`Winding::meets`].
+    pub fn shells_cross(&self, a: usize, b: usize) -> bool {
+        let (shell, pairs) = self.crossing();
+        let (x, y) = (shell[a], shell[b]);
+        x != u32::MAX && y != u32::MAX && pairs.binary_search(&(x.min(y), x.max(y))).is_ok()
+    }
+
+    /// Per triangle its shell, and the pairs of shells that cross (sorted); made once.
+    fn crossing(&self) -> &(Vec<u32>, Vec<(u32, u32)>) {
+        self.crossing.get_or_init(|| {
+            let shell: Vec<u32> = crate::mesh::topology::triangle_shells(self.surface).into_iter().map(|s| s.unwrap_or(u32::MAX)).collect();
+            let mut pairs: Vec<(u32, u32)> = Vec::new();
+            for (t, l) in self.meets().iter().enumerate() {
+                for &o in l {
+                    let (x, y) = (shell[t], shell[o as usize]);
+                    if x != u32::MAX && y != u32::MAX {
+                        pairs.push((x.min(y), x.max(y)));
+                    }
+                }
+            }
+            pairs.sort_unstable();
+            pairs.dedup();
+            (shell, pairs)
+        })
+    }
+
+    /// Whether triangle `t`'s shell crosses any shell (itself included).
+    pub fn crosses_any(&self, t: usize) -> bool {
+        let (shell, pairs) = self.crossing();
+        shell[t] != u32::MAX && pairs.iter().any(|&(x, y)| x == shell[t] || y == shell[t])
     }
 
     /// The surface.
