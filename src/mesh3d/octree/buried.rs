@@ -55,8 +55,9 @@ pub enum Side {
     /// Another triangle meets the piece, or the probe was not clear: measured, its smaller
     /// pieces asked again.
     Unsure,
-    /// On the boundary, but across a gap narrower than the seal from a wall of a shell that
-    /// crosses its own, inside beyond that wall: left out, with every piece of it.
+    /// Not buried, but within the seal of a wall of a shell that crosses its own, and inside
+    /// a seal's length off both sides (a hairline gap or overlap between crossing shells):
+    /// left out, with every piece of it.
     Sealed,
 }
 
@@ -150,11 +151,7 @@ impl<'a> Buried<'a> {
         if (jump - jump.round()).abs() > 0.1 {
             return Side::Unsure;
         }
-        let inside = |x: f64| x > super::winding::INSIDE;
-        if inside(front) == inside(back) {
-            return Side::Buried;
-        }
-        Side::Boundary
+        if (front > super::winding::INSIDE) == (back > super::winding::INSIDE) { Side::Buried } else { Side::Boundary }
     }
 }
 

@@ -175,7 +175,8 @@ const THIN: [f64; LEVELS] = [1.0 / 16.0, FINE, FINE / 4.0];
 const SPACING: [f64; LEVELS] = [1.0 / 8.0, FINE, FINE / 4.0];
 
 /// Largest sampled distance from `from` to `to` and where it is reached (the first such
-/// sample in triangle order), its upper bound, the number of samples, and with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first).
+/// sample in triangle order), its upper bound, the number of samples, with `centroids` the triangle of `to` nearest to each triangle's centroid (sampled first), and the area of `from`
+/// that `buried` sealed.
 /// The corners are sampled once per vertex (shared by the triangles around it).
 fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids: bool, buried: Option<&Buried>) -> ((f64, DVec3), f64, usize, Vec<Option<u32>>, f64) {
     let mut used = vec![false; from.vertices.len()];

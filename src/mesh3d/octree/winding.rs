@@ -64,8 +64,11 @@ pub struct Winding<'a> {
     /// Per triangle, the triangles that meet it; computed when first asked.
     meets: std::sync::OnceLock<Vec<Vec<u32>>>,
     /// Per triangle, its shell; and the pairs of shells that cross; when first asked.
-    crossing: std::sync::OnceLock<(Vec<u32>, Vec<(u32, u32)>)>,
+    crossing: std::sync::OnceLock<ShellCrossings>,
 }
+
+/// Per triangle its shell (`u32::MAX`: none), and the pairs of shells that cross, sorted.
+type ShellCrossings = (Vec<u32>, Vec<(u32, u32)>);
 
 /// How a segment meets the surface: the parameter along it and the winding number's jump.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -145,7 +148,7 @@ impl<'a> Winding<'a> {
     }
 
     /// Per triangle its shell, and the pairs of shells that cross (sorted); made once.
-    fn crossing(&self) -> &(Vec<u32>, Vec<(u32, u32)>) {
+    fn crossing(&self) -> &ShellCrossings {
         self.crossing.get_or_init(|| {
             let shell: Vec<u32> = crate::mesh::topology::triangle_shells(self.surface).into_iter().map(|s| s.unwrap_or(u32::MAX)).collect();
             let mut pairs: Vec<(u32, u32)> = Vec::new();
