@@ -66,13 +66,24 @@ const MAX_ROUNDS: usize = 256;
 /// The shortest piece of a segment, as a share of the segment, that recovery still splits.
 const MIN_SPLIT: f64 = 1e-12;
 
-/// Splits subsegment `[a, b]` of segment `s` (at its midpoint or on a shell: [`split_point`]).
+/// [`split_subsegment_deferred`] with every facet it changed retriangulated at once.
+#[cfg(test)]
+pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
+    let split = split_subsegment_deferred(tr, sm, s, a, b);
+    sm.flush(&tr.k.points);
+    split
+}
+
+/// Splits subsegment `[a, b]` of segment `s` (at its midpoint or on a shell: [`split_point`]),
+/// the facets around it left for [`SurfaceModel::flush_facet`]: recovery reads a facet's
+/// subfaces only after flushing it, so a facet that several splits change in a round is
+/// triangulated once (the same subfaces: they depend on its points alone).
 ///
 /// # Errors
 /// When the subsegment is already shorter than a millionth of a millionth of its segment
 /// (two parts of the surface nearer each other there than splitting can separate: recovery
 /// would not end), and when the split point cannot be inserted.
-pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
+fn split_subsegment_deferred(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
     let (pa, pb) = (tr.point(a), tr.point(b));
     // the segment's length: an input edge, straight between its two ends
     let ends = &sm.segments[s as usize].points;
@@ -86,7 +97,7 @@ pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a:
     let m = split_point(sm, s, a, b, pa, pb);
     match insert_point(tr, m, &[a, b])? {
         Some(v) => {
-            sm.split_segment(s, a, b, v, &tr.k.points);
+            sm.split_segment_deferred(s, a, b, v);
             Ok(true)
         }
         None => Ok(false),
@@ -227,7 +238,7 @@ pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u
     match subface_split(tr, sm, f, t, cc) {
         SubfaceSplit::Subsegment(s, [u, v]) => {
             stats.segment_points += 1;
-            return split_subsegment(tr, sm, s, u, v);
+            return split_subsegment_deferred(tr, sm, s, u, v);
         }
         SubfaceSplit::NoSides => return Err(format!("facet {f} has no sides")),
         SubfaceSplit::Centre => {}
@@ -313,8 +324,14 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 continue;
             }
             stats.segment_points += 1;
-            changed |= split_subsegment(tr, sm, s, a, b).map_err(|m| fail(sm, sm.segments[s as usize].facets[0], &m))?;
+            let split = split_subsegment_deferred(tr, sm, s, a, b);
+            if split.is_err() {
+                sm.flush(&tr.k.points);
+            }
+            changed |= split.map_err(|m| fail(sm, sm.segments[s as usize].facets[0], &m))?;
         }
+        // the facets the round's splits changed, triangulated once each
+        sm.flush(&tr.k.points);
         if !changed {
             let missing: Vec<(u32, [u32; 3])> = sm
                 .subfaces()
@@ -330,11 +347,19 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 })
                 .collect();
             for (f, t) in missing {
+                // a facet is triangulated again only when its subfaces are read: the facets
+                // across the sides that splits cut wait until their own subfaces come up
+                sm.flush_facet(f, &tr.k.points);
                 if !sm.facets[f as usize].subfaces.contains(&t) {
                     continue;
                 }
-                changed |= split_subface(tr, sm, f, t, &mut stats).map_err(|m| fail(sm, f, &m))?;
+                let split = split_subface(tr, sm, f, t, &mut stats);
+                if split.is_err() {
+                    sm.flush(&tr.k.points);
+                }
+                changed |= split.map_err(|m| fail(sm, f, &m))?;
             }
+            sm.flush(&tr.k.points);
         }
         if !changed {
             // nothing could be split: every subface must be there now, or the facet is named

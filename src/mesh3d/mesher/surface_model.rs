@@ -80,6 +80,9 @@ pub(crate) struct SurfaceModel {
     /// vertices lie from its plane (every subface stays in that slab over the same polygon).
     /// Zero when every merged facet is exactly planar.
     pub flattening_volume: f64,
+    /// Per facet, whether deferred splits changed its points since it was last triangulated
+    /// ([`SurfaceModel::split_segment_deferred`], [`SurfaceModel::flush`]).
+    pending: Vec<bool>,
 }
 
 /// One facet's change by a boundary split: the facet, the subfaces removed, those added.
@@ -182,7 +185,8 @@ impl SurfaceModel {
                 index.insert(sorted(*t), f as u32);
             }
         }
-        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: u32::MAX, flattening_volume }
+        let pending = vec![false; facets.len()];
+        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: u32::MAX, flattening_volume, pending }
     }
 
     /// Point `p` in facet `f`'s plane coordinates.
@@ -220,21 +224,50 @@ impl SurfaceModel {
 
     /// Inserts vertex `p` into segment `s` between its consecutive points `a` and `b`, and
     /// re-triangulates the facets around it. Returns false if `a`, `b` are not consecutive.
+    #[cfg(test)]
     pub fn split_segment(&mut self, s: u32, a: u32, b: u32, p: u32, points: &[DVec3]) -> bool {
+        if !self.split_segment_deferred(s, a, b, p) {
+            return false;
+        }
+        self.flush(points);
+        true
+    }
+
+    /// Inserts vertex `p` into segment `s` between its consecutive points `a` and `b` without
+    /// retriangulating (false if they are not consecutive): the facets around the segment
+    /// are marked, and their subfaces are stale until [`SurfaceModel::flush_facet`] or
+    /// [`SurfaceModel::flush`]. A facet's subfaces are a function of its points alone, so
+    /// triangulating it once after several splits gives what triangulating it after each did.
+    pub fn split_segment_deferred(&mut self, s: u32, a: u32, b: u32, p: u32) -> bool {
         let seg = &mut self.segments[s as usize];
         let Some(i) = seg.points.windows(2).position(|w| (w[0] == a && w[1] == b) || (w[0] == b && w[1] == a)) else {
             return false;
         };
         seg.points.insert(i + 1, p);
         self.locate_vertex(p, Location::Segment(s));
-        for f in self.segments[s as usize].facets.clone() {
-            self.retriangulate(f, points);
+        for &f in &self.segments[s as usize].facets {
+            self.pending[f as usize] = true;
         }
         true
     }
 
+    /// Retriangulates facet `f` if deferred splits changed it.
+    pub fn flush_facet(&mut self, f: u32, points: &[DVec3]) {
+        if std::mem::take(&mut self.pending[f as usize]) {
+            self.retriangulate(f, points);
+        }
+    }
+
+    /// Retriangulates every facet that deferred splits changed, in increasing order.
+    pub fn flush(&mut self, points: &[DVec3]) {
+        for f in 0..self.facets.len() as u32 {
+            self.flush_facet(f, points);
+        }
+    }
+
     /// Inserts vertex `p` inside facet `f` and re-triangulates it.
     pub fn add_to_facet(&mut self, f: u32, p: u32, points: &[DVec3]) {
+        self.pending[f as usize] = false;
         self.facets[f as usize].inner.push(p);
         self.locate_vertex(p, Location::Facet(f));
         self.retriangulate(f, points);
