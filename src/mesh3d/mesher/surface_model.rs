@@ -610,6 +610,32 @@ mod tests {
     use super::*;
 
     #[test]
+    fn deferred_splits_give_the_subfaces_of_immediate_ones() {
+        // a square of two triangles, its diagonal and one side split twice each
+        let mut points = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)];
+        points.extend([DVec3::new(0.5, 0.5, 0.0), DVec3::new(0.25, 0.75, 0.0), DVec3::new(0.5, 0.0, 0.0), DVec3::new(0.75, 0.0, 0.0)]);
+        let model = || SurfaceModel::new(&points[..4], &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(2)], false);
+        let (mut now, mut later) = (model(), model());
+        let seg = |m: &SurfaceModel, e: [u32; 2]| m.segments.iter().position(|g| g.points.first() == Some(&e[0]) && g.points.last() == Some(&e[1])).unwrap() as u32;
+        let (d, x) = (seg(&now, [1, 2]), seg(&now, [0, 1]));
+        for (s, a, b, p) in [(d, 1, 2, 4), (d, 4, 2, 5), (x, 0, 1, 6), (x, 6, 1, 7)] {
+            assert!(now.split_segment(s, a, b, p, &points));
+            assert!(later.split_segment_deferred(s, a, b, p));
+        }
+        // stale until flushed: facet 0 still has its one input triangle
+        assert_eq!(later.facets[0].subfaces.len(), 1);
+        later.flush_facet(1, &points);
+        assert_eq!(later.facets[1].subfaces, now.facets[1].subfaces);
+        assert_eq!(later.facets[0].subfaces.len(), 1);
+        later.flush(&points);
+        for f in 0..2 {
+            assert_eq!(later.facets[f].subfaces, now.facets[f].subfaces, "facet {f}");
+        }
+        assert_eq!(later.subfaces().collect::<Vec<_>>(), now.subfaces().collect::<Vec<_>>());
+        assert_eq!(now.facets[0].subfaces.len(), 5);
+    }
+
+    #[test]
     fn splitting_keeps_facets_tiled() {
         let points = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.5, 0.5, 0.0), DVec3::new(0.3, 0.3, 0.0)];
         let mut m = SurfaceModel::new(&points[..4], &[[0, 1, 2], [1, 3, 2]], &[FaceId(1), FaceId(2)], false);
