@@ -324,11 +324,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 continue;
             }
             stats.segment_points += 1;
-            let split = split_subsegment_deferred(tr, sm, s, a, b);
-            if split.is_err() {
-                sm.flush(&tr.k.points);
-            }
-            changed |= split.map_err(|m| fail(sm, sm.segments[s as usize].facets[0], &m))?;
+            changed |= split_subsegment_deferred(tr, sm, s, a, b).map_err(|m| fail(sm, sm.segments[s as usize].facets[0], &m))?;
         }
         // the facets the round's splits changed, triangulated once each
         sm.flush(&tr.k.points);
@@ -353,11 +349,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 if !sm.facets[f as usize].subfaces.contains(&t) {
                     continue;
                 }
-                let split = split_subface(tr, sm, f, t, &mut stats);
-                if split.is_err() {
-                    sm.flush(&tr.k.points);
-                }
-                changed |= split.map_err(|m| fail(sm, f, &m))?;
+                changed |= split_subface(tr, sm, f, t, &mut stats).map_err(|m| fail(sm, f, &m))?;
             }
             sm.flush(&tr.k.points);
         }

@@ -74,7 +74,7 @@ impl<'a> Buried<'a> {
     /// seal's length off each side is inside. `Some(Unsure)` where the piece is too large
     /// to tell; `None` where it is not sealed.
     fn sealed(&self, t: usize, c: DVec3, n: DVec3, reach: f64) -> Option<Side> {
-        if !(self.seal > 0.0) || n == DVec3::ZERO || !self.w.crosses_any(t) {
+        if !(self.seal > 0.0) || !self.w.crosses_any(t) {
             return None;
         }
         let s = self.w.surface();
@@ -91,26 +91,7 @@ impl<'a> Buried<'a> {
 
     /// Where piece `p` of input triangle `t` lies (its corners in `t`); see the module docs.
     pub fn piece(&self, t: usize, p: &[DVec3; 3]) -> Side {
-        let side = self.judge(t, p);
-        if side == Side::Buried {
-            return side;
-        }
         let tri = self.w.surface().corners(t);
-        let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero();
-        let c = (p[0] + p[1] + p[2]) / 3.0;
-        let reach = p.iter().map(|q| q.distance(c)).fold(0.0, f64::max);
-        self.sealed(t, c, n, reach).unwrap_or(side)
-    }
-
-    /// The width of the gaps closed.
-    pub fn seal(&self) -> f64 {
-        self.seal
-    }
-
-    /// [`Buried::piece`] without the seal.
-    fn judge(&self, t: usize, p: &[DVec3; 3]) -> Side {
-        let s = self.w.surface();
-        let tri = s.corners(t);
         let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
         let area2 = normal.length();
         if !(area2 > 0.0) {
@@ -119,6 +100,23 @@ impl<'a> Buried<'a> {
         let n = normal / area2;
         let c = (p[0] + p[1] + p[2]) / 3.0;
         let reach = p.iter().map(|q| q.distance(c)).fold(0.0, f64::max);
+        let side = self.judge(t, p, n, c, reach);
+        if side == Side::Buried {
+            return side;
+        }
+        self.sealed(t, c, n, reach).unwrap_or(side)
+    }
+
+    /// The width of the gaps closed.
+    pub fn seal(&self) -> f64 {
+        self.seal
+    }
+
+    /// [`Buried::piece`] without the seal: `n` the unit normal of `t`, `c` the piece's
+    /// centroid, `reach` the farthest of its corners from `c`.
+    fn judge(&self, t: usize, p: &[DVec3; 3], n: DVec3, c: DVec3, reach: f64) -> Side {
+        let s = self.w.surface();
+        let tri = s.corners(t);
         if !(reach > 0.0) {
             return Side::Unsure;
         }

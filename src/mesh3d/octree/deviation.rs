@@ -336,8 +336,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
     };
     let none: Stats = ((0.0, from.vertices.first().copied().unwrap_or(DVec3::ZERO), usize::MAX), 0.0, 0);
     let triangles = 0..from.triangles.len();
-    let mut sealed = 0.0;
-    let (stats, nearest) = if centroids {
+    let (stats, nearest, sealed) = if centroids {
         // one nearest triangle per triangle is kept (the tags); the rest is reduced
         let (stats, nearest): (Vec<Stats>, Vec<Option<u32>>) = triangles
             .into_par_iter()
@@ -346,7 +345,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 ((w, b, n), near)
             })
             .unzip();
-        (stats.into_iter().fold(none, join), nearest)
+        (stats.into_iter().fold(none, join), nearest, 0.0)
     } else {
         // the sealed areas summed in triangle order: the same bits for any threads
         let (stats, areas): (Vec<Stats>, Vec<f64>) = triangles
@@ -356,8 +355,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
                 ((w, b, n), sealed)
             })
             .unzip();
-        sealed = areas.iter().sum();
-        (stats.into_iter().fold(none, join), Vec::new())
+        (stats.into_iter().fold(none, join), Vec::new(), areas.iter().sum())
     };
     let ((worst, at, _), bound, n) = stats;
     ((worst, at), bound, n + corners, nearest, sealed)
