@@ -1,6 +1,7 @@
 //! Discretisation of B-rep edges: each edge once, shared by the faces that use it.
 
 use crate::cad::brep::{Edge, Model};
+use super::corner_strips::EdgeStrip;
 use crate::core::SizeField;
 use glam::DVec3;
 
@@ -24,8 +25,10 @@ pub struct EdgePoints {
 ///
 /// With a size field, the points are then spaced by it (the integral of `1 / h` along the
 /// edge; see [`super::tessellate_sized`]), never farther apart than the chord and angle
-/// criteria allow.
-pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> EdgePoints {
+/// criteria allow. `strip` gives points near small corners of a face (see
+/// [`super::corner_strips`]); the size spaces the rest.
+#[allow(clippy::too_many_arguments)]
+pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_straight: f64, size: Option<&dyn SizeField>, strip: Option<&EdgeStrip>, vertices: &mut Vec<DVec3>) -> EdgePoints {
     let (a, b) = (edge.range.min, edge.range.max);
     let Some(ci) = edge.curve.filter(|_| !edge.degenerate && a.is_finite() && b.is_finite()) else {
         // no curve or a point: the vertices only
@@ -61,7 +64,10 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
         }
     }
     if let Some(size) = size {
-        ts = super::sizing::edge_params(&|t| curve.point(t), &ts, size);
+        ts = match strip.filter(|s| !s.params.is_empty()) {
+            Some(s) => with_strips(&|t| curve.point(t), &ts, s, size),
+            None => super::sizing::edge_params(&|t| curve.point(t), &ts, size),
+        };
     }
     // in the direction start -> end
     if !edge.same_sense {
@@ -80,6 +86,33 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
         }
     }
     EdgePoints { ids, params: ts }
+}
+
+/// The parameters `ts` (increasing, the chord criteria's pieces) with the strips' points,
+/// the chord's points in the strips' tips, and the size spacing the stretches the strips
+/// do not cover.
+fn with_strips(p: &dyn Fn(f64) -> DVec3, ts: &[f64], strip: &EdgeStrip, size: &dyn SizeField) -> Vec<f64> {
+    let (lo, hi) = (ts[0], ts[ts.len() - 1]);
+    let mut covered = strip.covered.clone();
+    covered.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut out: Vec<f64> = vec![lo, hi];
+    out.extend(strip.params.iter().copied().filter(|&t| t > lo && t < hi));
+    // in a strip's tip, the chord's points only
+    out.extend(ts.iter().copied().filter(|&t| strip.tips.iter().any(|&(a, b)| t > a && t < b)));
+    // the stretches no strip covers, spaced by the size
+    let mut from = lo;
+    for &(a, b) in covered.iter().chain([&(hi, hi)]) {
+        if a > from {
+            let mut piece = vec![from];
+            piece.extend(ts.iter().copied().filter(|&t| t > from && t < a));
+            piece.push(a);
+            out.extend(super::sizing::edge_params(p, &piece, size));
+        }
+        from = from.max(b);
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
 }
 
 /// Splits the segments `ks` of an edge's points (segment `k` between points `k` and `k + 1`)

@@ -160,6 +160,16 @@ impl<'a> FeatureSize<'a> {
         FeatureSize::from_samples(inner, samples)
     }
 
+    /// This field with more samples (`corner_strips`' sizes).
+    pub fn with_samples(self, more: Vec<(DVec3, f64)>) -> FeatureSize<'a> {
+        if more.is_empty() {
+            return self;
+        }
+        let mut samples = self.samples;
+        samples.extend(more);
+        FeatureSize::from_samples(self.inner, samples)
+    }
+
     /// The smaller of `inner` and the sizes `samples` ask for at their points, each grown by
     /// the distance from its point.
     fn from_samples(inner: &'a dyn SizeField, mut samples: Vec<(DVec3, f64)>) -> FeatureSize<'a> {

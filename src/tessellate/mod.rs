@@ -27,6 +27,7 @@
 //! never left out silently. The result is meant to be checked with [`crate::mesh::topology`].
 
 pub mod certificate;
+pub mod corner_strips;
 mod crossings;
 pub mod edge_points;
 pub mod face_mesh;
@@ -225,31 +226,37 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         }
     }
     let max_straight = (8.0 * tol * model_size).sqrt() / 4.0;
-    let discretise = |size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>| -> Vec<EdgePoints> {
+    let discretise = |size: Option<&dyn SizeField>, strips: &[corner_strips::EdgeStrip], vertices: &mut Vec<DVec3>| -> Vec<EdgePoints> {
         model
             .edges
             .iter()
+            .enumerate()
             .zip(&on_curved)
             .zip(&edge_chord)
-            .map(|((e, &curved), &chord)| {
+            .map(|(((i, e), &curved), &chord)| {
                 let straight = if curved { max_straight } else { 0.0 };
-                edge_points::discretise(model, e, chord, opts.max_angle_deg, straight, size, vertices)
+                edge_points::discretise(model, e, chord, opts.max_angle_deg, straight, size, strips.get(i), vertices)
             })
             .collect()
     };
     // to a size: faces narrower than it (strips, chamfers, holes near a side) ask for less,
-    // measured on the chords of the edges
+    // measured on the chords of the edges, and so do the strips at small corners of a face
+    // (`corner_strips`), whose points face each other across them
     let narrow;
+    let mut strips = Vec::new();
     let size: Option<&dyn SizeField> = match size {
         Some(h) => {
             let mut chords = vertices.clone();
-            let edges = discretise(None, &mut chords);
-            narrow = feature_size::FeatureSize::new(model, &edges, &chords, h, walls);
+            let edges = discretise(None, &[], &mut chords);
+            let widths = feature_size::FeatureSize::new(model, &edges, &chords, h, walls);
+            let found = corner_strips::corner_strips(model, &edges, &chords, &widths, tol);
+            narrow = widths.with_samples(found.samples);
+            strips = found.edges;
             Some(&narrow)
         }
         None => None,
     };
-    let mut edges = discretise(size, &mut vertices);
+    let mut edges = discretise(size, &strips, &mut vertices);
     // boundary segments that cross in a face's (u, v) are split on their edges (shared by the
     // faces on both sides, so the surface stays watertight) and every face meshed again
     let mut round = 0;

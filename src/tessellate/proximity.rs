@@ -30,7 +30,7 @@ const FLOOR: f64 = 1.0 / 64.0;
 /// Walls under this many chords thick ask for nothing: the gap between two chords of one
 /// curved surface, the last stretch of a wedge towards its edge (whose angle no size
 /// removes), or a wall that is a rounding error of the CAD model.
-const MIN_CHORDS: f64 = 2.0;
+pub(super) const MIN_CHORDS: f64 = 2.0;
 
 /// Two triangles face each other when their unit normals make more than 120°.
 const FACING: f64 = -0.5;
