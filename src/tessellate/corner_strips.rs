@@ -121,10 +121,10 @@ fn stretch(model: &Model, edges: &[EdgePoints], vertices: &[DVec3], c: &Coedge, 
 }
 
 impl<'a> Arm<'a> {
-    /// The side that leaves the corner along `coedges[0]` (reversed: against the loop's
-    /// direction), following `coedges[1..]` across smooth vertices.
-    fn new(model: &'a Model, edges: &[EdgePoints], vertices: &[DVec3], coedges: &[&Coedge], reversed: bool) -> Option<Arm<'a>> {
-        let mut stretches: Vec<Stretch> = vec![stretch(model, edges, vertices, coedges[0], reversed)?];
+    /// The side that leaves the corner along `first` (the stretch of `coedges[0]`; reversed:
+    /// against the loop's direction), following `coedges[1..]` across smooth vertices.
+    fn new(model: &'a Model, edges: &[EdgePoints], vertices: &[DVec3], first: Stretch, coedges: &[&Coedge], reversed: bool) -> Option<Arm<'a>> {
+        let mut stretches: Vec<Stretch> = vec![first];
         for c in &coedges[1..] {
             let Some(next) = stretch(model, edges, vertices, c, reversed) else { break };
             let last = stretches.last()?;
@@ -196,16 +196,15 @@ impl<'a> Arm<'a> {
         self.pts[k].0.distance(self.pts[k + 1].0)
     }
 
-    /// The side's points at `ds`: per point its edge and parameter; the stretches they cover
-    /// (whole edges up to the last point's, that one from where the side enters it to the
-    /// point), as `(edge, from, to)` with `from <= to`; and of those the tip's, before the
-    /// first point.
+    /// The side's points of `strip` (`side` 0 or 1: which of the two this is): per point its
+    /// edge and parameter; the stretches they cover (whole edges up to the last point's,
+    /// that one from where the side enters it to the point), as `(edge, from, to)` with
+    /// `from <= to`; and of those the tip's, before the first point.
     #[allow(clippy::type_complexity)]
-    fn points(&self, ds: &[f64]) -> (Vec<(usize, f64)>, Vec<(usize, f64, f64)>, Vec<(usize, f64, f64)>) {
-        let (Some(&first), Some(&last)) = (ds.first(), ds.last()) else { return Default::default() };
-        let params: Vec<(usize, f64)> = ds.iter().map(|&d| self.at(d)).map(|(s, t, _)| (self.stretches[s].edge, t)).collect();
-        let span = |upto: f64| -> Vec<(usize, f64, f64)> {
-            let (s_end, t_end, _) = self.at(upto);
+    fn points(&self, strip: &[StripPoint], side: usize) -> (Vec<(usize, f64)>, Vec<(usize, f64, f64)>, Vec<(usize, f64, f64)>) {
+        let (Some(first), Some(last)) = (strip.first(), strip.last()) else { return Default::default() };
+        let params: Vec<(usize, f64)> = strip.iter().map(|q| (self.stretches[q.on[side].0].edge, q.on[side].1)).collect();
+        let span = |(s_end, t_end, _): (usize, f64, DVec3)| -> Vec<(usize, f64, f64)> {
             self.stretches[..=s_end]
                 .iter()
                 .enumerate()
@@ -216,8 +215,15 @@ impl<'a> Arm<'a> {
                 })
                 .collect()
         };
-        (params, span(last), span(first))
+        (params, span(last.on[side]), span(first.on[side]))
     }
+}
+
+/// One point of a strip on both its sides: the step there, and per side its stretch, curve
+/// parameter and position.
+struct StripPoint {
+    step: f64,
+    on: [(usize, f64, DVec3); 2],
 }
 
 /// The strips at every corner of a face of `model` under [`CORNER_DEG`], on the edges'
@@ -227,15 +233,7 @@ pub(super) fn corner_strips(model: &Model, edges: &[EdgePoints], vertices: &[DVe
     let mut out = CornerStrips { edges: vec![EdgeStrip::default(); model.edges.len()], samples: Vec::new() };
     // the corners, smallest first; an edge goes to the first strip that reaches it
     let mut corners: Vec<(f64, usize, usize, Arm, Arm, bool)> = Vec::new();
-    // the faces on each edge
-    let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); model.edges.len()];
-    for (f, face) in model.faces.iter().enumerate() {
-        for &l in &face.loops {
-            for c in &model.loops[l as usize].coedges {
-                faces_of[c.edge as usize].push(f);
-            }
-        }
-    }
+    let faces_of = model.edge_faces();
     // a face's outward normal at point p
     let outward = |f: usize, p: DVec3| -> Option<DVec3> {
         let face = &model.faces[f];
@@ -279,13 +277,13 @@ pub(super) fn corner_strips(model: &Model, edges: &[EdgePoints], vertices: &[DVe
                 if angle >= CORNER_DEG {
                     continue;
                 }
-                let Some(a) = Arm::new(model, edges, vertices, &back, true) else { continue };
-                let Some(b) = Arm::new(model, edges, vertices, &fwd, false) else { continue };
+                let Some(a) = Arm::new(model, edges, vertices, a0, &back, true) else { continue };
+                let Some(b) = Arm::new(model, edges, vertices, b0, &fwd, false) else { continue };
                 // walls: a face across a side does not run on tangent from this one at the
                 // corner (a fillet running out into a plane does; the solid there is not
                 // thin, only the face)
                 let Some(nf) = outward(fi, v) else { continue };
-                let smooth = |e: usize| faces_of[e].iter().filter(|&&g| g != fi).all(|&g| outward(g, v).is_some_and(|ng| ng.angle_between(nf).to_degrees() < TANGENT_DEG));
+                let smooth = |e: usize| faces_of[e].iter().map(|&g| g as usize).filter(|&g| g != fi).all(|g| outward(g, v).is_some_and(|ng| ng.angle_between(nf).to_degrees() < TANGENT_DEG));
                 let walls = !(smooth(fwd[0].edge as usize) && smooth(back[0].edge as usize));
                 corners.push((angle, li as usize, k, a, b, walls));
             }
@@ -297,11 +295,11 @@ pub(super) fn corner_strips(model: &Model, edges: &[EdgePoints], vertices: &[DVe
         // beside walls the strip is a wedge of the solid too: the faces beside grade towards
         // its edge only where it is wider than `proximity` measures (two chords), so the
         // strip starts there too, and the wedge's tip is left to tets on its edge
-        let (ds, steps) = strip(a, b, size, if *walls { min_width } else { 0.0 });
-        if ds.is_empty() {
+        let pts = strip(a, b, size, if *walls { min_width } else { 0.0 });
+        if pts.is_empty() {
             continue;
         }
-        let ((pa, ca, ta), (pb, cb, tb)) = (a.points(&ds), b.points(&ds));
+        let ((pa, ca, ta), (pb, cb, tb)) = (a.points(&pts, 0), b.points(&pts, 1));
         // a stretch another strip covers already: the first strip keeps it
         let overlaps = |e: usize, x: f64, y: f64| out.edges[e].covered.iter().any(|&(u, w)| x < w && u < y);
         if ca.iter().chain(&cb).any(|&(e, x, y)| overlaps(e, x, y)) {
@@ -316,21 +314,21 @@ pub(super) fn corner_strips(model: &Model, edges: &[EdgePoints], vertices: &[DVe
         for (e, x, y) in ta.into_iter().chain(tb) {
             out.edges[e].tips.push((x, y));
         }
-        for (&d, &s) in ds.iter().zip(&steps) {
-            out.samples.push((a.at(d).2, s));
-            out.samples.push((b.at(d).2, s));
+        for q in &pts {
+            out.samples.push((q.on[0].2, q.step));
+            out.samples.push((q.on[1].2, q.step));
         }
     }
     out
 }
 
-/// The distances of a strip's points from its corner, and the step at each: the first where
+/// The points of a strip, and the step at each: the first where
 /// the nearer of the two sides' first chord points is (or the size at the corner), then
 /// steps of [`WIDTH_FACTOR`] times the width, until they are as long as the size asks for
 /// or as the sides' chords. Empty where it does not widen that much within its
 /// sides (a sliver face of the CAD model, whose points would only crowd it) or is that wide
 /// at the first point.
-fn strip(a: &Arm, b: &Arm, size: &dyn SizeField, min_width: f64) -> (Vec<f64>, Vec<f64>) {
+fn strip(a: &Arm, b: &Arm, size: &dyn SizeField, min_width: f64) -> Vec<StripPoint> {
     let v = a.corner();
     let reach = a.reach.min(b.reach);
     let h0 = size.size_at(v);
@@ -343,7 +341,7 @@ fn strip(a: &Arm, b: &Arm, size: &dyn SizeField, min_width: f64) -> (Vec<f64>, V
         // chord's points before it)
         let (mut lo, mut hi) = (d, reach);
         if a.at(hi).2.distance(b.at(hi).2) < min_width {
-            return (Vec::new(), Vec::new());
+            return Vec::new();
         }
         if a.at(lo).2.distance(b.at(lo).2) < min_width {
             for _ in 0..50 {
@@ -357,29 +355,26 @@ fn strip(a: &Arm, b: &Arm, size: &dyn SizeField, min_width: f64) -> (Vec<f64>, V
             d = hi;
         }
     }
-    let (mut ds, mut steps) = (Vec::new(), Vec::new());
-    while ds.len() < MAX_POINTS && d > 0.0 && d < reach {
-        let (p, q) = (a.at(d).2, b.at(d).2);
+    let mut out = Vec::new();
+    while out.len() < MAX_POINTS && d > 0.0 && d < reach {
+        let on = [a.at(d), b.at(d)];
+        let (p, q) = (on[0].2, on[1].2);
         let h = size.size_at(p).min(size.size_at(q));
         if !(h.is_finite() && h > 0.0) {
             break;
         }
-        let want = (WIDTH_FACTOR * p.distance(q)).max(FLOOR * h);
-        let chord = a.chord(d).min(b.chord(d));
-        if want >= ENOUGH * h || want >= chord {
+        let step = (WIDTH_FACTOR * p.distance(q)).max(FLOOR * h);
+        if step >= ENOUGH * h || step >= a.chord(d).min(b.chord(d)) {
             // about as wide as the size asks for (a width `feature_size` measures across
             // the face beyond, or the size itself), or as the chords are long: the size and
             // the chords space the rest
-            return (ds, steps);
+            return out;
         }
-        let step = want;
-        ds.push(d);
-        steps.push(step);
+        out.push(StripPoint { step, on });
         d += step;
     }
-    (Vec::new(), Vec::new())
+    Vec::new()
 }
-
 
 #[cfg(test)]
 mod tests {

@@ -69,17 +69,7 @@ impl<'a> FeatureSize<'a> {
     /// from `inner`.
     pub fn new(model: &Model, edges: &[EdgePoints], vertices: &[DVec3], inner: &'a dyn SizeField, walls: &[(DVec3, f64)]) -> FeatureSize<'a> {
         // the faces on each edge
-        let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); model.edges.len()];
-        for (f, face) in model.faces.iter().enumerate() {
-            for &l in &face.loops {
-                for c in &model.loops[l as usize].coedges {
-                    let fs = &mut faces_of[c.edge as usize];
-                    if !fs.contains(&(f as u32)) {
-                        fs.push(f as u32);
-                    }
-                }
-            }
-        }
+        let faces_of = model.edge_faces();
         // every chord segment of every edge
         let mut segs: Vec<(u32, DVec3, DVec3)> = Vec::new();
         for (e, ep) in edges.iter().enumerate() {

@@ -214,6 +214,23 @@ impl Model {
         id.index().and_then(|k| self.faces.get(k))
     }
 
+    /// Per edge, the indices into [`Model::faces`] of the faces whose loops use it, each once,
+    /// in face order.
+    pub fn edge_faces(&self) -> Vec<Vec<u32>> {
+        let mut out: Vec<Vec<u32>> = vec![Vec::new(); self.edges.len()];
+        for (f, face) in self.faces.iter().enumerate() {
+            for &l in &face.loops {
+                for c in &self.loops[l as usize].coedges {
+                    let fs = &mut out[c.edge as usize];
+                    if !fs.contains(&(f as u32)) {
+                        fs.push(f as u32);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// A surface by index.
     pub fn surface(&self, index: u32) -> &Surface {
         &self.surfaces[index as usize]
