@@ -15,9 +15,12 @@
 //! fillet's radius), a handful of points. A side follows its edges across vertices where it
 //! runs on smoothly (an arc running on into a line). The strip ends where its steps are as
 //! long as the size asks for or as the chords: the size and the chords space the rest. A
-//! strip that never widens that much within its sides (a sliver face of the CAD model) is
-//! not made: its points would only crowd it. The sizes of the points join the size field,
-//! so the faces beside grade down to them.
+//! strip that never widens that much within its reach is made only if it opens there, its
+//! steps growing at least fourfold (a wedge of a few degrees whose sides are short beside the
+//! size): then it ends at its reach and the size spaces the rest. One that does not open (a
+//! sliver face of the CAD model, its sides nearly parallel) is not made: its points would only
+//! crowd it. The sizes of the points join the size field, so the faces beside grade down to
+//! them.
 //!
 //! Where the faces across the sides are walls (they do not run on tangent from the strip's
 //! face), the strip is a wedge of the solid too. `proximity` grades the walls of a wedge only
@@ -62,6 +65,14 @@ const MAX_POINTS: usize = 2000;
 /// A strip runs at most this share of its sides' length from its corner (the other end may
 /// have one too).
 const REACH: f64 = 0.45;
+
+/// A strip that reaches [`REACH`] before its steps are long enough is made when its last step
+/// is at least this many times its first: a wedge that opens, not a sliver face. Measured on
+/// real parts: a Pawl's four 3.7° wedge corners (size 2.9, sides about 7 long) left a 9.6° tet
+/// beside them without strips and none under 10° that the corners do not explain with them;
+/// 2, 3, 4 and 8 gave the same meshes of the Pawl, t20_data and wing_fuselage, 16 left the
+/// Pawl's corners out.
+const OPENS: f64 = 4.0;
 
 /// What the strips ask of one edge.
 #[derive(Clone, Debug, Default)]
@@ -325,9 +336,10 @@ pub(super) fn corner_strips(model: &Model, edges: &[EdgePoints], vertices: &[DVe
 /// The points of a strip, and the step at each: the first where
 /// the nearer of the two sides' first chord points is (or the size at the corner), then
 /// steps of [`WIDTH_FACTOR`] times the width, until they are as long as the size asks for
-/// or as the sides' chords. Empty where it does not widen that much within its
-/// sides (a sliver face of the CAD model, whose points would only crowd it) or is that wide
-/// at the first point.
+/// or as the sides' chords, or the strip reaches [`REACH`] of its sides having opened
+/// [`OPENS`]-fold. Empty where it neither widens nor opens that much within its sides (a
+/// sliver face of the CAD model, whose points would only crowd it) or is wide enough at the
+/// first point.
 fn strip(a: &Arm, b: &Arm, size: &dyn SizeField, min_width: f64) -> Vec<StripPoint> {
     let v = a.corner();
     let reach = a.reach.min(b.reach);
@@ -373,7 +385,10 @@ fn strip(a: &Arm, b: &Arm, size: &dyn SizeField, min_width: f64) -> Vec<StripPoi
         out.push(StripPoint { step, on });
         d += step;
     }
-    Vec::new()
+    match (out.first(), out.last()) {
+        (Some(first), Some(last)) if d >= reach && last.step >= OPENS * first.step => out,
+        _ => Vec::new(),
+    }
 }
 
 #[cfg(test)]
@@ -396,6 +411,59 @@ mod tests {
         let face = builder::try_attach_plane(&[wire]).unwrap();
         let solid = builder::tsweep(&face, Vector3::new(0.0, 0.0, thickness));
         crate::cad::parts::solid_to_model(&solid, "horn").unwrap()
+    }
+
+    /// A triangular plate 1 thick whose outline has a corner of `angle_deg` at the origin
+    /// between two sides `length` long: a wedge, its top and bottom faces between flat walls.
+    fn wedge(angle_deg: f64, length: f64) -> Model {
+        let a = angle_deg.to_radians();
+        let corners = [Point3::new(0.0, 0.0, 0.0), Point3::new(length, 0.0, 0.0), Point3::new(length * a.cos(), length * a.sin(), 0.0)];
+        let v = corners.map(|p| builder::vertex(p));
+        let wire: Wire = vec![builder::line(&v[0], &v[1]), builder::line(&v[1], &v[2]), builder::line(&v[2], &v[0])].into();
+        let face = builder::try_attach_plane(&[wire]).unwrap();
+        let solid = builder::tsweep(&face, Vector3::new(0.0, 0.0, 1.0));
+        crate::cad::parts::solid_to_model(&solid, "wedge").unwrap()
+    }
+
+    /// The strips' samples on the x axis at the bottom of `m`, nearest the origin first.
+    fn on_axis(s: &CornerStrips) -> Vec<(f64, f64)> {
+        let mut out: Vec<(f64, f64)> = s.samples.iter().filter(|x| x.0.y.abs() < 1e-12 && x.0.z.abs() < 1e-12).map(|x| (x.0.x, x.1)).collect();
+        out.sort_by(|a, b| a.0.total_cmp(&b.0));
+        out
+    }
+
+    #[test]
+    fn a_wedge_that_opens_gets_its_strip_to_its_reach_and_a_sliver_gets_none() {
+        let opts = super::super::TessellateOptions::default();
+        // a 4° wedge, sides 20 long, size 1.5: from the size's distance from the corner its
+        // steps stay under 3/4 of the size up to its reach (9 from the corner, where it is 0.63
+        // wide), and it opens sixfold on the way
+        let (length, h) = (20.0, 1.5);
+        let m = wedge(4.0, length);
+        let t = super::super::tessellate(&m, &opts);
+        let s = corner_strips(&m, &t.edges, &t.surface.vertices, &UniformSize(h), opts.chord_relative * m.size());
+        let axis = on_axis(&s);
+        assert!(axis.len() >= 5, "{axis:?}");
+        let (first, last) = (axis[0], axis[axis.len() - 1]);
+        assert!((first.0 - h).abs() < 1e-9, "starts at {first:?}");
+        assert!(last.0 <= REACH * length && last.0 + last.1 >= REACH * length, "ends at {last:?}");
+        assert!(last.1 >= OPENS * first.1 && last.1 < ENOUGH * h, "{first:?} .. {last:?}");
+        // the width between the sides' points at one distance, 2 d sin(2°)
+        let width = |x: f64| 2.0 * x * 2f64.to_radians().sin();
+        for w in axis.windows(2) {
+            let step = w[1].0 - w[0].0;
+            assert!((step - w[0].1).abs() < 1e-9 && (step / (1.5 * width(w[0].0)) - 1.0).abs() < 1e-6, "{w:?}");
+        }
+        // a horn of radius 2000 (a sliver between a line and an arc nearly along it) is two
+        // chords wide only about 5.1 from its corner and opens about twofold (as d^2) up to its
+        // reach, 0.45 of its sides (14 and 16 long): left to the size
+        let m = horn(2000.0, 14.0, 1.0);
+        let chord = opts.chord_relative * m.size();
+        let d0 = (4.0 * 2000.0 * chord).sqrt();
+        assert!(d0 < REACH * 14.0 && (REACH * 16.0 / d0).powi(2) < 0.6 * OPENS, "{d0}");
+        let t = super::super::tessellate(&m, &opts);
+        let s = corner_strips(&m, &t.edges, &t.surface.vertices, &UniformSize(2.0), chord);
+        assert!(on_axis(&s).is_empty(), "{:?}", on_axis(&s));
     }
 
     fn min_angle(p: [DVec3; 3]) -> f64 {
