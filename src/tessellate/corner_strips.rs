@@ -405,7 +405,7 @@ mod tests {
     fn horn(radius: f64, length: f64, thickness: f64) -> Model {
         let y = |x: f64| radius - (radius * radius - x * x).sqrt();
         let corners = [Point3::new(0.0, 0.0, 0.0), Point3::new(length + 2.0, 0.0, 0.0), Point3::new(length + 2.0, y(length), 0.0), Point3::new(length, y(length), 0.0)];
-        let v = corners.map(|p| builder::vertex(p));
+        let v = corners.map(builder::vertex);
         let via = Point3::new(0.5 * length, y(0.5 * length), 0.0);
         let wire: Wire = vec![builder::line(&v[0], &v[1]), builder::line(&v[1], &v[2]), builder::line(&v[2], &v[3]), builder::circle_arc(&v[3], &v[0], via)].into();
         let face = builder::try_attach_plane(&[wire]).unwrap();
@@ -418,11 +418,18 @@ mod tests {
     fn wedge(angle_deg: f64, length: f64) -> Model {
         let a = angle_deg.to_radians();
         let corners = [Point3::new(0.0, 0.0, 0.0), Point3::new(length, 0.0, 0.0), Point3::new(length * a.cos(), length * a.sin(), 0.0)];
-        let v = corners.map(|p| builder::vertex(p));
+        let v = corners.map(builder::vertex);
         let wire: Wire = vec![builder::line(&v[0], &v[1]), builder::line(&v[1], &v[2]), builder::line(&v[2], &v[0])].into();
         let face = builder::try_attach_plane(&[wire]).unwrap();
         let solid = builder::tsweep(&face, Vector3::new(0.0, 0.0, 1.0));
         crate::cad::parts::solid_to_model(&solid, "wedge").unwrap()
+    }
+
+    /// The strips of `m` at size `h`, on its chord-only tessellation at the default options.
+    fn strips_of(m: &Model, h: f64) -> CornerStrips {
+        let opts = super::super::TessellateOptions::default();
+        let t = super::super::tessellate(m, &opts);
+        corner_strips(m, &t.edges, &t.surface.vertices, &UniformSize(h), opts.chord_relative * m.size())
     }
 
     /// The strips' samples on the x axis at the bottom of `m`, nearest the origin first.
@@ -440,9 +447,7 @@ mod tests {
         // wide), and it opens sixfold on the way
         let (length, h) = (20.0, 1.5);
         let m = wedge(4.0, length);
-        let t = super::super::tessellate(&m, &opts);
-        let s = corner_strips(&m, &t.edges, &t.surface.vertices, &UniformSize(h), opts.chord_relative * m.size());
-        let axis = on_axis(&s);
+        let axis = on_axis(&strips_of(&m, h));
         assert!(axis.len() >= 5, "{axis:?}");
         let (first, last) = (axis[0], axis[axis.len() - 1]);
         assert!((first.0 - h).abs() < 1e-9, "starts at {first:?}");
@@ -461,9 +466,8 @@ mod tests {
         let chord = opts.chord_relative * m.size();
         let d0 = (4.0 * 2000.0 * chord).sqrt();
         assert!(d0 < REACH * 14.0 && (REACH * 16.0 / d0).powi(2) < 0.6 * OPENS, "{d0}");
-        let t = super::super::tessellate(&m, &opts);
-        let s = corner_strips(&m, &t.edges, &t.surface.vertices, &UniformSize(2.0), chord);
-        assert!(on_axis(&s).is_empty(), "{:?}", on_axis(&s));
+        let axis = on_axis(&strips_of(&m, 2.0));
+        assert!(axis.is_empty(), "{axis:?}");
     }
 
     fn min_angle(p: [DVec3; 3]) -> f64 {
@@ -474,22 +478,18 @@ mod tests {
     fn the_sides_of_a_tangent_corner_get_points_facing_each_other_a_width_apart() {
         let m = horn(20.0, 14.0, 1.0);
         let h = 2.0;
-        let opts = super::super::TessellateOptions::default();
-        let t = super::super::tessellate(&m, &opts);
-        let size = UniformSize(h);
-        let s = corner_strips(&m, &t.edges, &t.surface.vertices, &size, opts.chord_relative * m.size());
+        let s = strips_of(&m, h);
         // the top and the bottom face: one strip each, on the line and the arc
         let with = s.edges.iter().filter(|e| !e.params.is_empty()).count();
         assert_eq!(with, 4, "{:?}", s.edges);
         // the points come in pairs at one distance from a corner, on the axis and on the
         // circle, each step 1.5 times the width across, until the step is 3/4 of the size
-        let mut on_axis: Vec<DVec3> = s.samples.iter().map(|x| x.0).filter(|p| p.y.abs() < 1e-12 && p.z.abs() < 1e-12).collect();
-        on_axis.sort_by(|a, b| a.x.total_cmp(&b.x));
-        assert!(on_axis.len() >= 5, "{on_axis:?}");
-        for w in on_axis.windows(2) {
-            let width = w[0].x * w[0].x / 40.0;
-            let step = w[1].x - w[0].x;
-            assert!((step / (1.5 * width) - 1.0).abs() < 0.1, "step {step} at {}, width {width}", w[0].x);
+        let xs: Vec<f64> = on_axis(&s).into_iter().map(|x| x.0).collect();
+        assert!(xs.len() >= 5, "{xs:?}");
+        for w in xs.windows(2) {
+            let width = w[0] * w[0] / 40.0;
+            let step = w[1] - w[0];
+            assert!((step / (1.5 * width) - 1.0).abs() < 0.1, "step {step} at {}, width {width}", w[0]);
             assert!(step < 0.75 * h);
         }
         for &(p, step) in &s.samples {
@@ -497,7 +497,7 @@ mod tests {
             assert!(partner.is_some_and(|q| q.1 == step), "{p} has no partner");
         }
         // from a width of 2 chords to one where the step is as long as the arc's chords
-        let last = on_axis[on_axis.len() - 1].x;
+        let last = xs[xs.len() - 1];
         assert!(1.5 * last * last / 40.0 > 0.2, "ends at {last}");
     }
 
