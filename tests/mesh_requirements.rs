@@ -179,6 +179,27 @@ fn the_summary_locates_the_worst_tet_and_warns_under_one_degree() {
     assert!(!stdout.contains("WARNING"), "warnings go to standard error: {stdout}");
 }
 
+/// In a thin wedge most bad tets lie off its knife edge, between its two sides: the report
+/// counts them apart from those that touch no input angle at all.
+#[test]
+fn tets_between_the_faces_of_a_knife_edge_are_counted_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = wedge(dir.path(), 0.5);
+    let out = dir.path().join("w.mesh");
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-min-dihedral", "0", "--json"]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let n = |k: &str| v[k].as_u64().unwrap_or_else(|| panic!("{k}: {v}"));
+    let (unexplained, between) = (n("tets_under_10_deg_unexplained"), n("tets_under_10_deg_between_sides"));
+    // the 0.5° knife's wedge is 0.09 wide at its far end: nearly every tet under 10° off its
+    // edge has a vertex on each side
+    assert!(unexplained > 0 && between <= unexplained && 2 * between > unexplained, "{v}");
+    assert_eq!(n("tets_under_bound_between_sides"), 0, "no tet is under 0°: {v}");
+    let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-min-dihedral", "0"]);
+    let stdout = text(&o.stdout);
+    assert!(stdout.contains(&format!("of the {unexplained} under 10° touching none, {between} lie between the two sides of an input angle under 10°")), "{stdout}");
+}
+
 #[test]
 fn a_refinement_that_ends_says_so_in_the_text() {
     // (a refinement stopped at a budget: the text of each budget is checked in cli's unit

@@ -221,6 +221,9 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
     if m.tets_under_bound > 0 {
         outln!("                 {} tets under {}°, {} of them touching no input angle as small; {} under 10°, {} of them touching none under 10°", m.tets_under_bound, m.input_angle_bound_deg, m.tets_under_bound_unexplained, m.tets_under_10_deg, m.tets_under_10_deg_unexplained);
     }
+    if m.tets_under_10_deg_unexplained > 0 {
+        outln!("                 of the {} under 10° touching none, {} lie between the two sides of an input angle under 10° (a thin wedge, a sliver face or a knife edge of the part)", m.tets_under_10_deg_unexplained, m.tets_under_10_deg_between_sides);
+    }
     outln!("max radius-edge  {:.3} ({} tets above the {} aimed at)", m.max_radius_edge, m.tets_above_radius_edge_bound, m.radius_edge_bound);
     for (label, text) in m.worst_tet.as_ref().map(|w| w.lines()).unwrap_or_default() {
         outln!("{label:<16} {text}");

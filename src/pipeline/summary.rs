@@ -60,6 +60,13 @@ pub struct MeshSummary {
     /// Of those, the ones that touch no input angle under that bound: where the mesh falls
     /// short of it and the input does not explain why.
     pub tets_under_bound_unexplained: usize,
+    /// Of the tets under 10° that touch no input angle under 10°, those that lie between the
+    /// two sides of one, off its vertex or edge (a thin wedge, a sliver face, a knife edge:
+    /// [`crate::quality::between_sides`]). Counted apart: they are in
+    /// `tets_under_10_deg_unexplained` too.
+    pub tets_under_10_deg_between_sides: usize,
+    /// Likewise of `tets_under_bound_unexplained`.
+    pub tets_under_bound_between_sides: usize,
     /// Near-degenerate tets (volume-length ratio under
     /// [`crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH`]).
     pub near_degenerate: usize,
@@ -125,7 +132,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     } else if bound >= 10.0 && angles.is_empty() {
         // no input angle under the bound: no tet touches one, the quality pass counted them
         let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
-        Unexplained { under, worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
+        Unexplained { under, between: [0, 0], worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
     } else if bound >= 10.0 {
         unexplained(mesh, &angles, bound)
     } else {
@@ -156,6 +163,8 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         tets_under_10_deg_unexplained: counts.under[2].1,
         tets_under_bound: counts.under[3].0,
         tets_under_bound_unexplained: counts.under[3].1,
+        tets_under_10_deg_between_sides: counts.between[0],
+        tets_under_bound_between_sides: counts.between[1],
         near_degenerate: q.near_degenerate,
         refinement_stopped: report.refinement_stopped,
         refinement_stop: report.refinement_stop.clone(),
@@ -179,6 +188,9 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
 #[derive(Default)]
 struct Unexplained {
     under: [(usize, usize); 4],
+    /// Of the unexplained tets under 10° and under the bound, those between the two sides of
+    /// an input angle as small.
+    between: [usize; 2],
     /// Of the tets under 1° that touch no input angle under 1°, the smallest angle's: (angle,
     /// tet); the first tet on a tie.
     worst: Option<(f64, usize)>,
@@ -190,6 +202,7 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
     use crate::quality::tetrahedron::tet_min_max_dihedral;
     use crate::quality::worst_tet::touches_angle_below;
     let limits = [1.0, 5.0, 10.0, bound];
+    let sides = crate::quality::between_sides::SideTags::new(mesh);
     // counts, summed over chunks in parallel
     crate::quality::summary::chunked_reduce(
         mesh.tets.len(),
@@ -204,6 +217,9 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
                         out.under[k].0 += 1;
                         if !touches_angle_below(&p, angles, limit) {
                             out.under[k].1 += 1;
+                            if k >= 2 && sides.between_sides(mesh, *t, angles, limit).is_some() {
+                                out.between[k - 2] += 1;
+                            }
                             if k == 0 && out.worst.is_none_or(|(w, _)| lo < w) {
                                 out.worst = Some((lo, a + i));
                             }
@@ -217,6 +233,9 @@ fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained
             for (x, y) in acc.under.iter_mut().zip(part.under) {
                 x.0 += y.0;
                 x.1 += y.1;
+            }
+            for (x, y) in acc.between.iter_mut().zip(part.between) {
+                *x += y;
             }
             // chunks come in order: a later one wins only with a smaller angle
             if let Some((w, t)) = part.worst {

@@ -46,6 +46,10 @@ pub struct InputAngle {
     pub at: [[f64; 3]; 2],
     /// The faces: on either side of the edge (smaller tag first), or the corner's face twice.
     pub faces: [FaceId; 2],
+    /// The faces across its two sides: a dihedral angle's two faces (as `faces`); beyond the
+    /// two edges that make a corner, each the face of the triangle across that edge (the
+    /// corner's own face where a side has no other triangle).
+    pub across: [FaceId; 2],
 }
 
 impl InputAngle {
@@ -149,7 +153,8 @@ fn dihedral_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], pieces: &[u
         let inside = if below == outward { wedge } else { 360.0 - wedge };
         if inside < bound_deg {
             let (tx, ty) = (tag(s, x), tag(s, y));
-            out.push(InputAngle { kind: InputAngleKind::Dihedral, angle_deg: inside, at: [pa.to_array(), pb.to_array()], faces: [tx.min(ty), tx.max(ty)] });
+            let faces = [tx.min(ty), tx.max(ty)];
+            out.push(InputAngle { kind: InputAngleKind::Dihedral, angle_deg: inside, at: [pa.to_array(), pb.to_array()], faces, across: faces });
         }
     }
     out
@@ -202,9 +207,45 @@ fn corner_angles(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], pieces: &[u32
         let t = (c / 3) as u32;
         let p = s.vertices[s.triangles[t as usize][c % 3] as usize].to_array();
         let f = tag(s, t);
-        out.push(InputAngle { kind: InputAngleKind::Corner, angle_deg: sum[c], at: [p, p], faces: [f, f] });
+        let across = corner_sides(s, edges, &mut uf, c as u32).map(|x| x.unwrap_or(f));
+        out.push(InputAngle { kind: InputAngleKind::Corner, angle_deg: sum[c], at: [p, p], faces: [f, f], across });
     }
     out
+}
+
+/// The faces across the two sides of the corner group whose root is corner `root` (corner
+/// `3 t + k` is triangle `t`'s at its vertex `k`): the tags of the triangles beyond the
+/// group's two edges at its vertex, `None` where an edge has no other triangle. A corner's
+/// group is one triangle or a flat piece's fan, so this looks only at the triangles of the
+/// vertex.
+fn corner_sides(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], uf: &mut UnionFind, root: u32) -> [Option<FaceId>; 2] {
+    let t0 = root / 3;
+    let v = s.triangles[t0 as usize][(root % 3) as usize];
+    let on_edge = |a: u32, b: u32| edges.binary_search_by_key(&(a.min(b), a.max(b)), |e| e.0).ok().map(|k| &edges[k].1);
+    // the group's triangles are among those on the edges at v; walk them from t0
+    let mut sides: Vec<Option<FaceId>> = Vec::new();
+    let mut seen: Vec<u32> = Vec::new();
+    let mut todo = vec![t0];
+    while let Some(t) = todo.pop() {
+        if seen.contains(&t) || seen.len() > 64 {
+            continue;
+        }
+        seen.push(t);
+        let tri = s.triangles[t as usize];
+        for w in tri.into_iter().filter(|&w| w != v) {
+            let Some(ts) = on_edge(v, w) else { continue };
+            let others: Vec<u32> = ts.iter().copied().filter(|&y| y != t).collect();
+            let same = others.iter().copied().find(|&y| {
+                s.triangles[y as usize].iter().position(|&x| x == v).is_some_and(|k| uf.find(3 * y + k as u32) == uf.find(root))
+            });
+            match (same, others.as_slice()) {
+                (Some(y), _) => todo.push(y),
+                (None, [y]) => sides.push(Some(tag(s, *y))),
+                (None, _) => sides.push(None),
+            }
+        }
+    }
+    [sides.first().copied().flatten(), sides.get(1).copied().flatten()]
 }
 
 #[cfg(test)]

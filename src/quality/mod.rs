@@ -13,12 +13,15 @@
 //! - [`mesh_quality`]: [`tet_mesh_quality`], [`tri_surface_quality`], [`planar_mesh_quality`].
 //! - [`input_angles`]: the small dihedral and corner angles of a closed tagged surface, which
 //!   bound the quality of any tet mesh that keeps it.
+//! - [`between_sides`]: tets between the two sides of a small input angle, off its vertex or
+//!   edge (a thin wedge, a sliver face, a knife edge), counted apart in reports.
 //! - [`worst_tet`]: where a tet sits (centroid, nearest boundary face and feature edge, the
 //!   small input angle in its reach), for reports and requirement errors.
 //!
 //! Every measure is total: degenerate elements get documented values (`0°`/`180°` angles,
 //! `+∞` ratios, `0` scaled Jacobian), never `NaN` for finite input, never a panic.
 
+pub mod between_sides;
 pub mod input_angles;
 pub mod mesh_quality;
 pub mod quad;
