@@ -149,7 +149,7 @@ pub fn run(args: &Args) -> Result<()> {
             let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(crate::core::RegionId(r)).map(str::to_string));
             // io::read validates what it returns: every index is in range
             let worst_tet = q.min_dihedral.argmin.map(|t| {
-                BoundaryIndex::new(m).locate(m, t, &[], &|f| m.face_names.get(f).map(str::to_string))
+                BoundaryIndex::new(m).locate(m, t, &[], 0.0, &|f| m.face_names.get(f).map(str::to_string))
             });
             let keys = TetKeys {
                 min_dihedral_deg: q.min_dihedral_deg,

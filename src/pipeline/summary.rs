@@ -110,6 +110,8 @@ pub(crate) struct Summarised {
     quality: TetQualityReport,
     boundary: BoundaryIndex,
     angles: Vec<InputAngle>,
+    /// The bound `angles` are under.
+    bound: f64,
 }
 
 /// Summarises a meshed part. `face_table` names the faces (unique names, as the writers give
@@ -124,7 +126,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let ((q, against), angles) = rayon::join(|| tet_mesh_quality_against(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
-    let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, &name));
+    let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, bound, &name));
     // a second pass over the tets, with the input angles under 10° as well where the bound is
     // lower
     let counts = if !(q.min_dihedral_deg < bound.max(10.0)) {
@@ -134,14 +136,14 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
         Unexplained { under, between: [0, 0], worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
     } else if bound >= 10.0 {
-        unexplained(mesh, &angles, bound)
+        unexplained(mesh, boundary.sides(), &angles, bound)
     } else {
-        unexplained(mesh, &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
+        unexplained(mesh, boundary.sides(), &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
     // most often the worst tet itself, already located
     let worst_unexplained_tet = counts.worst.map(|(_, t)| match &worst_tet {
         Some(w) if w.tet == t => w.clone(),
-        _ => boundary.locate(mesh, t, &angles, &name),
+        _ => boundary.locate(mesh, t, &angles, bound, &name),
     });
     let above = against.above_radius_edge;
     let opt = report.optimize.as_ref();
@@ -180,7 +182,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         input_caps_repaired: report.input_caps_repaired,
         flattening_volume: report.flattening_volume,
     };
-    Summarised { summary, quality: q, boundary, angles }
+    Summarised { summary, quality: q, boundary, angles, bound }
 }
 
 /// Tets under 1°, 5°, 10° and the bound: how many, and how many of them touch no input angle
@@ -198,11 +200,10 @@ struct Unexplained {
 
 /// The counts of [`Unexplained`]; `angles` smallest first, every input angle under 10° and
 /// under `bound` among them.
-fn unexplained(mesh: &TetMesh, angles: &[InputAngle], bound: f64) -> Unexplained {
+fn unexplained(mesh: &TetMesh, sides: &crate::quality::between_sides::SideTags, angles: &[InputAngle], bound: f64) -> Unexplained {
     use crate::quality::tetrahedron::tet_min_max_dihedral;
     use crate::quality::worst_tet::touches_angle_below;
     let limits = [1.0, 5.0, 10.0, bound];
-    let sides = crate::quality::between_sides::SideTags::new(mesh);
     // counts, summed over chunks in parallel
     crate::quality::summary::chunked_reduce(
         mesh.tets.len(),
@@ -297,7 +298,7 @@ impl Summarised {
         if let Some(r) = plan.require_max_radius_edge {
             if !(self.quality.max_radius_edge <= r) {
                 let name = namer(mesh, face_table);
-                let place = self.quality.radius_edge.argmax.map(|t| self.boundary.locate(mesh, t, &self.angles, &name));
+                let place = self.quality.radius_edge.argmax.map(|t| self.boundary.locate(mesh, t, &self.angles, self.bound, &name));
                 let over = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r)).count();
                 let head = format!("the largest radius-edge ratio is {}, above the {r} required ({over} tets above it); nothing written", fmt_num(self.quality.max_radius_edge));
                 return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, place.as_ref()) });

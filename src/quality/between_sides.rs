@@ -24,6 +24,7 @@ use crate::quality::input_angles::{InputAngle, InputAngleKind};
 use glam::DVec3;
 
 /// The face tags of every vertex of a tet mesh's boundary, for [`SideTags::between_sides`].
+#[derive(Clone, Debug)]
 pub struct SideTags {
     /// `tags[start[v]..start[v + 1]]`: vertex `v`'s tags, sorted.
     start: Vec<u32>,

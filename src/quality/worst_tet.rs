@@ -11,6 +11,7 @@
 use crate::core::FaceId;
 use crate::core::closest::{closest_point_on_segment, closest_point_on_triangle};
 use crate::mesh::TetMesh;
+use crate::quality::between_sides::SideTags;
 use crate::quality::input_angles::{InputAngle, InputAngleKind};
 use crate::quality::tetrahedron::{TET_EDGES, tet_measures};
 use glam::DVec3;
@@ -65,6 +66,9 @@ pub struct NearAngle {
     pub distance: f64,
     /// A vertex of the tet lies on it (within [`TOUCH_RELATIVE`] of the tet's longest edge).
     pub touches: bool,
+    /// Not touching it, the tet lies between its two sides
+    /// ([`crate::quality::between_sides`]).
+    pub between_sides: bool,
 }
 
 /// Where a tet sits and what it is like.
@@ -98,9 +102,16 @@ pub struct BoundaryIndex {
     /// Feature edges: endpoints and the two smallest different tags on them (a crease: its
     /// tag twice).
     features: Vec<([u32; 2], [FaceId; 2])>,
+    /// The boundary's tags at each vertex, for the angles a tet lies between the sides of.
+    sides: SideTags,
 }
 
 impl BoundaryIndex {
+    /// The boundary's tags at each vertex.
+    pub fn sides(&self) -> &SideTags {
+        &self.sides
+    }
+
     /// The feature edges of `mesh`'s tagged boundary: edges between tags, and creases.
     pub fn new(mesh: &TetMesh) -> BoundaryIndex {
         // (edge, tag, triangle) for every side of every boundary triangle
@@ -131,7 +142,7 @@ impl BoundaryIndex {
                 }
             }
         }
-        BoundaryIndex { features }
+        BoundaryIndex { features, sides: SideTags::new(mesh) }
     }
 
     /// Feature edges of the boundary.
@@ -140,11 +151,13 @@ impl BoundaryIndex {
     }
 
     /// Where tet `t` of `mesh` sits: the nearest face and feature edge, and the smallest of
-    /// `angles` within its reach; `name` names a face tag.
+    /// `angles` (those under `bound` degrees, smallest first) that it touches, else the
+    /// smallest between whose sides it lies (seen under `bound`), else the nearest within its
+    /// reach; `name` names a face tag.
     ///
     /// # Panics
     /// `t` out of range, or indices out of range in `mesh` (validate untrusted meshes first).
-    pub fn locate(&self, mesh: &TetMesh, t: usize, angles: &[InputAngle], name: &dyn Fn(FaceId) -> Option<String>) -> TetPlace {
+    pub fn locate(&self, mesh: &TetMesh, t: usize, angles: &[InputAngle], bound: f64, name: &dyn Fn(FaceId) -> Option<String>) -> TetPlace {
         let p = mesh.tets[t].map(|v| mesh.vertices[v as usize]);
         let c = (p[0] + p[1] + p[2] + p[3]) / 4.0;
         // the measures the mesh reports use, so the figures agree to the bit
@@ -178,11 +191,15 @@ impl BoundaryIndex {
         // the smallest angle the tet touches (angles come smallest first), else the nearest
         // one within its longest edge
         let near: Vec<(usize, f64)> = angles.iter().enumerate().map(|(k, a)| (k, p.iter().map(|&v| a.distance(v)).fold(f64::INFINITY, f64::min))).filter(|&(_, d)| d <= longest).collect();
-        let touch = near.iter().find(|&&(_, d)| d <= TOUCH_RELATIVE * longest);
-        let pick = touch.or_else(|| near.iter().min_by(|x, y| x.1.total_cmp(&y.1)));
-        let input_angle = pick.map(|&(k, d)| {
+        let touch = near.iter().find(|&&(_, d)| d <= TOUCH_RELATIVE * longest).copied();
+        // else the smallest angle between whose sides it lies, else the nearest in reach
+        let between = || {
+            self.sides.between_sides(mesh, mesh.tets[t], angles, bound).map(|k| (k, p.iter().map(|&v| angles[k].distance(v)).fold(f64::INFINITY, f64::min)))
+        };
+        let pick = touch.map(|x| (x, false)).or_else(|| between().map(|x| (x, true))).or_else(|| near.iter().min_by(|x, y| x.1.total_cmp(&y.1)).map(|&x| (x, false)));
+        let input_angle = pick.map(|((k, d), between_sides)| {
             let a = &angles[k];
-            NearAngle { angle: a.clone(), names: a.faces.map(name), distance: d, touches: d <= TOUCH_RELATIVE * longest }
+            NearAngle { angle: a.clone(), names: a.faces.map(name), distance: d, touches: d <= TOUCH_RELATIVE * longest, between_sides }
         });
         TetPlace {
             tet: t,
@@ -275,6 +292,8 @@ impl TetPlace {
             };
             if a.touches {
                 out.push(("input angle", format!("{}° is {what}; the tet touches it", fmt_num(a.angle.angle_deg))));
+            } else if a.between_sides {
+                out.push(("input angle", format!("none that the tet touches; it lies between the two sides of {}°, {what}, {} from the tet", fmt_num(a.angle.angle_deg), fmt_num(a.distance))));
             } else {
                 out.push(("input angle", format!("none that the tet touches; the nearest small one: {}°, {what}, {} from the tet", fmt_num(a.angle.angle_deg), fmt_num(a.distance))));
             }
@@ -317,7 +336,7 @@ mod tests {
             5 => Some("side_c".to_string()),
             _ => None,
         };
-        let place = index.locate(&mesh, 0, &angles, &names);
+        let place = index.locate(&mesh, 0, &angles, 10.0, &names);
         assert!(place.min_dihedral_deg < 3.0 + 1e-9);
         let f = place.nearest_face.as_ref().unwrap();
         assert!(f.distance < 0.25);
