@@ -195,6 +195,15 @@ fn tets_between_the_faces_of_a_knife_edge_are_counted_apart() {
     // edge has a vertex on each side
     assert!(unexplained > 0 && between <= unexplained && 2 * between > unexplained, "{v}");
     assert_eq!(n("tets_under_bound_between_sides"), 0, "no tet is under 0°: {v}");
+    // `inspect` finds the same on the mesh written, from the mesh's own boundary
+    let o = fepre(&["inspect", out.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let i: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    for k in ["tets_under_10_deg", "tets_under_10_deg_unexplained", "tets_under_10_deg_between_sides"] {
+        assert_eq!(i[k], v[k], "{k}: {i}");
+    }
+    let o = fepre(&["inspect", out.to_str().unwrap()]);
+    assert!(text(&o.stdout).contains(&format!("{unexplained} touch no angle under 10° of the boundary")), "{}", text(&o.stdout));
     let o = fepre(&["mesh", input.to_str().unwrap(), "-o", out.to_str().unwrap(), "--require-min-dihedral", "0"]);
     let stdout = text(&o.stdout);
     assert!(stdout.contains(&format!("of the {unexplained} under 10° touching none, {between} lie between the two sides of an input angle under 10°")), "{stdout}");

@@ -6,6 +6,8 @@ use crate::core::{FaceId, Tolerance};
 use crate::io::{self, MeshData, ReadOptions};
 use crate::mesh::TriSurface;
 use crate::mesh::topology::{IntersectingPair, ReportOptions, ShellReport, SurfaceReport, surface_report};
+use crate::quality::explained::{Explained, explained};
+use crate::quality::input_angles::small_input_angles;
 use crate::quality::mesh_quality::{NEAR_DEGENERATE_VOLUME_LENGTH, TetQualityReport, tet_mesh_quality};
 use crate::quality::worst_tet::{BoundaryIndex, TetPlace};
 use anyhow::Result;
@@ -67,6 +69,14 @@ struct TetKeys {
     max_radius_edge: f64,
     tets_under_5_deg: usize,
     tets_under_1_deg: usize,
+    /// Tets under 10°; of those, the ones that touch no angle under 10° of the mesh's
+    /// boundary (its dihedral angles at edges and the corners of its faces, as
+    /// `fepre mesh` reports them), and of those the ones between the two sides of one.
+    tets_under_10_deg: usize,
+    tets_under_10_deg_unexplained: usize,
+    tets_under_10_deg_between_sides: usize,
+    /// The boundary's angles under 10° (counted where some tet is under 10°).
+    input_angles_under_10_deg: usize,
     /// Volume-length ratio under `NEAR_DEGENERATE_VOLUME_LENGTH` (exactly flat ones included).
     near_degenerate: usize,
     /// The tet with the smallest dihedral angle: its centroid, nearest face and feature edge.
@@ -147,16 +157,22 @@ pub fn run(args: &Args) -> Result<()> {
             progress.stage("measuring element quality");
             let q = tet_mesh_quality(m);
             let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(crate::core::RegionId(r)).map(str::to_string));
-            // io::read validates what it returns: every index is in range
-            let worst_tet = q.min_dihedral.argmin.map(|t| {
-                BoundaryIndex::new(m).locate(m, t, &[], 0.0, &|f| m.face_names.get(f).map(str::to_string))
-            });
+            // io::read validates what it returns: every index is in range. The input angles
+            // are the boundary's own (a mesh keeps its input surface's angles)
+            let index = BoundaryIndex::new(m);
+            let angles = if q.min_dihedral_deg < 10.0 { small_input_angles(&m.boundary_surface(), 10.0, true) } else { Vec::new() };
+            let worst_tet = q.min_dihedral.argmin.map(|t| index.locate(m, t, &angles, 10.0, &|f| m.face_names.get(f).map(str::to_string)));
+            let e = if q.min_dihedral_deg < 10.0 { explained(m, index.sides(), &angles, 10.0) } else { Explained::default() };
             let keys = TetKeys {
                 min_dihedral_deg: q.min_dihedral_deg,
                 max_dihedral_deg: q.max_dihedral_deg,
                 max_radius_edge: q.max_radius_edge,
                 tets_under_5_deg: q.tets_min_dihedral_below_5,
                 tets_under_1_deg: q.tets_min_dihedral_below_1,
+                tets_under_10_deg: e.under[2].0,
+                tets_under_10_deg_unexplained: e.under[2].1,
+                tets_under_10_deg_between_sides: e.between[0],
+                input_angles_under_10_deg: angles.len(),
                 near_degenerate: q.near_degenerate,
                 worst_tet,
                 inverted: q.inverted,
@@ -326,6 +342,13 @@ fn render(r: &Report) -> String {
             "  dihedral            {:.2}° .. {:.2}° ({} tets under 5°, {} under 1°)",
             t.min_dihedral_deg, t.max_dihedral_deg, t.tets_under_5_deg, t.tets_under_1_deg
         );
+        if t.tets_under_10_deg > 0 {
+            let _ = writeln!(
+                s,
+                "  under 10°           {} tets; {} touch no angle under 10° of the boundary ({} such angles), {} of those lie between the two sides of one",
+                t.tets_under_10_deg, t.tets_under_10_deg_unexplained, t.input_angles_under_10_deg, t.tets_under_10_deg_between_sides
+            );
+        }
         let _ = writeln!(s, "  max radius-edge     {:.3}", t.max_radius_edge);
         let _ = writeln!(
             s,

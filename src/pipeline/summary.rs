@@ -12,6 +12,7 @@ use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{MeshReport, RefinementStop};
+use crate::quality::explained::Explained;
 use crate::quality::input_angles::{InputAngle, small_input_angles};
 use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality_against};
 use crate::quality::tetrahedron::tet_radius_edge;
@@ -130,15 +131,15 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     // a second pass over the tets, with the input angles under 10° as well where the bound is
     // lower
     let counts = if !(q.min_dihedral_deg < bound.max(10.0)) {
-        Unexplained::default()
+        Explained::default()
     } else if bound >= 10.0 && angles.is_empty() {
         // no input angle under the bound: no tet touches one, the quality pass counted them
         let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
-        Unexplained { under, between: [0, 0], worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
+        Explained { under, between: [0, 0], worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
     } else if bound >= 10.0 {
-        unexplained(mesh, boundary.sides(), &angles, bound)
+        crate::quality::explained::explained(mesh, boundary.sides(), &angles, bound)
     } else {
-        unexplained(mesh, boundary.sides(), &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
+        crate::quality::explained::explained(mesh, boundary.sides(), &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
     // most often the worst tet itself, already located
     let worst_unexplained_tet = counts.worst.map(|(_, t)| match &worst_tet {
@@ -183,69 +184,6 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         flattening_volume: report.flattening_volume,
     };
     Summarised { summary, quality: q, boundary, angles, bound }
-}
-
-/// Tets under 1°, 5°, 10° and the bound: how many, and how many of them touch no input angle
-/// as small.
-#[derive(Default)]
-struct Unexplained {
-    under: [(usize, usize); 4],
-    /// Of the unexplained tets under 10° and under the bound, those between the two sides of
-    /// an input angle as small.
-    between: [usize; 2],
-    /// Of the tets under 1° that touch no input angle under 1°, the smallest angle's: (angle,
-    /// tet); the first tet on a tie.
-    worst: Option<(f64, usize)>,
-}
-
-/// The counts of [`Unexplained`]; `angles` smallest first, every input angle under 10° and
-/// under `bound` among them.
-fn unexplained(mesh: &TetMesh, sides: &crate::quality::between_sides::SideTags, angles: &[InputAngle], bound: f64) -> Unexplained {
-    use crate::quality::tetrahedron::tet_min_max_dihedral;
-    use crate::quality::worst_tet::touches_angle_below;
-    let limits = [1.0, 5.0, 10.0, bound];
-    // counts, summed over chunks in parallel
-    crate::quality::summary::chunked_reduce(
-        mesh.tets.len(),
-        Unexplained::default(),
-        |a, b| {
-            let mut out = Unexplained::default();
-            for (i, t) in mesh.tets[a..b].iter().enumerate() {
-                let p = t.map(|v| mesh.vertices[v as usize]);
-                let lo = tet_min_max_dihedral(&p).0;
-                for (k, &limit) in limits.iter().enumerate() {
-                    if lo < limit {
-                        out.under[k].0 += 1;
-                        if !touches_angle_below(&p, angles, limit) {
-                            out.under[k].1 += 1;
-                            if k >= 2 && sides.between_sides(mesh, *t, angles, limit).is_some() {
-                                out.between[k - 2] += 1;
-                            }
-                            if k == 0 && out.worst.is_none_or(|(w, _)| lo < w) {
-                                out.worst = Some((lo, a + i));
-                            }
-                        }
-                    }
-                }
-            }
-            out
-        },
-        |acc, part| {
-            for (x, y) in acc.under.iter_mut().zip(part.under) {
-                x.0 += y.0;
-                x.1 += y.1;
-            }
-            for (x, y) in acc.between.iter_mut().zip(part.between) {
-                *x += y;
-            }
-            // chunks come in order: a later one wins only with a smaller angle
-            if let Some((w, t)) = part.worst {
-                if acc.worst.is_none_or(|(v, _)| w < v) {
-                    acc.worst = Some((w, t));
-                }
-            }
-        },
-    )
 }
 
 /// Names a face tag: the face table's unique name, else the mesh's.

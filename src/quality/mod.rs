@@ -15,6 +15,7 @@
 //!   bound the quality of any tet mesh that keeps it.
 //! - [`between_sides`]: tets between the two sides of a small input angle, off its vertex or
 //!   edge (a thin wedge, a sliver face, a knife edge), counted apart in reports.
+//! - [`explained`]: of the tets under an angle, those an input angle explains.
 //! - [`worst_tet`]: where a tet sits (centroid, nearest boundary face and feature edge, the
 //!   small input angle in its reach), for reports and requirement errors.
 //!
@@ -22,6 +23,7 @@
 //! `+∞` ratios, `0` scaled Jacobian), never `NaN` for finite input, never a panic.
 
 pub mod between_sides;
+pub mod explained;
 pub mod input_angles;
 pub mod mesh_quality;
 pub mod quad;
