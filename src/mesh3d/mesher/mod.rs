@@ -50,6 +50,11 @@ use std::time::Instant;
 /// or a second") did.
 const TETS_PER_OPTIMIZE_ATTEMPT: usize = 8;
 
+/// The optimisation's last phase around the tets it leaves under 10° (a common floor for
+/// solver-grade tets): the tets two rings around them worked on toward 30°
+/// ([`crate::mesh3d::optimize::Focus`]; the figures in docs/benchmarks.md).
+const FOCUS: crate::mesh3d::optimize::Focus = crate::mesh3d::optimize::Focus { below_deg: 10.0, target_deg: 30.0 };
+
 /// Options of [`mesh_surface`].
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
@@ -426,7 +431,8 @@ pub(crate) fn mesh_surface_pinned(
             // machine under any load
             .with_max_attempts(Some(mesh.tets.len() / TETS_PER_OPTIMIZE_ATTEMPT + 10_000))
             .with_boundary_sliding(options.slide_boundary && !options.keep_surface)
-            .with_pinned_faces(pinned.to_vec());
+            .with_pinned_faces(pinned.to_vec())
+            .with_focus(Some(FOCUS));
         let r = crate::mesh3d::optimize::optimize(&mut mesh, &opts).map_err(|e| MeshingError::Internal(e.to_string()))?;
         report.optimize = Some(r);
         stage("optimize", &mut clock);

@@ -68,6 +68,8 @@ pub(crate) struct Targets {
     pub min_deg: f64,
     /// `180° − θ_target_max` (degrees).
     pub max_gap: f64,
+    /// A largest angle above this (degrees) scores 0, so that no change makes one (180°: none).
+    pub hi_cap: f64,
 }
 
 impl Targets {
@@ -76,7 +78,13 @@ impl Targets {
     pub(crate) fn new(min_deg: f64, max_deg: f64) -> Targets {
         let lo = if min_deg.is_finite() { min_deg.clamp(1e-3, 179.0) } else { 15.0 };
         let hi = if max_deg.is_finite() { max_deg.clamp(1.0, 180.0 - 1e-3) } else { 160.0 };
-        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi), max_re: f64::INFINITY, min_deg: lo, max_gap: 180.0 - hi }
+        Targets { inv_min: 1.0 / lo, inv_max: 1.0 / (180.0 - hi), max_re: f64::INFINITY, min_deg: lo, max_gap: 180.0 - hi, hi_cap: 180.0 }
+    }
+
+    /// The same targets with largest angles above `deg` scoring 0.
+    pub(crate) fn with_hi_cap(mut self, deg: f64) -> Targets {
+        self.hi_cap = deg;
+        self
     }
 
     /// The same targets with the radius-edge bound `ratio` (ignored unless positive).
@@ -137,6 +145,9 @@ impl Judged {
     /// tet degenerate in floating point.
     #[inline]
     pub(crate) fn score(&self, tg: &Targets) -> f64 {
+        if self.hi > tg.hi_cap {
+            return 0.0;
+        }
         // divisions, so that a measure meeting its target exactly scores at least 1
         let s = (self.lo / tg.min_deg).min((180.0 - self.hi) / tg.max_gap).max(0.0);
         if tg.max_re.is_finite() { s.min(tg.max_re / self.re) } else { s }
@@ -241,6 +252,9 @@ impl LeastScore {
         }
         // as Judged::score, with the extremes over the set
         let (lo, hi) = dihedrals_of_extreme_cosines(self.lo_c, self.hi_c);
+        if hi > tg.hi_cap {
+            return 0.0;
+        }
         let s = (lo / tg.min_deg).min((180.0 - hi) / tg.max_gap).max(0.0);
         if tg.max_re.is_finite() { s.min(self.re_term) } else { s }
     }

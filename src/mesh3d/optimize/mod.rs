@@ -144,7 +144,40 @@ pub struct OptimizeOptions {
     /// Once every tet meets the targets, the tets within this share above the smallest-angle
     /// target are worked on as if it were that much higher (see [`POLISH_TRIES`]); `0`: off.
     pub polish: f64,
+    /// Where tets under `below` degrees are left, the tets around them are worked on once more
+    /// toward a smallest angle of `target` degrees ([`Focus`]); `None`: off.
+    pub focus: Option<Focus>,
 }
+
+/// A last phase around the worst tets: where the passes leave tets under
+/// [`Focus::below_deg`], the tets with a vertex within [`FOCUS_RINGS`] rings of them are worked
+/// on toward a smallest angle of [`Focus::target_deg`], the largest-angle and radius-edge
+/// targets as before. No largest angle may grow past the mesh's own (or past the target, where
+/// the mesh is within it). Its attempts: [`FOCUS_TRIES`] per tet of the region under the
+/// phase's target, and never more than [`FOCUS_SHARE`] of the attempts made before it.
+///
+/// At the usual target the passes stop improving a tet once it meets it, so the tets around a
+/// bad one settle at the target and leave it no room; a higher target moves them further.
+/// Only the region around the worst tets is worked on, so a mesh without tets under
+/// `below_deg` is untouched and the cost stays with the few that have them. Like every change
+/// here, it never lowers the least score of the tets it replaces (judged against the phase's
+/// targets).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Focus {
+    /// Tets under this smallest dihedral angle (degrees) start the phase.
+    pub below_deg: f64,
+    /// The smallest-angle target of the phase (degrees).
+    pub target_deg: f64,
+}
+
+/// The rings of tets (sharing a vertex) around the worst tets that [`Focus`] works on.
+pub const FOCUS_RINGS: usize = 2;
+
+/// Attempts [`Focus`] may spend, per tet of its region under the phase's target when it starts.
+pub const FOCUS_TRIES: usize = 4;
+
+/// The most attempts [`Focus`] may spend, as a share of those made before it.
+pub const FOCUS_SHARE: f64 = 0.1;
 
 impl Default for OptimizeOptions {
     fn default() -> Self {
@@ -159,6 +192,7 @@ impl Default for OptimizeOptions {
             slide_boundary: false,
             pinned_faces: Vec::new(),
             polish: POLISH_MARGIN,
+            focus: None,
         }
     }
 }
@@ -218,6 +252,12 @@ impl OptimizeOptions {
         self
     }
 
+    /// Sets [`OptimizeOptions::focus`].
+    pub fn with_focus(mut self, focus: Option<Focus>) -> Self {
+        self.focus = focus;
+        self
+    }
+
     /// Sets [`OptimizeOptions::insert`].
     pub fn with_insertion(mut self, insert: bool) -> Self {
         self.insert = insert;
@@ -271,6 +311,8 @@ pub struct OptimizeReport {
     pub attempts: usize,
     /// Of those, attempts of the polish ([`OptimizeOptions::polish`]).
     pub polish_attempts: usize,
+    /// Of those, attempts of the phase around the worst tets ([`OptimizeOptions::focus`]).
+    pub focus_attempts: usize,
     /// True if [`OptimizeOptions::max_attempts`] stopped the work.
     pub out_of_attempts: bool,
     /// Wall-clock seconds, adjacency and summaries included.
@@ -308,6 +350,9 @@ struct Optimizer<'a> {
     failed: Vec<u32>,
     /// The tets (sorted vertices) on which insertion failed: it is not tried on them again.
     insert_failed: rustc_hash::FxHashSet<[u32; 4]>,
+    /// During [`Optimizer::focus`]: the vertices of its region (vertices inserted since are in
+    /// it); only tets with a vertex in it are worked on.
+    region: Option<Vec<bool>>,
 }
 
 impl Optimizer<'_> {
@@ -383,10 +428,19 @@ impl Optimizer<'_> {
         changed
     }
 
+    /// Whether live tet `t` is in the region being worked on (everywhere but during
+    /// [`Optimizer::focus`]).
+    fn in_region(&self, t: u32) -> bool {
+        match &self.region {
+            None => true,
+            Some(r) => self.w.tets[t as usize].iter().any(|&v| r.get(v as usize).copied().unwrap_or(true)),
+        }
+    }
+
     /// The live tets below target, worst first.
     fn bad_tets(&self) -> Vec<(f64, u32)> {
         let mut bad: Vec<(f64, u32)> =
-            self.w.live_slots().filter(|&t| self.w.q[t as usize] < 1.0).map(|t| (self.w.q[t as usize], t)).collect();
+            self.w.live_slots().filter(|&t| self.w.q[t as usize] < 1.0 && self.in_region(t)).map(|t| (self.w.q[t as usize], t)).collect();
         bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         bad
     }
@@ -468,6 +522,9 @@ impl Optimizer<'_> {
         if self.opts.polish > 0.0 {
             self.polish();
         }
+        if let Some(f) = self.opts.focus {
+            self.focus(f);
+        }
     }
 }
 
@@ -517,6 +574,49 @@ impl Optimizer<'_> {
         self.report.polish_attempts = self.report.attempts - start;
         self.w.retarget(tg);
     }
+
+    /// The phase of [`Focus`]: the region around the tets under `f.below_deg`, worked on
+    /// toward `f.target_deg`, then the targets restored.
+    fn focus(&mut self, f: Focus) {
+        let seeds: Vec<u32> = self.w.live_slots().filter(|&t| self.w.judged[t as usize].lo < f.below_deg).collect();
+        if seeds.is_empty() || f.target_deg <= self.opts.min_dihedral_deg {
+            return;
+        }
+        let mut region = vec![false; self.w.pts.len()];
+        for &t in &seeds {
+            for v in self.w.tets[t as usize] {
+                region[v as usize] = true;
+            }
+        }
+        // each ring: every vertex of a tet that has one in the region
+        for _ in 0..FOCUS_RINGS {
+            let before = region.clone();
+            for t in self.w.live_slots() {
+                let tet = self.w.tets[t as usize];
+                if tet.iter().any(|&v| before[v as usize]) {
+                    for v in tet {
+                        region[v as usize] = true;
+                    }
+                }
+            }
+        }
+        // no largest angle may pass the mesh's, or the target where the mesh is within it
+        let cap = self.w.worst().hi.max(self.opts.max_dihedral_deg);
+        let tg = self.w.tg;
+        self.w.retarget(Targets::new(f.target_deg, self.opts.max_dihedral_deg).with_radius_edge(self.opts.max_radius_edge).with_hi_cap(cap));
+        self.region = Some(region);
+        let start = self.report.attempts;
+        let share = (FOCUS_SHARE * start as f64) as usize;
+        let limit = start.saturating_add(FOCUS_TRIES.saturating_mul(self.bad_tets().len()).min(share));
+        let out_of_attempts = self.report.out_of_attempts;
+        // insertion failed on some tets against the old targets: it may succeed now
+        self.insert_failed.clear();
+        self.passes_below(1.0, limit);
+        self.report.out_of_attempts = out_of_attempts;
+        self.report.focus_attempts = self.report.attempts - start;
+        self.region = None;
+        self.w.retarget(tg);
+    }
 }
 
 /// Improves `mesh` in place: see the [module documentation](self) for what is kept and how.
@@ -556,6 +656,7 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
         report,
         failed: Vec::new(),
         insert_failed: rustc_hash::FxHashSet::default(),
+        region: None,
     };
     o.run();
     let mut report = o.report;

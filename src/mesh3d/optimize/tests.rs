@@ -295,3 +295,34 @@ fn the_polish_raises_a_mesh_that_met_its_targets_and_lowers_nothing() {
     assert_eq!(r.bad_after, 0);
     assert!(!r.out_of_attempts);
 }
+
+#[test]
+fn the_focus_works_around_the_worst_tets_within_its_share_and_caps_the_largest_angle() {
+    // two passes (insertion comes from the third) leave slivers in a random box
+    let m = with_hull_boundary(random_box(400, 5));
+    let opts = OptimizeOptions::default().with_max_passes(2).with_polish(0.0);
+    let mut plain = m.clone();
+    let r0 = optimize(&mut plain, &opts).unwrap();
+    let (lo0, hi0) = min_max_dihedral(&plain);
+    assert!(lo0 < 16.0, "the fixture must leave tets under target: {lo0}");
+    let under = |m: &TetMesh, deg: f64| m.tets.iter().filter(|t| tet_min_max_dihedral(&t.map(|v| m.vertices[v as usize])).0 < deg).count();
+    let focus = Focus { below_deg: 14.0, target_deg: 30.0 };
+    let mut out = m.clone();
+    let r = optimize(&mut out, &opts.clone().with_focus(Some(focus))).unwrap();
+    check_kept(&m, &out, &r);
+    // the same work first, then the phase within its share of the attempts made before it
+    assert_eq!(r.attempts - r.focus_attempts, r0.attempts, "{r:?}");
+    assert!(r.focus_attempts > 0 && r.focus_attempts as f64 <= FOCUS_SHARE * r0.attempts as f64 + 1.0, "{r:?}");
+    let (lo, hi) = min_max_dihedral(&out);
+    // the hull's slivers cannot change (their faces are the boundary); the others around them
+    // get better, and the worst does not get worse
+    assert!(under(&out, 14.0) < under(&plain, 14.0), "{} tets under 14°, {} without the phase", under(&out, 14.0), under(&plain, 14.0));
+    assert!(lo >= lo0, "the worst tet is {lo}°, {lo0}° without the phase");
+    assert!(hi <= hi0.max(158.0), "the largest angle grew to {hi}° (from {hi0}°)");
+    // a mesh without tets under the phase's bound is left as the passes left it
+    let good = with_hull_boundary(kuhn_cube(3, 0.0, 1));
+    let mut kept = good.clone();
+    let r = optimize(&mut kept, &OptimizeOptions::default().with_focus(Some(Focus { below_deg: 10.0, target_deg: 30.0 }))).unwrap();
+    assert_eq!(kept, good);
+    assert_eq!(r.focus_attempts, 0);
+}
