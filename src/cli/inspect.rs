@@ -160,9 +160,14 @@ pub fn run(args: &Args) -> Result<()> {
             // io::read validates what it returns: every index is in range. The input angles
             // are the boundary's own (a mesh keeps its input surface's angles)
             let index = BoundaryIndex::new(m);
-            let angles = if q.min_dihedral_deg < 10.0 { small_input_angles(&m.boundary_surface(), 10.0, true) } else { Vec::new() };
+            let (angles, e) = if q.min_dihedral_deg < 10.0 {
+                let angles = small_input_angles(&m.boundary_surface(), 10.0, true);
+                let e = explained(m, index.sides(), &angles, 10.0);
+                (angles, e)
+            } else {
+                (Vec::new(), Explained::default())
+            };
             let worst_tet = q.min_dihedral.argmin.map(|t| index.locate(m, t, &angles, 10.0, &|f| m.face_names.get(f).map(str::to_string)));
-            let e = if q.min_dihedral_deg < 10.0 { explained(m, index.sides(), &angles, 10.0) } else { Explained::default() };
             let keys = TetKeys {
                 min_dihedral_deg: q.min_dihedral_deg,
                 max_dihedral_deg: q.max_dihedral_deg,

@@ -12,7 +12,7 @@ use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{MeshReport, RefinementStop};
-use crate::quality::explained::Explained;
+use crate::quality::explained::{Explained, explained};
 use crate::quality::input_angles::{InputAngle, small_input_angles};
 use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality_against};
 use crate::quality::tetrahedron::tet_radius_edge;
@@ -137,9 +137,9 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
         Explained { under, between: [0, 0], worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
     } else if bound >= 10.0 {
-        crate::quality::explained::explained(mesh, boundary.sides(), &angles, bound)
+        explained(mesh, boundary.sides(), &angles, bound)
     } else {
-        crate::quality::explained::explained(mesh, boundary.sides(), &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
+        explained(mesh, boundary.sides(), &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
     };
     // most often the worst tet itself, already located
     let worst_unexplained_tet = counts.worst.map(|(_, t)| match &worst_tet {

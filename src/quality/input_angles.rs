@@ -222,6 +222,7 @@ fn corner_sides(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], uf: &mut Union
     let t0 = root / 3;
     let v = s.triangles[t0 as usize][(root % 3) as usize];
     let on_edge = |a: u32, b: u32| edges.binary_search_by_key(&(a.min(b), a.max(b)), |e| e.0).ok().map(|k| &edges[k].1);
+    let group = uf.find(root);
     // the group's triangles are among those on the edges at v; walk them from t0
     let mut sides: Vec<Option<FaceId>> = Vec::new();
     let mut seen: Vec<u32> = Vec::new();
@@ -236,7 +237,7 @@ fn corner_sides(s: &TriSurface, edges: &[((u32, u32), Vec<u32>)], uf: &mut Union
             let Some(ts) = on_edge(v, w) else { continue };
             let others: Vec<u32> = ts.iter().copied().filter(|&y| y != t).collect();
             let same = others.iter().copied().find(|&y| {
-                s.triangles[y as usize].iter().position(|&x| x == v).is_some_and(|k| uf.find(3 * y + k as u32) == uf.find(root))
+                s.triangles[y as usize].iter().position(|&x| x == v).is_some_and(|k| uf.find(3 * y + k as u32) == group)
             });
             match (same, others.as_slice()) {
                 (Some(y), _) => todo.push(y),
