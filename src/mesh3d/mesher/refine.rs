@@ -135,10 +135,7 @@ fn badness(tr: &Tetra, t: u32, size: &dyn SizeField, opts: &MeshOptions, r_min: 
 /// The wall on a cavity's boundary on which `c` would make a bad tet (radius-edge over
 /// [`WALL_RADIUS_EDGE`], or not positive): a point too near the surface. As (tet, face).
 fn bad_on_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
-    for &(f, r) in boundary {
-        if f.contains(&GHOST) || tr.walls[(r >> 2) as usize] >> (r & 3) & 1 == 0 {
-            continue;
-        }
+    for (f, at) in cavity_walls(tr, boundary) {
         let [a, b, d] = f.map(|v| tr.point(v));
         let (u, v, w) = (b - a, d - a, c - a);
         let det = u.dot(v.cross(w));
@@ -151,10 +148,19 @@ fn bad_on_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u3
             r2 > WALL_RADIUS_EDGE * WALL_RADIUS_EDGE * lmin2
         };
         if bad {
-            return Some((r >> 2, (r & 3) as usize));
+            return Some(at);
         }
     }
     None
+}
+
+/// The walls among a cavity's boundary faces (each with `4 t + k`, face `k` of the outside
+/// tet `t`, as [`Tetra::insert_checked`] gives them): each face and (tet, face).
+fn cavity_walls<'a>(tr: &'a Tetra, boundary: &'a [([u32; 3], u32)]) -> impl Iterator<Item = ([u32; 3], (u32, usize))> + 'a {
+    boundary
+        .iter()
+        .filter(|&&(f, r)| !f.contains(&GHOST) && tr.walls[(r >> 2) as usize] >> (r & 3) & 1 != 0)
+        .map(|&(f, r)| (f, (r >> 2, (r & 3) as usize)))
 }
 
 /// A wall on a cavity's boundary that `c` lies flat over: nearer its plane than
@@ -163,15 +169,7 @@ fn bad_on_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u3
 /// make on that wall is flat, and no later step can lift `c` off it where the wall belongs to
 /// a CAD face that refinement does not split. As (tet, face).
 fn flat_over_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<(u32, usize)> {
-    for &(f, r) in boundary {
-        if f.contains(&GHOST) || tr.walls[(r >> 2) as usize] >> (r & 3) & 1 == 0 {
-            continue;
-        }
-        if flat_over(f.map(|v| tr.point(v)), c) {
-            return Some((r >> 2, (r & 3) as usize));
-        }
-    }
-    None
+    cavity_walls(tr, boundary).find(|(f, _)| flat_over(f.map(|v| tr.point(v)), c)).map(|(_, at)| at)
 }
 
 /// Whether `c` lies flat over triangle `t`: nearer its plane than [`FLAT_OVER_WALL`] of its
@@ -199,17 +197,11 @@ const WALL_RADIUS_EDGE: f64 = 1.6;
 
 /// The wall on a cavity's boundary whose equatorial sphere holds `c`: its face and (tet, face).
 fn encroached_wall(tr: &Tetra, boundary: &[([u32; 3], u32)], c: DVec3) -> Option<([u32; 3], (u32, usize))> {
-    for &(f, r) in boundary {
-        if f.contains(&GHOST) || tr.walls[(r >> 2) as usize] >> (r & 3) & 1 == 0 {
-            continue;
-        }
+    cavity_walls(tr, boundary).find(|(f, _)| {
         let [a, b, d] = f.map(|v| tr.point(v));
         let cc = circumcenter(a, b, d);
-        if c.distance_squared(cc) < a.distance_squared(cc) * (1.0 - 1e-12) {
-            return Some((f, (r >> 2, (r & 3) as usize)));
-        }
-    }
-    None
+        c.distance_squared(cc) < a.distance_squared(cc) * (1.0 - 1e-12)
+    })
 }
 
 /// The share of the local feature size under which no point off a centre joins a vertex.
