@@ -11,7 +11,7 @@
 use super::edge_points::EdgePoints;
 use crate::cad::brep::Model;
 use crate::core::aabb::Aabb;
-use crate::core::bvh::Bvh;
+use crate::core::bvh::{Bvh, NodeView};
 use crate::core::closest::closest_point_on_segment;
 use crate::core::SizeField;
 use glam::DVec3;
@@ -41,20 +41,24 @@ pub(super) struct FeatureSize<'a> {
     inner: &'a dyn SizeField,
     /// Sample points and their sizes (only where the width asks for less than `inner`).
     samples: Vec<(DVec3, f64)>,
+    /// The boxes of `samples`: each sample's reach (where its size plus the distance can be
+    /// under the size asked for at its point).
     bvh: Bvh,
+    /// Per node of `bvh`: the smallest size of a sample under it, and the box of their
+    /// points. A query skips a node whose samples cannot lower the size found so far.
+    node_min: Vec<f64>,
+    node_points: Vec<Aabb>,
+    /// The reach of each sample (its box's half side).
+    reach: Vec<f64>,
 }
 
 impl SizeField for FeatureSize<'_> {
     fn size_at(&self, p: DVec3) -> f64 {
-        let mut h = self.inner.size_at(p);
+        let h = self.inner.size_at(p);
         if self.samples.is_empty() {
             return h;
         }
-        self.bvh.for_each_overlapping(&Aabb { min: p, max: p }, |i| {
-            let (x, s) = self.samples[i as usize];
-            h = h.min(s + x.distance(p));
-        });
-        h
+        self.min_over_samples(p, h)
     }
 
     fn size_in(&self, p: DVec3, region: crate::core::RegionId) -> f64 {
@@ -166,11 +170,90 @@ impl<'a> FeatureSize<'a> {
         samples.sort_by(|x, y| x.0.x.total_cmp(&y.0.x).then(x.0.y.total_cmp(&y.0.y)).then(x.0.z.total_cmp(&y.0.z)).then(x.1.total_cmp(&y.1)));
         samples.dedup();
         // a sample matters where its size plus the distance is under the size asked for
-        let bvh = Bvh::build(samples.iter().enumerate().map(|(i, &(x, s))| {
-            let r = (inner.size_at(x) - s).max(0.0);
-            (i as u32, Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) })
-        }));
-        FeatureSize { inner, samples, bvh }
+        let reach: Vec<f64> = samples.iter().map(|&(x, s)| (inner.size_at(x) - s).max(0.0)).collect();
+        let bvh = Bvh::build(samples.iter().zip(&reach).enumerate().map(|(i, (&(x, _), &r))| (i as u32, reach_box(x, r))));
+        // children have larger indices than their parent: a reverse sweep sees them first
+        let n = bvh.num_nodes();
+        let mut node_min = vec![f64::INFINITY; n];
+        let mut node_points = vec![Aabb::EMPTY; n];
+        for k in (0..n).rev() {
+            match bvh.node(k as u32) {
+                NodeView::Leaf { items, .. } => {
+                    for &i in items {
+                        let (x, s) = samples[i as usize];
+                        node_min[k] = node_min[k].min(s);
+                        node_points[k].grow(x);
+                    }
+                }
+                NodeView::Internal { left, right, .. } => {
+                    let (l, r) = (left as usize, right as usize);
+                    node_min[k] = node_min[l].min(node_min[r]);
+                    node_points[k] = node_points[l].union(&node_points[r]);
+                }
+            }
+        }
+        FeatureSize { inner, samples, bvh, node_min, node_points, reach }
+    }
+
+    /// The smallest of `h` and `s + |x - p|` over the samples `(x, s)` whose reach holds `p`
+    /// (the sizes they ask for there): branch and bound over the tree, skipping the nodes
+    /// whose smallest size plus the distance to their points' box is above the least found
+    /// so far, which cannot lower it. The minimum does not depend on the order.
+    fn min_over_samples(&self, p: DVec3, mut h: f64) -> f64 {
+        let at = Aabb { min: p, max: p };
+        let mut stack: [u32; 64] = [0; 64];
+        let mut spill: Vec<u32> = Vec::new();
+        let mut len = 0usize;
+        if self.bvh.root().is_some() {
+            stack[0] = 0;
+            len = 1;
+        }
+        // a little slack so that rounding never skips a node that holds the minimum
+        let above = |lower: f64, h: f64| lower > h + 1e-9 * h.abs();
+        loop {
+            let k = if let Some(k) = spill.pop() {
+                k
+            } else if len > 0 {
+                len -= 1;
+                stack[len]
+            } else {
+                break;
+            };
+            let lower = self.node_min[k as usize] + box_distance(&self.node_points[k as usize], p);
+            if above(lower, h) {
+                continue;
+            }
+            match self.bvh.node(k) {
+                NodeView::Leaf { bbox, items } => {
+                    if !bbox.overlaps(&at) {
+                        continue;
+                    }
+                    for &i in items {
+                        let (x, s) = self.samples[i as usize];
+                        if reach_box(x, self.reach[i as usize]).overlaps(&at) {
+                            h = h.min(s + x.distance(p));
+                        }
+                    }
+                }
+                NodeView::Internal { bbox, left, right } => {
+                    if !bbox.overlaps(&at) {
+                        continue;
+                    }
+                    // the child nearer by its bound is taken first: the least falls fast
+                    let bound = |c: u32| self.node_min[c as usize] + box_distance(&self.node_points[c as usize], p);
+                    let order = if bound(left) <= bound(right) { [right, left] } else { [left, right] };
+                    for c in order {
+                        if len < stack.len() {
+                            stack[len] = c;
+                            len += 1;
+                        } else {
+                            spill.push(c);
+                        }
+                    }
+                }
+            }
+        }
+        h
     }
 
     /// Sample points in all.
@@ -178,6 +261,19 @@ impl<'a> FeatureSize<'a> {
     fn samples(&self) -> usize {
         self.samples.len()
     }
+}
+
+/// The box of a sample at `x` with reach `r`.
+fn reach_box(x: DVec3, r: f64) -> Aabb {
+    Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) }
+}
+
+/// The distance from `p` to the closed box `b` (0 inside, infinite for an empty box).
+fn box_distance(b: &Aabb, p: DVec3) -> f64 {
+    if b.is_empty() {
+        return f64::INFINITY;
+    }
+    (b.min - p).max(p - b.max).max(DVec3::ZERO).length()
 }
 
 /// Samples the piece `p`-`q` of an edge: its start, and its halves again where the width at
@@ -239,5 +335,59 @@ mod tests {
         let t = super::super::tessellate(&block, &super::super::TessellateOptions::default());
         let f = FeatureSize::new(&block, &t.edges, &t.surface.vertices, &inner, &[]);
         assert_eq!(f.size_at(DVec3::ZERO), 5.0);
+    }
+
+    /// A size field that grows along x: the samples' reaches differ from point to point.
+    struct Graded;
+    impl SizeField for Graded {
+        fn size_at(&self, p: DVec3) -> f64 {
+            1.0 + 0.2 * p.x.abs()
+        }
+    }
+
+    #[test]
+    fn the_pruned_query_finds_what_a_scan_of_every_sample_finds() {
+        // samples in clusters of equal sizes and scattered ones, under a graded field: the
+        // branch and bound must give, bit for bit, the least over every sample whose reach
+        // holds the point
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut samples = Vec::new();
+        for c in 0..40 {
+            let centre = DVec3::new(10.0 * rnd() - 5.0, 10.0 * rnd() - 5.0, 2.0 * rnd());
+            let s = if c % 3 == 0 { 0.05 } else { 0.01 + 0.5 * rnd() };
+            for _ in 0..50 {
+                samples.push((centre + DVec3::new(rnd(), rnd(), rnd()) * 0.3, s));
+            }
+        }
+        let f = FeatureSize::from_samples(&Graded, samples.clone());
+        for _ in 0..2000 {
+            let p = DVec3::new(14.0 * rnd() - 7.0, 14.0 * rnd() - 7.0, 4.0 * rnd() - 1.0);
+            let mut want = Graded.size_at(p);
+            for &(x, s) in &f.samples {
+                let r = (Graded.size_at(x) - s).max(0.0);
+                if reach_box(x, r).overlaps(&Aabb { min: p, max: p }) {
+                    want = want.min(s + x.distance(p));
+                }
+            }
+            assert_eq!(f.size_at(p).to_bits(), want.to_bits(), "at {p}");
+        }
+        // and near the samples, where the least comes from them
+        for &(x, _) in samples.iter().step_by(7) {
+            let p = x + DVec3::new(0.01, -0.02, 0.005);
+            let mut want = Graded.size_at(p);
+            for &(y, s) in &f.samples {
+                if reach_box(y, (Graded.size_at(y) - s).max(0.0)).overlaps(&Aabb { min: p, max: p }) {
+                    want = want.min(s + y.distance(p));
+                }
+            }
+            assert!(want < Graded.size_at(p));
+            assert_eq!(f.size_at(p).to_bits(), want.to_bits(), "at {p}");
+        }
     }
 }
