@@ -259,23 +259,39 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
     let mut edges = discretise(size, &strips, &mut vertices);
     // boundary segments that cross in a face's (u, v) are split on their edges (shared by the
     // faces on both sides, so the surface stays watertight) and every face meshed again
+    // only the faces on a split edge are meshed again: the others have the same edge points,
+    // so the same mesh (kept, their own points renumbered after the new edge points)
+    let mut each: Vec<Option<FaceResult>> = vec![None; model.faces.len()];
+    let edge_faces = model.edge_faces();
     let mut round = 0;
     loop {
         let edge_vertices = vertices.len();
-        let mut meshed = mesh_faces(model, &edges, tol, face_chord, max_straight, opts, size, &mut vertices);
+        let mut meshed = mesh_faces(model, &edges, tol, face_chord, max_straight, opts, size, &mut each, &mut vertices);
         if meshed.split.iter().all(Vec::is_empty) || round == SPLIT_ROUNDS {
             let Meshed { triangles, face_tags, face_names, failed, domains, .. } = meshed;
             return Tessellation { surface: TriSurface { vertices, triangles, face_tags, face_names }, failed, edges, domains, chord: tol, face_chords: face_chord.to_vec(), quadrature: vec![None; model.faces.len()] };
         }
-        // the faces' interior vertices go: the next round makes them again
+        // the faces' interior vertices go: the next round makes them again, or renumbers them
         vertices.truncate(edge_vertices);
         for (e, ks) in meshed.split.iter_mut().enumerate() {
             if !ks.is_empty() {
                 edge_points::split_segments(model, &model.edges[e], &mut edges[e], ks, &mut vertices);
+                for &f in &edge_faces[e] {
+                    each[f as usize] = None;
+                }
             }
         }
         round += 1;
     }
+}
+
+/// One face's mesh, its own points, and the number of shared points (the model's vertices and
+/// edge points) its own ids were counted after.
+#[derive(Clone)]
+struct FaceResult {
+    mesh: Result<face_mesh::FaceMesh, face_mesh::FaceError>,
+    own: Vec<DVec3>,
+    shared: usize,
 }
 
 /// Most rounds of splitting edge segments that cross in a face's parameter domain (each
@@ -294,7 +310,17 @@ struct Meshed {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn mesh_faces(model: &Model, edges: &[EdgePoints], tol: f64, face_chord: &[f64], max_straight: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, vertices: &mut Vec<DVec3>) -> Meshed {
+fn mesh_faces(
+    model: &Model,
+    edges: &[EdgePoints],
+    tol: f64,
+    face_chord: &[f64],
+    max_straight: f64,
+    opts: &TessellateOptions,
+    size: Option<&dyn SizeField>,
+    each: &mut [Option<FaceResult>],
+    vertices: &mut Vec<DVec3>,
+) -> Meshed {
     // edge segments by their end vertices
     let mut segment: rustc_hash::FxHashMap<(u32, u32), (usize, usize)> = rustc_hash::FxHashMap::default();
     for (e, ep) in edges.iter().enumerate() {
@@ -310,19 +336,27 @@ fn mesh_faces(model: &Model, edges: &[EdgePoints], tol: f64, face_chord: &[f64],
     // ids, and bits, as one face after the other
     let shared = vertices.len();
     let faces: Vec<FaceId> = model.face_ids().collect();
-    let meshes: Vec<(Result<face_mesh::FaceMesh, face_mesh::FaceError>, Vec<DVec3>)> = faces
+    let todo: Vec<usize> = (0..faces.len()).filter(|&k| each.get(k).is_none_or(Option::is_none)).collect();
+    let meshes: Vec<FaceResult> = todo
         .par_iter()
-        .map(|&fid| {
+        .map(|&k| {
+            let fid = faces[k];
             let chord = fid.index().and_then(|k| face_chord.get(k)).copied().unwrap_or(tol);
             let mut own = FaceVertices::new(vertices);
-            let r = face_mesh::mesh_face(model, fid, edges, chord, max_straight, opts, size, &mut own);
-            (r, own.into_own())
+            let mesh = face_mesh::mesh_face(model, fid, edges, chord, max_straight, opts, size, &mut own);
+            FaceResult { mesh, own: own.into_own(), shared }
         })
         .collect();
-    for (&fid, (r, own)) in faces.iter().zip(meshes) {
+    for (k, r) in todo.into_iter().zip(meshes) {
+        if let Some(slot) = each.get_mut(k) {
+            *slot = Some(r);
+        }
+    }
+    for (k, &fid) in faces.iter().enumerate() {
+        let Some(FaceResult { mesh: r, own, shared: counted }) = each.get(k).cloned().flatten() else { continue };
         let face = model.face(fid);
         let start = vertices.len();
-        let id = |i: u32| FaceVertices::renumber(i, shared, start);
+        let id = |i: u32| FaceVertices::renumber(i, counted, start);
         vertices.extend(own);
         let r = r.map(|mut fm| {
             for t in &mut fm.triangles {
