@@ -84,6 +84,14 @@ fn surfaces(rng: &mut Rng) -> Vec<(&'static str, Surface, [f64; 4])> {
         Surface::Torus(Torus { frame: rng.frame(), major: big, minor: small, part: TorusPart::Inner }),
         [angle[0], angle[1], a + 0.01, TAU - a - 0.01],
     ));
+    // a negative major radius as SolidWorks writes one (Azsug0x00's Part10: R = -30, r = 100):
+    // the tube's centre across the axis; v where R + r cos v > 0 (the lemon, |v| < 1.27),
+    // inside the window [0, 2π) that projection gives
+    out.push((
+        "torus with a negative major radius",
+        Surface::Torus(Torus { frame: rng.frame(), major: -3.0, minor: 10.0, part: TorusPart::Full }),
+        [angle[0], angle[1], 0.05, 1.2],
+    ));
     out.push(("bspline", Surface::BSpline(bspline_patch(false)), [0.0, 1.0, -1.0, 2.0]));
     out.push(("rational bspline", Surface::BSpline(bspline_patch(true)), [0.0, 1.0, -1.0, 2.0]));
     out.push((
@@ -307,6 +315,25 @@ fn self_intersecting_full_torus_projects_onto_its_lemon() {
         let p = t.point(u, v);
         let q = t.project(p);
         assert!((t.point(q.x, q.y) - p).length() < 1e-9, "({u}, {v}) -> {q:?}");
+    }
+}
+
+#[test]
+fn a_torus_with_a_negative_major_radius_is_the_positive_ones_point_set_turned_over() {
+    use crate::cad::geom::{Frame, Torus, TorusPart};
+    let neg = Torus { frame: Frame::WORLD, major: -3.0, minor: 10.0, part: TorusPart::Full };
+    let pos = Torus { major: 3.0, ..neg };
+    for &(u, v) in &[(0.5, 0.3), (1.0, 1.1), (4.0, -0.9), (5.5, 2.5), (2.0, 3.5)] {
+        // the circle of angle u is the positive torus's of angle u + π, run the other way
+        let (p, q) = (neg.point(u, v), pos.point(u + std::f64::consts::PI, std::f64::consts::PI - v));
+        assert!((p - q).length() < 1e-9, "({u}, {v}): {p} against {q}");
+        let (Some(n), Some(m)) = (neg.normal(u, v), pos.normal(u + std::f64::consts::PI, std::f64::consts::PI - v)) else { panic!("no normal at ({u}, {v})") };
+        assert!((n + m).length() < 1e-9, "({u}, {v}): normals {n} and {m} are not opposite");
+        // the normal is du x dv, and projection comes back to the point
+        let d = neg.derivs(u, v);
+        assert!((d.du.cross(d.dv).normalize() - n).length() < 1e-9);
+        let w = neg.project(p);
+        assert!((neg.point(w.x, w.y) - p).length() < 1e-9, "({u}, {v}) -> {w:?}");
     }
 }
 

@@ -27,7 +27,8 @@ pub enum TorusPart {
 pub struct Torus {
     /// Axis frame.
     pub frame: Frame,
-    /// Major radius `R` (centre of the tube to the axis).
+    /// Major radius `R` (centre of the tube to the axis). Negative in STEP files that put
+    /// the tube's centre across the axis (a spindle torus from SolidWorks): the formula holds.
     pub major: f64,
     /// Minor radius `r` (the tube).
     pub minor: f64,

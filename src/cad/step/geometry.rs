@@ -308,11 +308,14 @@ impl Converter<'_> {
             }
             "TOROIDAL_SURFACE" | "DEGENERATE_TOROIDAL_SURFACE" => {
                 let a = Args::of(e, name)?;
+                // a negative major radius (SolidWorks writes one for a spindle torus, minor
+                // over major) puts each meridian circle's centre across the axis. The torus's
+                // formula holds as it is; with the radius's magnitude (as OpenCASCADE reads
+                // it) the point set is the same but the normal turns over (the circle of angle
+                // u is the positive one's of angle u + π, run the other way), and the faces
+                // on it would face inward
                 let major = a.f64(2)? * s;
                 let minor = positive(a.f64(3)? * s, "minor radius")?;
-                if major < 0.0 {
-                    return Err(drop_entity(e, "negative major radius"));
-                }
                 let part = if name == "DEGENERATE_TOROIDAL_SURFACE" && minor > major {
                     if a.bool_or(4, true) { TorusPart::Outer } else { TorusPart::Inner }
                 } else {

@@ -107,6 +107,18 @@ fn unsupported_surface_is_reported_not_silent() {
 }
 
 #[test]
+fn a_toroidal_surface_with_a_negative_major_radius_is_read_as_written() {
+    // SolidWorks writes a spindle torus's major radius negative: read, not dropped
+    let text = square("$").replace("#5=PLANE('',#4);", "#5=TOROIDAL_SURFACE('',#4,-0.03,0.1);");
+    let m = read_bytes(Path::new("sq.stp"), text.as_bytes()).unwrap();
+    let f = m.face(crate::core::FaceId(1));
+    match m.surface(f.surface) {
+        crate::cad::geom::Surface::Torus(t) => assert!((t.major + 30.0).abs() < 1e-9 && (t.minor - 100.0).abs() < 1e-9, "{t:?}"),
+        s => panic!("not a torus: {s:?}"),
+    }
+}
+
+#[test]
 fn cycle_is_an_error_naming_the_id() {
     let text = square("$").replace("#5=PLANE('',#4);", "#5=OFFSET_SURFACE('',#5,1.,.F.);");
     let e = read_bytes(Path::new("sq.stp"), text.as_bytes()).unwrap_err();
