@@ -257,6 +257,7 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         None => None,
     };
     let mut edges = discretise(size, &strips, &mut vertices);
+    split_digons(model, &mut edges, &mut vertices);
     // boundary segments that cross in a face's (u, v) are split on their edges (shared by the
     // faces on both sides, so the surface stays watertight) and every face meshed again
     // only the faces on a split edge are meshed again: the others have the same edge points,
@@ -282,6 +283,28 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
             }
         }
         round += 1;
+    }
+}
+
+/// A loop of two edges (a lens: a sliver face between two curves that meet at both ends)
+/// whose edges are one segment each would be the same segment twice, with no triangle
+/// between: each such edge is split at its middle. Sizing coarsens a short curve that is
+/// straight within the chord to one piece (a 0.3 mm lens on a cylinder of a real part).
+fn split_digons(model: &Model, edges: &mut [EdgePoints], vertices: &mut Vec<DVec3>) {
+    for face in &model.faces {
+        for &l in &face.loops {
+            let lp = &model.loops[l as usize];
+            let [a, b] = match lp.coedges.as_slice() {
+                [a, b] => [a.edge as usize, b.edge as usize],
+                _ => continue,
+            };
+            if a == b || [a, b].iter().any(|&e| edges.get(e).is_none_or(|ep| ep.ids.len() != 2)) {
+                continue;
+            }
+            for e in [a, b] {
+                edge_points::split_segments(model, &model.edges[e], &mut edges[e], &mut [0], vertices);
+            }
+        }
     }
 }
 

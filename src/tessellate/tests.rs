@@ -445,3 +445,35 @@ fn a_sized_sphere_has_no_fans_of_needles_at_its_poles() {
     }
     assert!(longest_edge(s) <= 2.0 * h, "longest edge {}", longest_edge(s));
 }
+
+#[test]
+fn a_lens_face_whose_two_edges_are_one_segment_each_is_split_and_meshed() {
+    // a planar face between a line and an arc of radius 1000 over the same 1 mm chord (a
+    // sliver face like those between a cylinder and a nearly tangent plane): sizing at 5 mm
+    // makes each side one piece, the same segment twice; each is split at its middle
+    use crate::cad::geom::Circle;
+    use crate::core::size_field::UniformSize;
+    let (a, b) = (DVec3::ZERO, DVec3::X);
+    let r: f64 = 1000.0;
+    let delta = (0.5 / r).asin();
+    let centre = DVec3::new(0.5, -r * delta.cos(), 0.0);
+    let mut m = Model::default();
+    m.vertices = [a, b].iter().map(|&point| Vertex { point, source: EntityRef(0) }).collect();
+    m.curves.push(Curve::Line(Line { origin: a, direction: b - a }));
+    m.curves.push(Curve::Circle(Circle { frame: Frame::from_axes(centre, Some(DVec3::Z), Some(DVec3::X)).unwrap(), radius: r }));
+    let edge = |curve: u32, start: u32, end: u32, range: Interval| Edge { curve: Some(curve), start, end, range, same_sense: true, closed: false, seam: false, degenerate: false, source: EntityRef(1 + curve as u64) };
+    m.edges.push(edge(0, 0, 1, Interval::new(0.0, 1.0)));
+    m.edges.push(edge(1, 1, 0, Interval::new(std::f64::consts::FRAC_PI_2 - delta, std::f64::consts::FRAC_PI_2 + delta)));
+    m.surfaces.push(Surface::Plane(Plane { frame: Frame::from_axes(DVec3::ZERO, Some(DVec3::Z), Some(DVec3::X)).unwrap() }));
+    let fid = FaceId::from_index(0);
+    m.loops.push(Loop { face: fid, outer: true, orientation: true, coedges: vec![Coedge { edge: 0, forward: true }, Coedge { edge: 1, forward: true }], vertex: None, source: EntityRef(10) });
+    m.faces.push(Face { surface: 0, same_sense: true, loops: vec![0], shell: 0, name: None, colour: None, source: EntityRef(11) });
+    m.shells.push(Shell { faces: vec![fid], closed: false, solid: None, void: false, source: EntityRef(12) });
+    let t = tessellate_sized(&m, &TessellateOptions::default(), &UniformSize(5.0));
+    assert!(t.failed.is_empty(), "{:?}", t.failed);
+    assert!(t.edges.iter().all(|e| e.ids.len() == 3), "{:?}", t.edges.iter().map(|e| e.ids.len()).collect::<Vec<_>>());
+    // the midpoints lie on their curves: the lens keeps area, under the exact 2/3 c s
+    let area: f64 = t.surface.triangles.iter().map(|tri| 0.5 * (t.surface.vertices[tri[1] as usize] - t.surface.vertices[tri[0] as usize]).cross(t.surface.vertices[tri[2] as usize] - t.surface.vertices[tri[0] as usize]).length()).sum();
+    let sagitta = r - r * delta.cos();
+    assert!(area > 0.49 * sagitta && area <= 2.0 / 3.0 * sagitta * (1.0 + 1e-6), "{area} against {}", 2.0 / 3.0 * sagitta);
+}
