@@ -259,9 +259,9 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
     let mut edges = discretise(size, &strips, &mut vertices);
     split_digons(model, &mut edges, &mut vertices);
     // boundary segments that cross in a face's (u, v) are split on their edges (shared by the
-    // faces on both sides, so the surface stays watertight) and every face meshed again
-    // only the faces on a split edge are meshed again: the others have the same edge points,
-    // so the same mesh (kept, their own points renumbered after the new edge points)
+    // faces on both sides, so the surface stays watertight) and the faces on a split edge
+    // meshed again: the others have the same edge points, so the same mesh (kept, their own
+    // points renumbered after the new edge points)
     let mut each: Vec<Option<FaceResult>> = vec![None; model.faces.len()];
     let edge_faces = model.edge_faces();
     let mut round = 0;
