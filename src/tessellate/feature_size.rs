@@ -350,13 +350,8 @@ mod tests {
         // samples in clusters of equal sizes and scattered ones, under a graded field: the
         // branch and bound must give, bit for bit, the least over every sample whose reach
         // holds the point
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut g = crate::core::spatial_order::XorShift::new(7);
+        let mut rnd = move || (g.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
         let mut samples = Vec::new();
         for c in 0..40 {
             let centre = DVec3::new(10.0 * rnd() - 5.0, 10.0 * rnd() - 5.0, 2.0 * rnd());
