@@ -540,19 +540,22 @@ pub enum NodeView<'a> {
     },
 }
 
-/// A LIFO stack of up to 64 entries in place, spilling into a vector beyond.
-struct SmallStack<T: Copy + Default> {
+/// A LIFO stack of up to 64 entries in place, spilling into a vector beyond: for traversals
+/// of the tree that keep their own per-node data ([`Bvh::node`]).
+pub(crate) struct SmallStack<T: Copy + Default> {
     items: [T; 64],
     len: usize,
     spill: Vec<T>,
 }
 
 impl<T: Copy + Default> SmallStack<T> {
-    fn new() -> Self {
+    /// An empty stack.
+    pub(crate) fn new() -> Self {
         SmallStack { items: [T::default(); 64], len: 0, spill: Vec::new() }
     }
 
-    fn push(&mut self, x: T) {
+    /// Pushes `x`.
+    pub(crate) fn push(&mut self, x: T) {
         if self.len < self.items.len() {
             self.items[self.len] = x;
             self.len += 1;
@@ -561,7 +564,8 @@ impl<T: Copy + Default> SmallStack<T> {
         }
     }
 
-    fn pop(&mut self) -> Option<T> {
+    /// The last entry pushed, removed.
+    pub(crate) fn pop(&mut self) -> Option<T> {
         if let Some(x) = self.spill.pop() {
             return Some(x);
         }
@@ -570,8 +574,8 @@ impl<T: Copy + Default> SmallStack<T> {
     }
 }
 
-/// The squared distance from `p` to the closed box `b` (0 inside).
-fn box_distance_sq(b: &Aabb, p: DVec3) -> f64 {
+/// The squared distance from `p` to the closed box `b` (0 inside, infinite for an empty box).
+pub(crate) fn box_distance_sq(b: &Aabb, p: DVec3) -> f64 {
     let d = (b.min - p).max(p - b.max).max(DVec3::ZERO);
     d.length_squared()
 }

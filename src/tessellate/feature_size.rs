@@ -11,7 +11,7 @@
 use super::edge_points::EdgePoints;
 use crate::cad::brep::Model;
 use crate::core::aabb::Aabb;
-use crate::core::bvh::{Bvh, NodeView};
+use crate::core::bvh::{Bvh, NodeView, SmallStack, box_distance_sq};
 use crate::core::closest::closest_point_on_segment;
 use crate::core::SizeField;
 use glam::DVec3;
@@ -201,25 +201,15 @@ impl<'a> FeatureSize<'a> {
     /// so far, which cannot lower it. The minimum does not depend on the order.
     fn min_over_samples(&self, p: DVec3, mut h: f64) -> f64 {
         let at = Aabb { min: p, max: p };
-        let mut stack: [u32; 64] = [0; 64];
-        let mut spill: Vec<u32> = Vec::new();
-        let mut len = 0usize;
-        if self.bvh.root().is_some() {
-            stack[0] = 0;
-            len = 1;
-        }
+        // a node's bound: its smallest size plus the distance to its points' box
+        let bound = |k: u32| self.node_min[k as usize] + box_distance_sq(&self.node_points[k as usize], p).sqrt();
         // a little slack so that rounding never skips a node that holds the minimum
         let above = |lower: f64, h: f64| lower > h + 1e-9 * h.abs();
-        loop {
-            let k = if let Some(k) = spill.pop() {
-                k
-            } else if len > 0 {
-                len -= 1;
-                stack[len]
-            } else {
-                break;
-            };
-            let lower = self.node_min[k as usize] + box_distance(&self.node_points[k as usize], p);
+        let mut stack = SmallStack::<(u32, f64)>::new();
+        if let Some(root) = self.bvh.root() {
+            stack.push((root, bound(root)));
+        }
+        while let Some((k, lower)) = stack.pop() {
             if above(lower, h) {
                 continue;
             }
@@ -240,15 +230,13 @@ impl<'a> FeatureSize<'a> {
                         continue;
                     }
                     // the child nearer by its bound is taken first: the least falls fast
-                    let bound = |c: u32| self.node_min[c as usize] + box_distance(&self.node_points[c as usize], p);
-                    let order = if bound(left) <= bound(right) { [right, left] } else { [left, right] };
-                    for c in order {
-                        if len < stack.len() {
-                            stack[len] = c;
-                            len += 1;
-                        } else {
-                            spill.push(c);
-                        }
+                    let (bl, br) = (bound(left), bound(right));
+                    if bl <= br {
+                        stack.push((right, br));
+                        stack.push((left, bl));
+                    } else {
+                        stack.push((left, bl));
+                        stack.push((right, br));
                     }
                 }
             }
@@ -266,14 +254,6 @@ impl<'a> FeatureSize<'a> {
 /// The box of a sample at `x` with reach `r`.
 fn reach_box(x: DVec3, r: f64) -> Aabb {
     Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) }
-}
-
-/// The distance from `p` to the closed box `b` (0 inside, infinite for an empty box).
-fn box_distance(b: &Aabb, p: DVec3) -> f64 {
-    if b.is_empty() {
-        return f64::INFINITY;
-    }
-    (b.min - p).max(p - b.max).max(DVec3::ZERO).length()
 }
 
 /// Samples the piece `p`-`q` of an edge: its start, and its halves again where the width at

@@ -376,12 +376,13 @@ fn mesh_faces(
         }
     }
     for (k, &fid) in faces.iter().enumerate() {
-        let Some(FaceResult { mesh: r, own, shared: counted }) = each.get(k).cloned().flatten() else { continue };
+        // kept for a later round: the mesh is copied out, the points read in place
+        let Some(FaceResult { mesh, own, shared: counted }) = each.get(k).and_then(Option::as_ref) else { continue };
         let face = model.face(fid);
         let start = vertices.len();
-        let id = |i: u32| FaceVertices::renumber(i, counted, start);
-        vertices.extend(own);
-        let r = r.map(|mut fm| {
+        let id = |i: u32| FaceVertices::renumber(i, *counted, start);
+        vertices.extend_from_slice(own);
+        let r = mesh.clone().map(|mut fm| {
             for t in &mut fm.triangles {
                 *t = t.map(id);
             }
