@@ -477,3 +477,60 @@ fn a_lens_face_whose_two_edges_are_one_segment_each_is_split_and_meshed() {
     let sagitta = r - r * delta.cos();
     assert!(area > 0.49 * sagitta && area <= 2.0 / 3.0 * sagitta * (1.0 + 1e-6), "{area} against {}", 2.0 / 3.0 * sagitta);
 }
+
+/// A ball of radius 10 about the origin, its sphere's axis along `axis` and its seam's side
+/// along `seam`, with the caps beyond `x = ±6` cut off flat: the sphere face's two loops
+/// (circles of radius 8) are holes in `(u, v)` that go around neither pole, as where a hole is
+/// drilled across a ball's axis.
+fn ball_cut_across_its_axis(axis: [f64; 3], seam: [f64; 3]) -> String {
+    let d = |v: [f64; 3]| format!("({:?},{:?},{:?})", v[0], v[1], v[2]);
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('ball','',(''),(''),'','','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',{});#3=DIRECTION('',{});\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=SPHERICAL_SURFACE('',#4,10.);\
+#6=DIRECTION('',(1.,0.,0.));#7=DIRECTION('',(0.,1.,0.));\
+#11=CARTESIAN_POINT('',(6.,0.,0.));#12=AXIS2_PLACEMENT_3D('',#11,#6,#7);#13=CIRCLE('',#12,8.);#14=PLANE('',#12);\
+#15=CARTESIAN_POINT('',(6.,8.,0.));#16=VERTEX_POINT('',#15);#17=EDGE_CURVE('',#16,#16,#13,.T.);\
+#21=CARTESIAN_POINT('',(-6.,0.,0.));#22=AXIS2_PLACEMENT_3D('',#21,#6,#7);#23=CIRCLE('',#22,8.);#24=PLANE('',#22);\
+#25=CARTESIAN_POINT('',(-6.,8.,0.));#26=VERTEX_POINT('',#25);#27=EDGE_CURVE('',#26,#26,#23,.T.);\
+#31=ORIENTED_EDGE('',*,*,#17,.F.);#32=EDGE_LOOP('',(#31));#33=FACE_BOUND('',#32,.T.);\
+#34=ORIENTED_EDGE('',*,*,#27,.T.);#35=EDGE_LOOP('',(#34));#36=FACE_BOUND('',#35,.T.);\
+#37=ADVANCED_FACE('band',(#33,#36),#5,.T.);\
+#41=ORIENTED_EDGE('',*,*,#17,.T.);#42=EDGE_LOOP('',(#41));#43=FACE_OUTER_BOUND('',#42,.T.);#44=ADVANCED_FACE('right',(#43),#14,.T.);\
+#51=ORIENTED_EDGE('',*,*,#27,.F.);#52=EDGE_LOOP('',(#51));#53=FACE_OUTER_BOUND('',#52,.T.);#54=ADVANCED_FACE('left',(#53),#24,.F.);\
+#70=CLOSED_SHELL('',(#37,#44,#54));#71=MANIFOLD_SOLID_BREP('',#70);\
+#80=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\
+#81=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#80)) REPRESENTATION_CONTEXT('','') );\
+#90=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#4,#71),#81);\nENDSEC;\nEND-ISO-10303-21;\n",
+        d(axis),
+        d(seam)
+    )
+}
+
+#[test]
+fn a_ball_cut_across_its_axis_keeps_the_band_between_its_two_openings() {
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    // the ball minus two caps of height 4: 4/3 π 1000 − 2 π 4² (30 − 4) / 3 = 1056 π
+    let want = 1056.0 * std::f64::consts::PI;
+    // the seam's side through the opening at +x (it straddles u = 0), beside it, and a tilted axis
+    for (axis, seam) in [([0.0, 0.0, 1.0], [1.0, 0.0, 0.0]), ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]), ([0.0, 0.6, 0.8], [1.0, 0.0, 0.0])] {
+        let m = crate::cad::step::read_bytes(std::path::Path::new("ball.stp"), ball_cut_across_its_axis(axis, seam).as_bytes()).unwrap_or_else(|e| panic!("{axis:?}: {e}"));
+        for sized in [false, true] {
+            let t = if sized { super::tessellate_sized(&m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(1.5)) } else { tessellate(&m, &TessellateOptions::default()) };
+            assert!(t.failed.is_empty(), "{axis:?} {sized}: {:?}", t.failed);
+            let cert = certify(&m, &t, &CertifyOptions::default());
+            assert!(cert.passed, "{axis:?} {sized}: {:?}", cert.failures.iter().take(5).collect::<Vec<_>>());
+            assert!((cert.volume[0] / want - 1.0).abs() < 5e-3, "{axis:?} {sized}: volume {} against {want}", cert.volume[0]);
+            assert!((cert.volume[1] / want - 1.0).abs() < 1e-4, "{axis:?} {sized}: B-rep volume {} against {want}", cert.volume[1]);
+            // every triangle of the sphere face lies between the openings
+            let s = &t.surface;
+            for (tr, tag) in s.triangles.iter().zip(&s.face_tags) {
+                let c = tr.iter().map(|&i| s.vertices[i as usize]).sum::<DVec3>() / 3.0;
+                if *tag == FaceId(1) {
+                    assert!(c.x.abs() < 6.0, "{axis:?} {sized}: a triangle of the band at {c}, beyond an opening");
+                }
+            }
+        }
+    }
+}
+

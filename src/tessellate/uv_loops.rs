@@ -133,13 +133,14 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
 /// The boundary of a face without edge loops (a whole sphere or torus): the rectangle of the
 /// surface's bounded domain, its periodic sides sharing vertices and its collapsed sides
 /// (poles) a single vertex, so the mesh closes on itself.
-fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut FaceVertices) -> Result<UvLoop, String> {
+/// `shift` moves it by whole periods' worth of parameter (zero when the face has no loops).
+fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, shift: DVec2, vertices: &mut FaceVertices) -> Result<UvLoop, String> {
     let surf = model.surface(model.face(fid).surface);
     let dom = surf.domain();
     if !(dom.u.is_bounded() && dom.v.is_bounded()) {
         return Err("a face without edge loops on an unbounded surface".into());
     }
-    let (lo, hi) = (DVec2::new(dom.u.min, dom.v.min), DVec2::new(dom.u.max, dom.v.max));
+    let (lo, hi) = (DVec2::new(dom.u.min, dom.v.min) + shift, DVec2::new(dom.u.max, dom.v.max) + shift);
     let (su, sv, k) = surface_scales(surf, lo, hi);
     let h = if k > 0.0 { (8.0 * tol / k).sqrt() } else { f64::INFINITY };
     let count = |len: f64| ((len / h).ceil() as usize).clamp(8, 200);
@@ -187,6 +188,84 @@ fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, vertices: &mut FaceVer
         out.push((uv(0, j), id_of(0, j, vertices)));
     }
     Ok(out)
+}
+
+/// The outer boundary of a face on a closed surface whose every loop has the face outside it
+/// in `(u, v)`: a ball with a hole drilled across its axis, whose two openings are small
+/// loops that do not go around the poles, or a torus with a window. No loop bounds such a
+/// face from outside; the surface's domain rectangle does (its periodic sides sharing
+/// vertices, its poles a single vertex), placed where no loop crosses its sides, and the loops
+/// are moved by whole periods into it. `None` when a loop has the face inside it, the surface
+/// is not closed, or a loop touches a pole.
+///
+/// # Errors
+/// When the loops cover every `u` (or every `v` on a torus), so that no place for the seam
+/// avoids them.
+fn enclosing_rectangle(model: &Model, fid: FaceId, plain: &mut [Mapped], tol: f64, vertices: &mut FaceVertices) -> Result<Option<UvLoop>, String> {
+    let surf = model.surface(model.face(fid).surface);
+    let dom = surf.domain();
+    let Some(u_period) = dom.u_period else { return Ok(None) };
+    let poles = || {
+        let (a, b) = (surf.point(0.0, dom.v.min), surf.point(0.5 * u_period, dom.v.min));
+        let (c, d) = (surf.point(0.0, dom.v.max), surf.point(0.5 * u_period, dom.v.max));
+        let same = |p: glam::DVec3, q: glam::DVec3| (p - q).length() <= 1e-9 * (1.0 + p.length());
+        same(a, b) && same(c, d)
+    };
+    let closed = dom.v_period.is_some() || (dom.v.is_bounded() && poles());
+    let hole = |m: &Mapped| {
+        let p: Vec<DVec2> = m.pts.iter().map(|(p, _)| *p).collect();
+        (signed_area(&p) > 0.0) != m.face_left
+    };
+    if !closed || plain.is_empty() || !plain.iter().all(hole) || plain.iter().flat_map(|m| &m.pts).any(|(p, _)| is_pole(surf, *p)) {
+        return Ok(None);
+    }
+    let span = |m: &Mapped, axis: usize| m.pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (p, _)| (lo.min(p[axis]), hi.max(p[axis])));
+    let mut start = DVec2::new(dom.u.min, dom.v.min);
+    for (axis, period) in [(0, Some(u_period)), (1, dom.v_period)] {
+        let Some(period) = period else { continue };
+        let spans: Vec<(f64, f64)> = plain.iter().map(|m| span(m, axis)).collect();
+        let Some(seam) = free_parameter(&spans, period) else {
+            let name = if axis == 0 { "u" } else { "v" };
+            return Err(format!("the face's loops are all holes and cover every {name} of its closed surface: not supported yet"));
+        };
+        start[axis] = seam;
+        for (m, &(lo, _)) in plain.iter_mut().zip(&spans) {
+            let shift = -((lo - seam) / period).floor() * period;
+            m.pts.iter_mut().for_each(|(p, _)| p[axis] += shift);
+        }
+    }
+    let shift = start - DVec2::new(dom.u.min, dom.v.min);
+    domain_rectangle(model, fid, tol, shift, vertices).map(Some)
+}
+
+/// A parameter, modulo `period`, that lies in none of the intervals `[lo, hi]` (each shorter
+/// than the period): the middle of the widest gap between them. `None` when they cover the
+/// whole period.
+fn free_parameter(spans: &[(f64, f64)], period: f64) -> Option<f64> {
+    let mut iv: Vec<(f64, f64)> = spans
+        .iter()
+        .map(|&(lo, hi)| {
+            let l = lo.rem_euclid(period);
+            (l, l + (hi - lo))
+        })
+        .collect();
+    iv.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let first = iv.first()?.0;
+    let mut end = iv[0].1;
+    let mut best: Option<(f64, f64)> = None;
+    let mut consider = |a: f64, b: f64| {
+        if b - a > 1e-9 * period && best.is_none_or(|(x, y)| b - a > y - x) {
+            best = Some((a, b));
+        }
+    };
+    for &(l, h) in &iv[1..] {
+        if l > end {
+            consider(end, l);
+        }
+        end = end.max(h);
+    }
+    consider(end, first + period);
+    best.map(|(a, b)| 0.5 * (a + b))
 }
 
 /// Points strictly between `a` and `b` on the straight `(u, v)` segment of a cut, as an
@@ -241,13 +320,17 @@ pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f6
     let dom = surf.domain();
     let mapped = map_loops(model, fid, edges, vertices)?;
     if mapped.is_empty() {
-        return domain_rectangle(model, fid, tol, vertices).map(|l| vec![l]);
+        return domain_rectangle(model, fid, tol, DVec2::ZERO, vertices).map(|l| vec![l]);
     }
-    let (wrapping, plain): (Vec<Mapped>, Vec<Mapped>) = mapped.into_iter().partition(|m| m.wrap.is_some());
+    let (wrapping, mut plain): (Vec<Mapped>, Vec<Mapped>) = mapped.into_iter().partition(|m| m.wrap.is_some());
     let mut loops: Vec<UvLoop> = Vec::new();
     let period = dom.u_period.unwrap_or(0.0);
     match wrapping.len() {
-        0 => {}
+        0 => {
+            if let Some(rect) = enclosing_rectangle(model, fid, &mut plain, tol, vertices)? {
+                loops.push(rect);
+            }
+        }
         2 => {
             let (a, b) = (&wrapping[0], &wrapping[1]);
             let ga = a.wrap.unwrap_or(0.0);
