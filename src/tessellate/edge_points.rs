@@ -141,6 +141,73 @@ pub fn split_segments(model: &Model, edge: &Edge, ep: &mut EdgePoints, ks: &mut 
     }
 }
 
+/// Puts a point on each edge exactly where its curve passes, between its ends, through a pole
+/// of a face it bounds: a sphere's pole, a cone's apex. A great circle through both poles of a
+/// sphere (a hemisphere's rim on a flat face, the sphere's axis lying in that face) has no
+/// B-rep vertex there; without a point at each pole the face's loop jumps half a turn in `u`
+/// across it, and the face took the pole as a vertex of its own that its neighbour across the
+/// edge does not have. The point is the pole itself where the curve passes within `1e-6` of
+/// the model's size of it: a new point, or the edge's nearest point moved there when that one
+/// lies within a tenth of its segment's length.
+pub fn through_poles(model: &Model, edges: &mut [EdgePoints], vertices: &mut Vec<DVec3>) {
+    let eps = 1e-6 * model.size();
+    for face in &model.faces {
+        let poles = surface_poles(model.surface(face.surface));
+        if poles.is_empty() {
+            continue;
+        }
+        for &l in &face.loops {
+            for c in &model.loops[l as usize].coedges {
+                let edge = &model.edges[c.edge as usize];
+                for &pole in &poles {
+                    add_pole(model, edge, &mut edges[c.edge as usize], pole, eps, vertices);
+                }
+            }
+        }
+    }
+}
+
+/// The points where a surface's parametrisation collapses: a sphere's two poles, a cone's apex.
+fn surface_poles(surf: &crate::cad::geom::Surface) -> Vec<DVec3> {
+    use crate::cad::geom::Surface;
+    match surf {
+        Surface::Sphere(s) => vec![s.point(0.0, -std::f64::consts::FRAC_PI_2), s.point(0.0, std::f64::consts::FRAC_PI_2)],
+        Surface::Cone(c) => vec![surf.point(0.0, -c.radius / c.semi_angle.tan())],
+        _ => Vec::new(),
+    }
+}
+
+fn add_pole(model: &Model, edge: &Edge, ep: &mut EdgePoints, pole: DVec3, eps: f64, vertices: &mut Vec<DVec3>) {
+    let Some(ci) = edge.curve.filter(|_| !edge.degenerate) else { return };
+    let n = ep.ids.len();
+    if n < 2 || ep.params.len() != n || ep.ids.iter().any(|&id| vertices[id as usize].distance(pole) <= eps) {
+        return;
+    }
+    let curve = model.curve(ci);
+    let (lo, hi) = (ep.params[0].min(ep.params[n - 1]), ep.params[0].max(ep.params[n - 1]));
+    let mut t = curve.project(pole);
+    if let Some(per) = curve.domain().period {
+        t = lo + (t - lo).rem_euclid(per);
+    }
+    if !(t > lo && t < hi) || curve.point(t).distance(pole) > eps {
+        return;
+    }
+    let Some(k) = (0..n - 1).find(|&k| (ep.params[k] - t) * (ep.params[k + 1] - t) <= 0.0) else { return };
+    let (a, b) = (vertices[ep.ids[k] as usize], vertices[ep.ids[k + 1] as usize]);
+    let near = 0.1 * a.distance(b);
+    if k > 0 && a.distance(pole) <= near {
+        vertices[ep.ids[k] as usize] = pole;
+        ep.params[k] = t;
+    } else if k + 2 < n && b.distance(pole) <= near {
+        vertices[ep.ids[k + 1] as usize] = pole;
+        ep.params[k + 1] = t;
+    } else {
+        vertices.push(pole);
+        ep.ids.insert(k + 1, vertices.len() as u32 - 1);
+        ep.params.insert(k + 1, t);
+    }
+}
+
 /// The parameters `ts` with each piece longer than `max_len` (its chord) cut into equal
 /// parameter steps no longer than that, at most 64.
 fn split_long(p: &dyn Fn(f64) -> DVec3, ts: &[f64], max_len: f64) -> Vec<f64> {

@@ -257,6 +257,7 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         None => None,
     };
     let mut edges = discretise(size, &strips, &mut vertices);
+    edge_points::through_poles(model, &mut edges, &mut vertices);
     split_digons(model, &mut edges, &mut vertices);
     // boundary segments that cross in a face's (u, v) are split on their edges (shared by the
     // faces on both sides, so the surface stays watertight) and the faces on a split edge

@@ -534,3 +534,47 @@ fn a_ball_cut_across_its_axis_keeps_the_band_between_its_two_openings() {
     }
 }
 
+/// Half a ball of radius 10 about the origin, `z ≥ 0`, its sphere's axis along `axis` (in the
+/// flat face's plane): the rim is a great circle through both of the sphere's poles, with its
+/// one vertex at `(0, 10, 0)`.
+fn half_ball_with_its_poles_on_the_rim(axis: [f64; 3], seam: [f64; 3]) -> String {
+    let d = |v: [f64; 3]| format!("({:?},{:?},{:?})", v[0], v[1], v[2]);
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('dome','',(''),(''),'','','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',{});#3=DIRECTION('',{});\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=SPHERICAL_SURFACE('',#4,10.);\
+#6=DIRECTION('',(0.,0.,1.));#7=DIRECTION('',(0.,1.,0.));#8=AXIS2_PLACEMENT_3D('',#1,#6,#7);#9=CIRCLE('',#8,10.);#10=PLANE('',#8);\
+#15=CARTESIAN_POINT('',(0.,10.,0.));#16=VERTEX_POINT('',#15);#17=EDGE_CURVE('',#16,#16,#9,.T.);\
+#31=ORIENTED_EDGE('',*,*,#17,.T.);#32=EDGE_LOOP('',(#31));#33=FACE_OUTER_BOUND('',#32,.T.);#37=ADVANCED_FACE('dome',(#33),#5,.T.);\
+#41=ORIENTED_EDGE('',*,*,#17,.F.);#42=EDGE_LOOP('',(#41));#43=FACE_OUTER_BOUND('',#42,.T.);#44=ADVANCED_FACE('flat',(#43),#10,.F.);\
+#70=CLOSED_SHELL('',(#37,#44));#71=MANIFOLD_SOLID_BREP('',#70);\
+#80=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\
+#81=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#80)) REPRESENTATION_CONTEXT('','') );\
+#90=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#4,#71),#81);\nENDSEC;\nEND-ISO-10303-21;\n",
+        d(axis),
+        d(seam)
+    )
+}
+
+#[test]
+fn a_half_ball_whose_rim_passes_through_the_spheres_poles_is_closed() {
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    let want = 2.0 / 3.0 * std::f64::consts::PI * 1000.0;
+    // the poles at ±x and on a slant, the seam's side up and along the flat face
+    let slant = [0.6, 0.8, 0.0];
+    for (axis, seam) in [([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), (slant, [0.0, 0.0, 1.0])] {
+        let m = crate::cad::step::read_bytes(std::path::Path::new("dome.stp"), half_ball_with_its_poles_on_the_rim(axis, seam).as_bytes()).unwrap_or_else(|e| panic!("{axis:?}: {e}"));
+        for sized in [false, true] {
+            let t = if sized { super::tessellate_sized(&m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(1.5)) } else { tessellate(&m, &TessellateOptions::default()) };
+            assert!(t.failed.is_empty(), "{axis:?} {sized}: {:?}", t.failed);
+            let cert = certify(&m, &t, &CertifyOptions::default());
+            assert!(cert.passed, "{axis:?} {sized}: {:?}", cert.failures.iter().take(5).collect::<Vec<_>>());
+            assert!((cert.volume[0] / want - 1.0).abs() < 5e-3, "{axis:?} {sized}: volume {} against {want}", cert.volume[0]);
+            // each pole is a point of the rim, shared by both faces
+            for sign in [-1.0, 1.0] {
+                let pole = DVec3::from(axis) * 10.0 * sign;
+                assert!(t.surface.vertices.iter().any(|v| v.distance(pole) < 1e-9), "{axis:?} {sized}: no point at the pole {pole}");
+            }
+        }
+    }
+}
