@@ -1,12 +1,15 @@
 //! Benchmarks of B-rep import and tessellation: reading and tessellating (default options)
 //! our own STEP parts (`cad_fixtures/*.step`, always there) and a few corpus files of each
 //! level (skipped with a message when the corpus is missing: set `FEPRE_CORPUS`), and building
-//! a part in code. Run with `cargo bench --bench tessellate`; figures are recorded in
+//! a part in code; and the sized tessellation a volume mesh starts from (`tessellate_sized` at
+//! the mesh's default size, a 25th of the diagonal: the feature-size field's samples and
+//! queries, the refinement and the shape improvement of each face). Run with `cargo bench --bench tessellate`; figures are recorded in
 //! `docs/benchmarks.md`, beside the truck comparison of `tools/bench_tessellate.sh`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use fepre::cad::step;
-use fepre::tessellate::{TessellateOptions, tessellate};
+use fepre::core::size_field::UniformSize;
+use fepre::tessellate::{TessellateOptions, tessellate, tessellate_sized};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 
@@ -43,6 +46,22 @@ fn read_and_tessellate(c: &mut Criterion) {
     g.finish();
 }
 
+fn sized_tessellation(c: &mut Criterion) {
+    let mut files: Vec<PathBuf> = ["bracket.step", "flange.step"].iter().map(|n| Path::new(env!("CARGO_MANIFEST_DIR")).join("cad_fixtures").join(n)).collect();
+    if let Some(dir) = corpus() {
+        files.extend(["part.step", "t20_data.step", "Kurbelwelle.stp"].iter().map(|n| dir.join(n)));
+    }
+    let mut g = c.benchmark_group("tessellate_sized");
+    g.sample_size(10);
+    for f in files.iter().filter(|f| f.is_file()) {
+        let name = f.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let m = step::read(f).expect("readable");
+        let size = UniformSize(m.size() / 25.0);
+        g.bench_function(name, |b| b.iter(|| tessellate_sized(black_box(&m), &TessellateOptions::default(), &size).surface.triangles.len()));
+    }
+    g.finish();
+}
+
 fn build_parts(c: &mut Criterion) {
     let mut g = c.benchmark_group("parts");
     g.bench_function("build_bracket", |b| b.iter(|| fepre::cad::parts::Bracket::default().build().expect("default bracket")));
@@ -53,5 +72,5 @@ fn build_parts(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, read_and_tessellate, build_parts);
+criterion_group!(benches, read_and_tessellate, sized_tessellation, build_parts);
 criterion_main!(benches);

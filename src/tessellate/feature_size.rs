@@ -90,20 +90,20 @@ impl<'a> FeatureSize<'a> {
         let bvh = Bvh::build(segs.iter().enumerate().map(|(i, &(_, a, b))| (i as u32, Aabb::from_points([a, b].iter()))));
         let ends = |e: usize| [model.edges[e].start, model.edges[e].end];
         // the distance from `x` on edge `e` to the nearest other edge of its faces (sharing
-        // no vertex with it), looked for within `r`
+        // no vertex with it) when under `r`, else infinity: a nearest search that opens no
+        // box farther than the nearest found (a box query of radius `r` visited every
+        // segment in it, thousands on a part of many small arcs at a coarse size)
         let width = |e: usize, x: DVec3, r: f64| -> f64 {
-            let mut d = f64::INFINITY;
-            let q = Aabb { min: x - DVec3::splat(r), max: x + DVec3::splat(r) };
             let mine = ends(e);
-            bvh.for_each_overlapping(&q, |i| {
+            let dist = |i: u32| {
                 let (o, a, b) = segs[i as usize];
                 let o = o as usize;
                 if o == e || ends(o).iter().any(|v| mine.contains(v)) || !faces_of[o].iter().any(|f| faces_of[e].contains(f)) {
-                    return;
+                    return f64::INFINITY;
                 }
-                d = d.min(x.distance(closest_point_on_segment(x, a, b)));
-            });
-            d
+                x.distance(closest_point_on_segment(x, a, b))
+            };
+            bvh.nearest_within(x, r, dist).map_or(f64::INFINITY, |(_, d)| d)
         };
         let mut samples = walls.to_vec();
         for (e, ep) in edges.iter().enumerate() {

@@ -84,6 +84,9 @@ pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &
     lift_new(cdt, surf, su, sv);
     // then the centroids of triangles bigger than the local size, round after round
     let mut added = 0;
+    // the sizes at centroids already asked for: a triangle that a round leaves alone is asked
+    // again in the next, and a feature-size query walks a tree of samples
+    let mut sizes: rustc_hash::FxHashMap<[u64; 3], f64> = rustc_hash::FxHashMap::default();
     for _ in 0..SIZE_ROUNDS {
         let inside = constraint_parity(cdt);
         let mut new_points = Vec::new();
@@ -95,7 +98,8 @@ pub(super) fn refine_face(cdt: &mut ConstrainedDelaunayTriangulation<V>, surf: &
             let p3 = vs.map(|v| v.data().p3);
             let area = 0.5 * (p3[1] - p3[0]).cross(p3[2] - p3[0]).length();
             let longest = (0..3).map(|i| p3[i].distance(p3[(i + 1) % 3])).fold(0.0, f64::max);
-            let h = size.size_at((p3[0] + p3[1] + p3[2]) / 3.0);
+            let centroid = (p3[0] + p3[1] + p3[2]) / 3.0;
+            let h = *sizes.entry(centroid.to_array().map(f64::to_bits)).or_insert_with(|| size.size_at(centroid));
             // too big both by area (as the first pass) and by its longest edge: a thin
             // triangle at a small input angle has a small area and stays (splitting it would
             // only make thinner ones); a NaN splits nothing

@@ -123,6 +123,9 @@ struct Work<'a> {
     su: f64,
     sv: f64,
     size: &'a dyn SizeField,
+    /// Sizes already asked for, by the point's bits: the passes ask again at the same edge
+    /// midpoints round after round, and a feature-size query walks a tree of samples.
+    sizes: std::cell::RefCell<rustc_hash::FxHashMap<[u64; 3], f64>>,
     tol: f64,
     cos_max: f64,
 }
@@ -165,7 +168,7 @@ impl<'a> Work<'a> {
         let twice: FxHashSet<u64> = sorted.windows(2).filter(|w| w[0] == w[1]).map(|w| w[0]).collect();
         let shared = key.iter().map(|k| twice.contains(k)).collect();
         let boundary = boundary.iter().map(|&[a, b]| (a.min(b), a.max(b))).collect();
-        Work { pts, tris, star, boundary, key, shared, removed: vec![false; n], active: vec![true; n], dirty: vec![true; n], split_budget: n, undo: None, surf, su, sv, size, tol, cos_max }
+        Work { pts, tris, star, boundary, key, shared, removed: vec![false; n], active: vec![true; n], dirty: vec![true; n], split_budget: n, undo: None, surf, su, sv, size, sizes: Default::default(), tol, cos_max }
     }
 
     fn free(&self, i: u32) -> bool {
@@ -188,7 +191,7 @@ impl<'a> Work<'a> {
     }
 
     fn size_at(&self, p: DVec3) -> f64 {
-        self.size.size_at(p)
+        *self.sizes.borrow_mut().entry(p.to_array().map(f64::to_bits)).or_insert_with(|| self.size.size_at(p))
     }
 
     /// `t` is counter-clockwise in the scaled domain and, when real, within the chord of the
