@@ -578,3 +578,47 @@ fn a_half_ball_whose_rim_passes_through_the_spheres_poles_is_closed() {
         }
     }
 }
+
+/// Half a ball of radius 10 about the origin, `z ≥ 0`, its sphere's axis along `z` and its seam's
+/// side along `seam`, whose dome is cut open along a meridian: the dome's one loop is the
+/// equator, then the meridian from `(10, 0, 0)` up to the pole and back down (an edge used
+/// twice, as where a CAD system splits a dome's seam off its parametric one).
+fn dome_cut_open_along_a_meridian(seam: [f64; 3]) -> String {
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('slit','',(''),(''),'','','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',({:?},{:?},{:?}));\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=SPHERICAL_SURFACE('',#4,10.);\
+#6=DIRECTION('',(1.,0.,0.));#7=DIRECTION('',(0.,-1.,0.));#8=AXIS2_PLACEMENT_3D('',#1,#2,#6);#9=CIRCLE('',#8,10.);#10=PLANE('',#8);\
+#11=AXIS2_PLACEMENT_3D('',#1,#7,#6);#12=CIRCLE('',#11,10.);\
+#15=CARTESIAN_POINT('',(10.,0.,0.));#16=VERTEX_POINT('',#15);#17=CARTESIAN_POINT('',(0.,0.,10.));#18=VERTEX_POINT('',#17);\
+#19=EDGE_CURVE('',#16,#16,#9,.T.);#20=EDGE_CURVE('',#16,#18,#12,.T.);\
+#31=ORIENTED_EDGE('',*,*,#19,.T.);#32=ORIENTED_EDGE('',*,*,#20,.T.);#33=ORIENTED_EDGE('',*,*,#20,.F.);\
+#34=EDGE_LOOP('',(#31,#32,#33));#35=FACE_OUTER_BOUND('',#34,.T.);#37=ADVANCED_FACE('dome',(#35),#5,.T.);\
+#41=ORIENTED_EDGE('',*,*,#19,.F.);#42=EDGE_LOOP('',(#41));#43=FACE_OUTER_BOUND('',#42,.T.);#44=ADVANCED_FACE('flat',(#43),#10,.F.);\
+#70=CLOSED_SHELL('',(#37,#44));#71=MANIFOLD_SOLID_BREP('',#70);\
+#80=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\
+#81=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#80)) REPRESENTATION_CONTEXT('','') );\
+#90=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#4,#71),#81);\nENDSEC;\nEND-ISO-10303-21;\n",
+        seam[0],
+        seam[1],
+        seam[2]
+    )
+}
+
+#[test]
+fn a_dome_cut_open_along_a_meridian_meshes_around_its_pole() {
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    let want = 2.0 / 3.0 * std::f64::consts::PI * 1000.0;
+    // the cut a quarter turn from the sphere's seam, on it, and half a turn from it
+    for seam in [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]] {
+        let m = crate::cad::step::read_bytes(std::path::Path::new("slit.stp"), dome_cut_open_along_a_meridian(seam).as_bytes()).unwrap_or_else(|e| panic!("{seam:?}: {e}"));
+        for sized in [false, true] {
+            let t = if sized { super::tessellate_sized(&m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(1.5)) } else { tessellate(&m, &TessellateOptions::default()) };
+            assert!(t.failed.is_empty(), "{seam:?} {sized}: {:?}", t.failed);
+            let cert = certify(&m, &t, &CertifyOptions::default());
+            assert!(cert.passed, "{seam:?} {sized}: {:?}", cert.failures.iter().take(5).collect::<Vec<_>>());
+            assert!((cert.volume[0] / want - 1.0).abs() < 5e-3, "{seam:?} {sized}: volume {} against {want}", cert.volume[0]);
+            assert!((cert.volume[1] / want - 1.0).abs() < 1e-4, "{seam:?} {sized}: B-rep volume {} against {want}", cert.volume[1]);
+        }
+    }
+}

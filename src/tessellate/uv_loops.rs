@@ -102,7 +102,11 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
         // general path took u across the pole by the nearest turn, a spherical triangle with a
         // corner at the pole then seemed to go once around and was cut to the pole again)
         let analytic_pole = matches!(surf, Surface::Cone(_) | Surface::Sphere(_));
-        if let Some(k) = (0..n).find(|&k| analytic_pole && n >= 3 && !goes_around && through_pole(k)) {
+        // a loop that goes up an edge to the pole and back down the same edge (a dome cut
+        // open along a meridian: the edge is its seam) goes around too, and is unwrapped from
+        // the pole the same way: down the edge on one side, around, and up it on the other
+        let slit = |k: usize| pts[(k + n - 1) % n].1 == pts[(k + 1) % n].1;
+        if let Some(k) = (0..n).find(|&k| analytic_pole && n >= 3 && (!goes_around || slit(k)) && through_pole(k)) {
             pts.rotate_left(k + 1);
             let face_left = face.same_sense == lp.orientation;
             if let Some(per) = dom.u_period {
