@@ -407,3 +407,47 @@ fn corpus_abc_0000_meshes_one_region_per_solid() {
 fn corpus_wing_fuselage_meshes_one_region_per_solid() {
     corpus_assembly_meshes("wing_fuselage.step", 2);
 }
+
+/// Two unit cubes in one closed shell, the second at `(1, 1, 0)`: they touch along the line
+/// `x = y = 1` only, and the shell has two edges there with the same two vertices (a solid
+/// that touches itself along an edge, as some CAD parts are written).
+fn cubes_touching_along_an_edge() -> Model {
+    let mut m = step_box([0.0; 3], [1.0; 3], "a");
+    let (nv, ne) = (m.vertices.len() as u32, m.edges.len());
+    m.append(&step_box([1.0, 1.0, 0.0], [1.0; 3], "b"));
+    // the second cube's vertices on the line are the first cube's
+    let same = |m: &Model, v: u32| (0..nv).find(|&w| m.vertices[w as usize].point.distance(m.vertices[v as usize].point) < 1e-12);
+    for e in ne..m.edges.len() {
+        for end in [m.edges[e].start, m.edges[e].end] {
+            if let Some(w) = same(&m, end) {
+                if m.edges[e].start == end {
+                    m.edges[e].start = w;
+                }
+                if m.edges[e].end == end {
+                    m.edges[e].end = w;
+                }
+            }
+        }
+    }
+    // one shell, one solid
+    let second = m.shells[1].faces.clone();
+    m.shells[0].faces.extend(second);
+    for f in &mut m.faces {
+        f.shell = 0;
+    }
+    m.shells.truncate(1);
+    m.solids.truncate(1);
+    m
+}
+
+#[test]
+fn a_solid_that_touches_itself_along_an_edge_is_refused_naming_both_edges() {
+    use fepre::tessellate::certificate::{CertifyOptions, certify};
+    use fepre::tessellate::{TessellateOptions, tessellate};
+    let m = cubes_touching_along_an_edge();
+    let t = tessellate(&m, &TessellateOptions::default());
+    let cert = certify(&m, &t, &CertifyOptions::default());
+    assert!(!cert.passed);
+    let named = cert.failures.iter().find(|f| f.check == "manifold" && f.message.contains("run along the same line")).unwrap_or_else(|| panic!("{:?}", cert.failures));
+    assert!(named.message.contains("touches itself") && !cert.manifold, "{}", named.message);
+}

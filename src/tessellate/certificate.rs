@@ -339,6 +339,37 @@ pub(super) fn vertex_umbrellas(model: &Model, group: &[u32]) -> FxHashMap<(u32, 
 }
 
 /// STEP entity references as a message writes them: `#12, #40`.
+/// Pairs of B-rep edges between the same two vertices whose curves coincide (their middles
+/// within `1e-6` of the model's size): the solid touches itself along a line there. The B-rep
+/// allows it (OpenCASCADE reads such parts as valid); a closed 2-manifold surface cannot be
+/// made of it, and its mesh has four triangles on a segment or two triangles crossing.
+fn coincident_edges(model: &Model) -> Vec<(usize, usize)> {
+    let mut by_ends: std::collections::BTreeMap<(u32, u32), Vec<usize>> = std::collections::BTreeMap::new();
+    for (i, e) in model.edges.iter().enumerate() {
+        if e.start != e.end && e.curve.is_some() && !e.degenerate {
+            by_ends.entry((e.start.min(e.end), e.start.max(e.end))).or_default().push(i);
+        }
+    }
+    let middle = |i: usize| {
+        let e = &model.edges[i];
+        e.curve.map(|c| model.curve(c).point(0.5 * (e.range.min + e.range.max)))
+    };
+    let eps = 1e-6 * model.size();
+    let mut out = Vec::new();
+    for group in by_ends.values().filter(|g| g.len() >= 2) {
+        for (k, &x) in group.iter().enumerate() {
+            for &y in &group[k + 1..] {
+                if let (Some(p), Some(q)) = (middle(x), middle(y)) {
+                    if p.distance(q) <= eps {
+                        out.push((x, y));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 fn refs(r: &[EntityRef]) -> String {
     r.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
 }
@@ -690,6 +721,17 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             }
         }
     }
+    let coincident = coincident_edges(model);
+    for &(x, y) in &coincident {
+        let (ex, ey) = (&model.edges[x], &model.edges[y]);
+        let (p, q) = (model.vertices[ex.start as usize].point, model.vertices[ex.end as usize].point);
+        failures.push(CheckFailure {
+            check: "manifold",
+            face: None,
+            step_id: Some(ex.source),
+            message: format!("B-rep edges {} and {} run along the same line from {p} to {q}: the solid touches itself there (a non-manifold solid, which fepre does not tessellate yet; thicken the contact or cut it apart in the CAD model)", ex.source, ey.source),
+        });
+    }
     for ((a, b), (n, k)) in bad_edges {
         let fid = s.face_tags.get(k as usize).copied().unwrap_or_default();
         let open_group_ok = n == 1 && group_of_face(fid).is_some_and(|g| !shells[g as usize].brep_closed);
@@ -702,12 +744,8 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         let p = s.vertices.get(a as usize).copied().unwrap_or(DVec3::NAN);
         let q = s.vertices.get(b as usize).copied().unwrap_or(DVec3::NAN);
         closed_ok &= n != 1;
-        failures.push(CheckFailure {
-            check: if n == 1 { "closed" } else { "manifold" },
-            face: Some(fid),
-            step_id: face_ref(fid),
-            message: format!("mesh edge {a}-{b} ({p} to {q}) has {n} triangles"),
-        });
+        let message = format!("mesh edge {a}-{b} ({p} to {q}) has {n} triangles");
+        failures.push(CheckFailure { check: if n == 1 { "closed" } else { "manifold" }, face: Some(fid), step_id: face_ref(fid), message });
     }
     for (g, x) in shells.iter().enumerate() {
         if !x.brep_closed && open_in_group[g] != free_segments[g] {
@@ -720,7 +758,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
             });
         }
     }
-    let manifold = report.manifold;
+    let manifold = report.manifold && coincident.is_empty();
     if !report.vertex_manifold {
         failures.push(CheckFailure { check: "manifold", face: None, step_id: None, message: format!("{} non-manifold vertices", report.nonmanifold_vertices) });
     }
