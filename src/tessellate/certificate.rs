@@ -338,7 +338,6 @@ pub(super) fn vertex_umbrellas(model: &Model, group: &[u32]) -> FxHashMap<(u32, 
     out
 }
 
-/// STEP entity references as a message writes them: `#12, #40`.
 /// Pairs of B-rep edges between the same two vertices whose curves coincide (their middles
 /// within `1e-6` of the model's size): the solid touches itself along a line there. The B-rep
 /// allows it (OpenCASCADE reads such parts as valid); a closed 2-manifold surface cannot be
@@ -370,6 +369,7 @@ fn coincident_edges(model: &Model) -> Vec<(usize, usize)> {
     out
 }
 
+/// STEP entity references as a message writes them: `#12, #40`.
 fn refs(r: &[EntityRef]) -> String {
     r.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
 }

@@ -137,7 +137,8 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
 /// The boundary of a face without edge loops (a whole sphere or torus): the rectangle of the
 /// surface's bounded domain, its periodic sides sharing vertices and its collapsed sides
 /// (poles) a single vertex, so the mesh closes on itself.
-/// `shift` moves it by whole periods' worth of parameter (zero when the face has no loops).
+/// `shift` moves its corner: its seam where no loop of the face crosses it (zero for a face
+/// without loops).
 fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, shift: DVec2, vertices: &mut FaceVertices) -> Result<UvLoop, String> {
     let surf = model.surface(model.face(fid).surface);
     let dom = surf.domain();
