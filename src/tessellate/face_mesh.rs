@@ -283,6 +283,9 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
         }
         None => vec![false; pts.len()],
     };
+    // the shape improvement takes a triangle turned up to 90° from the surface: an ear flat
+    // in (u, v) across an edge's bulge passes it
+    super::flat_ears::flip_flat_ears(&pts, &mut tris, &segments);
     // lift: boundary points have their global index, the others get one
     let ids: Vec<u32> = pts.iter().zip(&removed).map(|(p, &gone)| match p.id {
         Some(id) => id,

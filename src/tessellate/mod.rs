@@ -32,6 +32,7 @@ mod crossings;
 pub mod edge_points;
 pub mod face_mesh;
 mod face_vertices;
+mod flat_ears;
 pub mod orient;
 mod seams;
 mod feature_size;
