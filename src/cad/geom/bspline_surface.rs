@@ -173,15 +173,27 @@ impl BSplineSurface {
 
     /// Parameters of the closest point: Newton from each of the four grid samples nearest to
     /// `p` (the grid has a few samples per knot span, at most 48 × 48), the best result kept.
+    /// When that best is farther from `p` than 1e-5 of the grid's size, from the 32 nearest:
+    /// on a surface that folds back near itself (a long skinned face) the nearest samples can
+    /// all lie on the wrong sheet, and a point of its boundary went 0.6 mm off, its face's loop
+    /// across itself.
     pub fn project(&self, p: DVec3) -> DVec2 {
         let dom = self.domain();
+        let samples = self.samples();
         let mut best = (f64::INFINITY, DVec2::new(dom.u.min, dom.v.min));
-        for start in self.samples().nearest(p, 4) {
-            let q = refine_surface(|u, v| self.derivs(u, v), &dom, p, start);
-            let d = (self.point(q.x, q.y) - p).length_squared();
-            if d < best.0 {
-                best = (d, q);
+        let from = |starts: Vec<DVec2>, best: &mut (f64, DVec2)| {
+            for start in starts {
+                let q = refine_surface(|u, v| self.derivs(u, v), &dom, p, start);
+                let d = (self.point(q.x, q.y) - p).length_squared();
+                if d < best.0 {
+                    *best = (d, q);
+                }
             }
+        };
+        from(samples.nearest(p, 4), &mut best);
+        let far = 1e-5 * samples.size();
+        if best.0 > far * far {
+            from(samples.nearest(p, 32), &mut best);
         }
         best.1
     }

@@ -158,6 +158,12 @@ pub struct SurfaceSamples {
 }
 
 impl SurfaceSamples {
+    /// The diagonal of the samples' bounding box.
+    pub fn size(&self) -> f64 {
+        let (lo, hi) = self.p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &q| (l.min(q), h.max(q)));
+        if self.p.is_empty() { 0.0 } else { (hi - lo).length() }
+    }
+
     /// Samples `eval` on the grid `us × vs`.
     pub fn grid(us: &[f64], vs: &[f64], eval: impl Fn(f64, f64) -> DVec3) -> SurfaceSamples {
         let mut s = SurfaceSamples { uv: Vec::with_capacity(us.len() * vs.len()), p: Vec::with_capacity(us.len() * vs.len()) };

@@ -350,3 +350,26 @@ fn unbounded_curves_sweep_samples_stay_finite() {
     let s = l.sweep_samples();
     assert!(s.t[0] <= -5e5 && s.t[s.t.len() - 1] >= 5e5);
 }
+
+#[test]
+fn a_point_on_a_sheet_that_folds_back_near_another_projects_onto_its_own_sheet() {
+    // a hairpin in u: five pieces out along x at y = 0, a 0.01 fold, one piece back at
+    // y = 0.01; the samples nearest a point of the way back all lie on the way out
+    let d = 0.01;
+    let xs: Vec<(f64, f64)> = vec![(0.0, 0.0), (2.0, 0.0), (4.0, 0.0), (6.0, 0.0), (8.0, 0.0), (10.0, 0.0), (10.0, d), (0.0, d)];
+    let mut pts = Vec::new();
+    for &(x, y) in &xs {
+        for z in [0.0, 1.0] {
+            pts.push(DVec3::new(x, y, z));
+        }
+    }
+    let mut ku = vec![0.0, 0.0];
+    ku.extend((1..7).map(|i| f64::from(i) / 7.0));
+    ku.extend([1.0, 1.0]);
+    let s = crate::cad::geom::BSplineSurface::new(1, 1, ku, vec![0.0, 0.0, 1.0, 1.0], 8, 2, pts, None).unwrap();
+    for x in [4.3, 5.0, 5.7] {
+        let p = DVec3::new(x, d, 0.5);
+        let q = s.project(p);
+        assert!(s.point(q.x, q.y).distance(p) < 1e-9, "{p}: projected to {q} at {}", s.point(q.x, q.y));
+    }
+}
