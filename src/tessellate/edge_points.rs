@@ -172,7 +172,7 @@ fn surface_poles(surf: &crate::cad::geom::Surface) -> Vec<DVec3> {
     use crate::cad::geom::Surface;
     match surf {
         Surface::Sphere(s) => vec![s.point(0.0, -std::f64::consts::FRAC_PI_2), s.point(0.0, std::f64::consts::FRAC_PI_2)],
-        Surface::Cone(c) => vec![surf.point(0.0, -c.radius / c.semi_angle.tan())],
+        Surface::Cone(c) => vec![c.point(0.0, c.apex_v())],
         _ => Vec::new(),
     }
 }

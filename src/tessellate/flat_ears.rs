@@ -21,25 +21,28 @@ const FLAT: f64 = 1e-9;
 pub(super) fn flip_flat_ears(pts: &[Point], tris: &mut [[u32; 3]], segments: &[[u32; 2]]) -> usize {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     let boundary: FxHashSet<(u32, u32)> = segments.iter().map(|&[a, b]| key(a, b)).collect();
+    let s = |i: u32| pts[i as usize].s;
+    // an ear at its middle corner: two boundary sides, the chord inside and flat
+    let flat_ear = |t: [u32; 3], r: usize| {
+        let (a, b, c) = (t[r], t[(r + 1) % 3], t[(r + 2) % 3]);
+        let chord = s(c) - s(a);
+        boundary.contains(&key(a, b)) && boundary.contains(&key(b, c)) && !boundary.contains(&key(c, a)) && (s(b) - s(a)).perp_dot(chord).abs() <= FLAT * chord.length_squared()
+    };
+    // nearly every face has none: the triangles by edge only where one is
+    if !tris.iter().any(|&t| (0..3).any(|r| flat_ear(t, r))) {
+        return 0;
+    }
     let mut by_edge: FxHashMap<(u32, u32), usize> = FxHashMap::default();
     for (k, t) in tris.iter().enumerate() {
         for i in 0..3 {
             by_edge.insert((t[i], t[(i + 1) % 3]), k);
         }
     }
-    let s = |i: u32| pts[i as usize].s;
     let mut flipped = 0;
     for k in 0..tris.len() {
         let t = tris[k];
-        for r in 0..3 {
+        for r in (0..3).filter(|&r| flat_ear(t, r)) {
             let (a, b, c) = (t[r], t[(r + 1) % 3], t[(r + 2) % 3]);
-            if !boundary.contains(&key(a, b)) || !boundary.contains(&key(b, c)) || boundary.contains(&key(c, a)) {
-                continue;
-            }
-            let chord = s(c) - s(a);
-            if !((s(b) - s(a)).perp_dot(chord).abs() <= FLAT * chord.length_squared()) {
-                continue;
-            }
             // the triangle across the chord runs along it from a to c
             let Some(&u) = by_edge.get(&(a, c)) else { continue };
             let Some(x) = tris[u].iter().copied().find(|&v| v != a && v != c) else { continue };

@@ -28,6 +28,7 @@
 
 pub mod certificate;
 pub mod corner_strips;
+mod brep_topology;
 mod crossings;
 pub mod edge_points;
 pub mod face_mesh;

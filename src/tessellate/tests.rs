@@ -136,7 +136,7 @@ fn certificate_passes_an_edge_curve_off_its_vertices_within_a_file_tolerance() {
 fn a_pinched_vertex_counts_once_per_sheet() {
     // a 2-manifold's vertices have one piece of link each
     let m = tetrahedron();
-    assert!(certificate::vertex_umbrellas(&m, &[0, 0, 0, 0]).is_empty());
+    assert!(brep_topology::vertex_umbrellas(&m, &[0, 0, 0, 0]).is_empty());
     // two triangular faces of one group that touch only at vertex 0: two pieces there
     let p = [DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::X, DVec3::new(0.0, -1.0, 0.5)];
     let mut m = Model::default();
@@ -156,11 +156,11 @@ fn a_pinched_vertex_counts_once_per_sheet() {
             source: EntityRef(200 + f as u64),
         });
     }
-    let u = certificate::vertex_umbrellas(&m, &[0, 0]);
+    let u = brep_topology::vertex_umbrellas(&m, &[0, 0]);
     assert_eq!(u.len(), 1);
     assert_eq!(u.get(&(0, 0)), Some(&2));
     // in different groups each sheet is whole
-    assert!(certificate::vertex_umbrellas(&m, &[0, 1]).is_empty());
+    assert!(brep_topology::vertex_umbrellas(&m, &[0, 1]).is_empty());
 }
 
 #[test]

@@ -422,7 +422,7 @@ pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f6
                 poles.push(dom.v.max);
             }
             if let crate::cad::geom::Surface::Cone(c) = surf {
-                poles.push(-c.radius / c.semi_angle.tan());
+                poles.push(c.apex_v());
             }
             let a0 = a.pts[0];
             let mut chosen = None;

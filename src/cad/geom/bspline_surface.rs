@@ -191,7 +191,7 @@ impl BSplineSurface {
             }
         };
         from(samples.nearest(p, 4), &mut best);
-        let far = 1e-5 * samples.size();
+        let far = 1e-5 * samples.size;
         if best.0 > far * far {
             from(samples.nearest(p, 32), &mut best);
         }

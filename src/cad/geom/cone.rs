@@ -25,6 +25,11 @@ impl Cone {
         self.semi_angle.tan()
     }
 
+    /// The `v` of the apex, where the radius `r + v tan α` is zero.
+    pub fn apex_v(&self) -> f64 {
+        -self.radius / self.tan()
+    }
+
     /// Point at `(u, v)`.
     pub fn point(&self, u: f64, v: f64) -> DVec3 {
         let (s, c) = u.sin_cos();

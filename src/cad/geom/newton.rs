@@ -155,23 +155,24 @@ pub struct SurfaceSamples {
     pub uv: Vec<DVec2>,
     /// Points at those parameters.
     pub p: Vec<DVec3>,
+    /// The diagonal of the points' bounding box (0 without points).
+    pub size: f64,
 }
 
 impl SurfaceSamples {
-    /// The diagonal of the samples' bounding box.
-    pub fn size(&self) -> f64 {
-        let (lo, hi) = self.p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &q| (l.min(q), h.max(q)));
-        if self.p.is_empty() { 0.0 } else { (hi - lo).length() }
-    }
 
     /// Samples `eval` on the grid `us × vs`.
     pub fn grid(us: &[f64], vs: &[f64], eval: impl Fn(f64, f64) -> DVec3) -> SurfaceSamples {
-        let mut s = SurfaceSamples { uv: Vec::with_capacity(us.len() * vs.len()), p: Vec::with_capacity(us.len() * vs.len()) };
+        let mut s = SurfaceSamples { uv: Vec::with_capacity(us.len() * vs.len()), p: Vec::with_capacity(us.len() * vs.len()), size: 0.0 };
         for &u in us {
             for &v in vs {
                 s.uv.push(DVec2::new(u, v));
                 s.p.push(eval(u, v));
             }
+        }
+        if !s.p.is_empty() {
+            let (lo, hi) = s.p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &q| (l.min(q), h.max(q)));
+            s.size = (hi - lo).length();
         }
         s
     }
