@@ -65,7 +65,10 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
     }
     if let Some(size) = size {
         ts = match strip.filter(|s| !s.params.is_empty()) {
-            Some(s) => with_strips(&|t| curve.point(t), &ts, s, size),
+            Some(s) => {
+                let cos_max = max_angle_deg.to_radians().cos();
+                with_strips(&|t| curve.point(t), &|t| curve.derivative(t), &ts, s, size, tol, cos_max)
+            }
             None => super::sizing::edge_params(&|t| curve.point(t), &ts, size),
         };
     }
@@ -90,8 +93,9 @@ pub fn discretise(model: &Model, edge: &Edge, tol: f64, max_angle_deg: f64, max_
 
 /// The parameters `ts` (increasing, the chord criteria's pieces) with the strips' points,
 /// the chord's points in the strips' tips, and the size spacing the stretches the strips
-/// do not cover.
-fn with_strips(p: &dyn Fn(f64) -> DVec3, ts: &[f64], strip: &EdgeStrip, size: &dyn SizeField) -> Vec<f64> {
+/// do not cover; a chord point that falls a sliver away from a strip's point or end is left
+/// out where the chord across it meets the criteria ([`drop_slivers`]).
+fn with_strips(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &[f64], strip: &EdgeStrip, size: &dyn SizeField, tol: f64, cos_max: f64) -> Vec<f64> {
     let (lo, hi) = (ts[0], ts[ts.len() - 1]);
     let mut covered = strip.covered.clone();
     covered.sort_by(|x, y| x.0.total_cmp(&y.0));
@@ -112,7 +116,32 @@ fn with_strips(p: &dyn Fn(f64) -> DVec3, ts: &[f64], strip: &EdgeStrip, size: &d
     }
     out.sort_by(f64::total_cmp);
     out.dedup();
+    // the strips' points stay, and so do the chord's points in the tips
+    let mut kept: Vec<f64> = strip.params.clone();
+    kept.extend(out.iter().copied().filter(|&t| strip.tips.iter().any(|&(a, b)| t > a && t < b)));
+    kept.sort_by(f64::total_cmp);
+    drop_slivers(p, d, &mut out, &kept, tol, cos_max);
     out
+}
+
+/// A segment this many times shorter than the one beside it is a sliver.
+const SLIVER_RATIO: f64 = 0.02;
+
+/// Leaves out of `ts` (increasing) each inner point, but those in `kept` (sorted), whose
+/// shorter segment is under [`SLIVER_RATIO`] of its longer one where the chord across it
+/// meets the criteria of [`coarsen`]. The pieces that the strips and the size spacing make
+/// meet: where a strip ends a hair before a chord point, the two made a segment a thousandth
+/// of its neighbours' length, and triangles as thin on both faces of the edge.
+fn drop_slivers(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &mut Vec<f64>, kept: &[f64], tol: f64, cos_max: f64) {
+    let mut i = 1;
+    while i + 1 < ts.len() {
+        let (a, b) = (p(ts[i - 1]).distance(p(ts[i])), p(ts[i]).distance(p(ts[i + 1])));
+        if a.min(b) < SLIVER_RATIO * a.max(b) && kept.binary_search_by(|x| x.total_cmp(&ts[i])).is_err() && chord_meets(p, d, &ts[i - 1..=i + 1], tol, cos_max) {
+            ts.remove(i);
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// Splits the segments `ks` of an edge's points (segment `k` between points `k` and `k + 1`)
@@ -280,6 +309,41 @@ fn refine(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, t0: f64, t1: f64, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_strip_that_ends_a_hair_before_a_chord_point_leaves_no_sliver_segment() {
+        // a quarter circle of radius 10, its chord points by the criteria; a strip graded from
+        // the corner at t = 0 whose last point falls a thousandth of a segment before one of
+        // them (the AutoMobRos_verschluss case: 0.0008 mm beside 0.47 and 0.68)
+        let p = |t: f64| DVec3::new(10.0 * t.cos(), 10.0 * t.sin(), 0.0);
+        let d = |t: f64| DVec3::new(-10.0 * t.sin(), 10.0 * t.cos(), 0.0);
+        let (tol, cos_max) = (2e-3, 20f64.to_radians().cos());
+        let mut ts = vec![0.0];
+        for k in 0..4 {
+            let (t0, t1) = (std::f64::consts::FRAC_PI_2 * k as f64 / 4.0, std::f64::consts::FRAC_PI_2 * (k + 1) as f64 / 4.0);
+            refine(&p, &d, t0, t1, tol, cos_max, 0, &mut ts);
+        }
+        let end = ts[3] - 1e-4 * (ts[3] - ts[2]);
+        let params: Vec<f64> = (1..=6).map(|k| end * 1.5f64.powi(k - 6)).collect();
+        let strip = EdgeStrip { params: params.clone(), covered: vec![(0.0, end)], tips: vec![(0.0, params[0])] };
+        let size = crate::core::size_field::UniformSize(0.5);
+        let out = with_strips(&p, &d, &ts, &strip, &size, tol, cos_max);
+        for t in &params {
+            assert!(out.contains(t), "strip point {t} lost");
+        }
+        assert!(!out.contains(&ts[3]), "the chord point a hair past the strip's end is left out");
+        for w in out.windows(3) {
+            let (a, b) = (p(w[0]).distance(p(w[1])), p(w[1]).distance(p(w[2])));
+            assert!(a.min(b) >= SLIVER_RATIO * a.max(b) || params.contains(&w[1]), "{w:?}: {a} beside {b}");
+        }
+        for w in out.windows(2) {
+            assert!(chord_meets(&p, &d, w, tol, cos_max), "{w:?}");
+        }
+        // without the strip's grading the same chord point stays where the chord needs it
+        let mut tight = vec![0.0, 0.5, 0.5001, 1.5];
+        drop_slivers(&p, &d, &mut tight, &[], 1e-9, cos_max);
+        assert_eq!(tight.len(), 4, "{tight:?}");
+    }
 
     #[test]
     fn a_straight_curve_cut_for_the_criteria_is_one_piece_again() {
