@@ -4,12 +4,15 @@
 //! touching itself along a line).
 
 use crate::cad::brep::Model;
+use crate::core::union_find::UnionFind;
 use rustc_hash::FxHashMap;
 
-/// The number of boundary loops the patch of face `f` should have (module docs): the
-/// coedges left once seams (used twice by the face) and degenerate edges are dropped fall into
-/// runs; a run ending at the vertex where another starts continues into it (across a seam),
-/// and the chains close into the loops.
+/// The number of boundary loops the patch of face `f` should have (module docs): the pieces
+/// that its trim loops' coedges make, joined where they share a vertex, once seams (used twice
+/// by the face) and degenerate edges are dropped: runs of a loop cut by a seam join where they
+/// meet (a cylinder's two circles stay two loops), and a loop that passes through a vertex
+/// twice (a hole touching the outer boundary there), or two loops that touch at one, make
+/// one, as the triangles' open edges do (`certificate::patch_loops`).
 pub(super) fn expected_patch_loops(model: &Model, f: usize) -> usize {
     let face = &model.faces[f];
     let mut uses: FxHashMap<u32, u32> = FxHashMap::default();
@@ -18,45 +21,22 @@ pub(super) fn expected_patch_loops(model: &Model, f: usize) -> usize {
             *uses.entry(c.edge).or_insert(0) += 1;
         }
     }
-    let ends = |c: &crate::cad::brep::Coedge| {
-        let e = &model.edges[c.edge as usize];
-        if c.forward { (e.start, e.end) } else { (e.end, e.start) }
-    };
-    // runs as (first vertex, last vertex)
-    let mut runs: Vec<(u32, u32)> = Vec::new();
-    let mut whole = 0;
+    let mut uf = UnionFind::new(model.vertices.len());
+    let mut touched: Vec<u32> = Vec::new();
     for &l in &face.loops {
-        let cs = &model.loops[l as usize].coedges;
-        let kept: Vec<bool> = cs.iter().map(|c| !model.edges[c.edge as usize].degenerate && uses[&c.edge] < 2).collect();
-        if kept.iter().all(|&k| k) {
-            whole += usize::from(!cs.is_empty());
-            continue;
-        }
-        let n = cs.len();
-        for i in (0..n).filter(|&i| kept[i] && !kept[(i + n - 1) % n]) {
-            let mut j = i;
-            while kept[(j + 1) % n] {
-                j = (j + 1) % n;
+        for c in &model.loops[l as usize].coedges {
+            let e = &model.edges[c.edge as usize];
+            if e.degenerate || uses[&c.edge] >= 2 || e.start as usize >= model.vertices.len() || e.end as usize >= model.vertices.len() {
+                continue;
             }
-            runs.push((ends(&cs[i]).0, ends(&cs[j]).1));
+            uf.union(e.start, e.end);
+            touched.extend([e.start, e.end]);
         }
     }
-    let mut used = vec![false; runs.len()];
-    let mut chains = 0;
-    for r in 0..runs.len() {
-        if used[r] {
-            continue;
-        }
-        used[r] = true;
-        chains += 1;
-        let (start, mut end) = runs[r];
-        while end != start {
-            let Some(k) = (0..runs.len()).find(|&k| !used[k] && runs[k].0 == end) else { break };
-            used[k] = true;
-            end = runs[k].1;
-        }
-    }
-    whole + chains
+    let mut roots: Vec<u32> = touched.into_iter().map(|v| uf.find(v)).collect();
+    roots.sort_unstable();
+    roots.dedup();
+    roots.len()
 }
 
 /// Per shell group and B-rep vertex with more than one, the number of pieces of the vertex's

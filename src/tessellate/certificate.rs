@@ -246,34 +246,24 @@ fn refs(r: &[EntityRef]) -> String {
     r.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
 }
 
-/// Boundary loops of a patch of oriented triangles: open directed edges chained, a loop
-/// closing when it returns to its start vertex.
+/// Boundary loops of a patch of oriented triangles: the pieces its open edges make, joined
+/// where they share a vertex. A loop that passes through a vertex twice (a hole touching the
+/// outer boundary at a point) is one, whichever way a walk would split it there, as
+/// [`expected_patch_loops`] counts the face's trim loops.
 fn patch_loops(tris: &[[u32; 3]]) -> usize {
     let mut directed: Vec<(u32, u32)> = tris.iter().flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]).collect();
     directed.sort_unstable();
     let has = |e: (u32, u32)| directed.binary_search(&e).is_ok();
     let open: Vec<(u32, u32)> = directed.iter().copied().filter(|&(a, b)| !has((b, a))).collect();
-    let mut used = vec![false; open.len()];
-    let mut loops = 0;
-    for s in 0..open.len() {
-        if used[s] {
-            continue;
-        }
-        used[s] = true;
-        let (start, mut cur) = open[s];
-        loop {
-            if cur == start {
-                loops += 1;
-                break;
-            }
-            let lo = open.partition_point(|&(a, _)| a < cur);
-            let next = (lo..open.len()).take_while(|&i| open[i].0 == cur).find(|&i| !used[i]);
-            let Some(i) = next else { break };
-            used[i] = true;
-            cur = open[i].1;
-        }
+    let mut at: Vec<u32> = open.iter().flat_map(|&(a, b)| [a, b]).collect();
+    at.sort_unstable();
+    at.dedup();
+    let index = |v: u32| at.binary_search(&v).unwrap_or(0) as u32;
+    let mut uf = UnionFind::new(at.len());
+    for &(a, b) in &open {
+        uf.union(index(a), index(b));
     }
-    loops
+    uf.labels().1
 }
 
 /// The largest normal curvature sampled over the `(u, v)` box of a face's domain.

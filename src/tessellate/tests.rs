@@ -620,3 +620,44 @@ fn a_dome_cut_open_along_a_meridian_meshes_around_its_pole() {
         assert_eq!(certified_both_ways(&dome_cut_open_along_a_meridian(seam), want, &format!("{seam:?}")).len(), 2);
     }
 }
+
+/// A planar face of a surface model whose one loop passes through a vertex twice: two
+/// triangles `(0,0) (2,0) (1,1)` and `(1,1) (2,2) (0,2)` joined at `(1,1)` (a hole touching the
+/// outer boundary at a point makes such a loop).
+fn face_pinched_at_a_vertex() -> String {
+    let pts = [(0.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 2.0), (0.0, 2.0)];
+    let mut data = String::from("#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);");
+    for (i, (x, y)) in pts.iter().enumerate() {
+        data += &format!("#{}=CARTESIAN_POINT('',({x:?},{y:?},0.));#{}=VERTEX_POINT('',#{});", 100 + i, 110 + i, 100 + i);
+    }
+    // the loop A B P C D P
+    let order = [0usize, 1, 2, 3, 4, 2];
+    let mut oriented = Vec::new();
+    for k in 0..order.len() {
+        let (a, b) = (order[k], order[(k + 1) % order.len()]);
+        let (pa, pb) = (pts[a], pts[b]);
+        let n = 200 + 10 * k;
+        data += &format!(
+            "#{}=DIRECTION('',({:?},{:?},0.));#{}=VECTOR('',#{},1.);#{}=LINE('',#{},#{});#{}=EDGE_CURVE('',#{},#{},#{},.T.);#{}=ORIENTED_EDGE('',*,*,#{},.T.);",
+            n, pb.0 - pa.0, pb.1 - pa.1, n + 1, n, n + 2, 100 + a, n + 1, n + 3, 110 + a, 110 + b, n + 2, n + 4, n + 3
+        );
+        oriented.push(format!("#{}", n + 4));
+    }
+    data += &format!("#60=EDGE_LOOP('',({}));#61=FACE_OUTER_BOUND('',#60,.T.);#62=ADVANCED_FACE('bowtie',(#61),#5,.T.);#70=OPEN_SHELL('',(#62));#71=SHELL_BASED_SURFACE_MODEL('',(#70));", oriented.join(","));
+    step_text("pinched", &data)
+}
+
+#[test]
+fn a_face_whose_loop_passes_through_a_vertex_twice_has_one_boundary_loop() {
+    use crate::tessellate::certificate::{CertifyOptions, certify};
+    let m = crate::cad::step::read_bytes(std::path::Path::new("test.stp"), face_pinched_at_a_vertex().as_bytes()).unwrap_or_else(|e| panic!("{e}"));
+    for sized in [false, true] {
+        let t = if sized { super::tessellate_sized(&m, &TessellateOptions::default(), &crate::core::size_field::UniformSize(0.3)) } else { tessellate(&m, &TessellateOptions::default()) };
+        assert!(t.failed.is_empty(), "{sized}: {:?}", t.failed);
+        let cert = certify(&m, &t, &CertifyOptions::default());
+        let loops: Vec<_> = cert.failures.iter().filter(|f| f.check == "boundary_loops").collect();
+        assert!(loops.is_empty(), "{sized}: {loops:?}");
+        let area: f64 = t.surface.triangles.iter().map(|tri| 0.5 * (t.surface.vertices[tri[1] as usize] - t.surface.vertices[tri[0] as usize]).cross(t.surface.vertices[tri[2] as usize] - t.surface.vertices[tri[0] as usize]).length()).sum();
+        assert!((area - 2.0).abs() < 1e-9, "{sized}: area {area}");
+    }
+}
