@@ -86,7 +86,9 @@ pub(super) fn open_poles(surf: &Surface, pts: UvLoop) -> UvLoop {
 /// both poles) takes the turn of `u` that the loop's sense asks for: across a pole `u` may
 /// jump by any amount, and the nearest turn is a guess (half a turn either way for a lune).
 /// Of the jumps by `0` and `±period`, the one whose polygon (poles opened) has the face on
-/// the side `face_left` says, with the least area, is kept.
+/// the side `face_left` says, with the least area, is kept; a polygon of no area (a loop up a
+/// meridian to the far pole and back down it: a whole sphere slit along one edge) bounds
+/// nothing and is not a candidate.
 pub(super) fn unwrap_through_poles(surf: &Surface, pts: &mut UvLoop, per: f64, face_left: bool) {
     let mut last = pts[0].0.x;
     for pt in pts.iter_mut().skip(1) {
@@ -108,10 +110,13 @@ pub(super) fn unwrap_through_poles(surf: &Surface, pts: &mut UvLoop, per: f64, f
             let poly: Vec<DVec2> = open_poles(surf, c).iter().map(|p| p.0).collect();
             super::uv_loops::signed_area(&poly)
         };
+        // a polygon that retraces itself sums to rounding: a millionth of the period's strip
+        let (v_lo, v_hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.0.y), hi.max(p.0.y)));
+        let none = 1e-6 * per * (v_hi - v_lo);
         let best = [0.0, per, -per]
             .into_iter()
             .map(|s| (s, area(s)))
-            .filter(|&(_, a)| (a > 0.0) == face_left)
+            .filter(|&(_, a)| (a > 0.0) == face_left && a.abs() > none)
             .min_by(|x, y| x.1.abs().total_cmp(&y.1.abs()));
         if let Some((shift, _)) = best.filter(|&(s, _)| s != 0.0) {
             for pt in pts.iter_mut().skip(i + 1) {

@@ -621,6 +621,39 @@ fn a_dome_cut_open_along_a_meridian_meshes_around_its_pole() {
     }
 }
 
+/// A whole ball of radius 10 whose one face is bounded by a single meridian from pole to pole,
+/// used there and back (the face slit along it, as a CAD system writes a full sphere), the
+/// sphere's seam along `seam`, the bound's flag `bound`.
+fn ball_slit_along_a_meridian(seam: [f64; 3], bound: bool) -> String {
+    let data = format!(
+        "#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',({:?},{:?},{:?}));\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=SPHERICAL_SURFACE('',#4,10.);\
+#6=DIRECTION('',(1.,0.,0.));#7=DIRECTION('',(0.,-1.,0.));#11=AXIS2_PLACEMENT_3D('',#1,#7,#6);#12=CIRCLE('',#11,10.);\
+#15=CARTESIAN_POINT('',(0.,0.,10.));#16=VERTEX_POINT('',#15);#17=CARTESIAN_POINT('',(0.,0.,-10.));#18=VERTEX_POINT('',#17);\
+#20=EDGE_CURVE('',#16,#18,#12,.T.);\
+#32=ORIENTED_EDGE('',*,*,#20,.T.);#33=ORIENTED_EDGE('',*,*,#20,.F.);\
+#34=EDGE_LOOP('',(#32,#33));#35=FACE_OUTER_BOUND('',#34,{});#37=ADVANCED_FACE('ball',(#35),#5,.T.);\
+#70=CLOSED_SHELL('',(#37));#71=MANIFOLD_SOLID_BREP('',#70);",
+        seam[0],
+        seam[1],
+        seam[2],
+        if bound { ".T." } else { ".F." }
+    );
+    step_text("ball", &data)
+}
+
+#[test]
+fn a_ball_whose_one_face_is_slit_along_a_meridian_is_the_whole_sphere() {
+    let want = 4.0 / 3.0 * std::f64::consts::PI * 1000.0;
+    // the meridian a quarter turn from the sphere's seam, half a turn from it, and on it; the
+    // bound either way (the loop retraces itself, so both are the same face)
+    for seam in [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]] {
+        for bound in [true, false] {
+            assert_eq!(certified_both_ways(&ball_slit_along_a_meridian(seam, bound), want, &format!("{seam:?} {bound}")).len(), 2);
+        }
+    }
+}
+
 /// A planar face of a surface model whose one loop passes through a vertex twice: two
 /// triangles `(0,0) (2,0) (1,1)` and `(1,1) (2,2) (0,2)` joined at `(1,1)` (a hole touching the
 /// outer boundary at a point makes such a loop).
