@@ -55,7 +55,8 @@ impl SideTags {
         SideTags { start, tags }
     }
 
-    fn of(&self, v: u32) -> &[FaceId] {
+    /// The tags of the boundary triangles at vertex `v`, sorted.
+    pub(crate) fn of(&self, v: u32) -> &[FaceId] {
         match (self.start.get(v as usize), self.start.get(v as usize + 1)) {
             (Some(&a), Some(&b)) => &self.tags[a as usize..b as usize],
             _ => &[],

@@ -2,7 +2,9 @@
 //! tagged boundary face, the nearest feature edge of the boundary (an edge between two
 //! boundary triangles of different tags, or, within one tag, a crease whose triangles turn by
 //! more than [`CREASE_DEG`]) and the small input angle it touches, or else the nearest one
-//! within its reach (see [`crate::quality::input_angles`]).
+//! within its reach (see [`crate::quality::input_angles`]), and a narrow face at its vertices:
+//! a sliver face of the part (a strip far narrower than the tet) explains bad tets as a small
+//! angle does, without having one.
 //!
 //! Nearest means by Euclidean distance from the centroid, scanning every boundary triangle
 //! (a report looks up one or two tets); ties keep the lowest index, so the answer does not
@@ -21,6 +23,10 @@ use serde::Serialize;
 /// longest edge from the angle's edge or vertex (Steiner points on an input edge are on it up
 /// to rounding).
 pub const TOUCH_RELATIVE: f64 = 1e-6;
+
+/// A face at a tet's vertices is narrow when its mean width (twice its area over its perimeter,
+/// the width of a long strip) is under this fraction of the tet's longest edge.
+pub const NARROW_RELATIVE: f64 = 0.1;
 
 /// An edge between two boundary triangles of one tag is a crease (a feature edge) when their
 /// normals differ by more than this, degrees.
@@ -71,6 +77,19 @@ pub struct NearAngle {
     pub between_sides: bool,
 }
 
+/// A boundary face far narrower than a tet at its vertices.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NarrowFace {
+    /// Its tag.
+    pub face: FaceId,
+    /// Its name, where known.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Its mean width: twice its area over its perimeter (the edges it shares with other tags,
+    /// and open ones).
+    pub width: f64,
+}
+
 /// Where a tet sits and what it is like.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TetPlace {
@@ -94,6 +113,10 @@ pub struct TetPlace {
     /// within the tet's longest edge of one of its vertices (none when no small angle is
     /// that near).
     pub input_angle: Option<NearAngle>,
+    /// The narrowest face at the tet's vertices, where its width is under
+    /// [`NARROW_RELATIVE`] of the tet's longest edge.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub narrow_face: Option<NarrowFace>,
 }
 
 /// The boundary of a tet mesh, indexed for [`BoundaryIndex::locate`].
@@ -104,6 +127,8 @@ pub struct BoundaryIndex {
     features: Vec<([u32; 2], [FaceId; 2])>,
     /// The boundary's tags at each vertex, for the angles a tet lies between the sides of.
     sides: SideTags,
+    /// Per tag (sorted): its area and its perimeter.
+    extents: Vec<(FaceId, f64, f64)>,
 }
 
 impl BoundaryIndex {
@@ -129,6 +154,20 @@ impl BoundaryIndex {
         };
         let crease_cos = CREASE_DEG.to_radians().cos();
         let mut features = Vec::new();
+        // each tag's area, and its perimeter: the sides it shares with no triangle of its own
+        let mut extents: Vec<(FaceId, f64, f64)> = Vec::new();
+        for (t, tag) in mesh.boundary.iter().zip(&mesh.face_tags) {
+            let [a, b, c] = t.map(|v| mesh.vertices[v as usize]);
+            extents.push((*tag, 0.5 * (b - a).cross(c - a).length(), 0.0));
+        }
+        for run in on_edge.chunk_by(|x, y| x.0 == y.0) {
+            let [a, b] = run[0].0.map(|v| mesh.vertices[v as usize]);
+            for x in run.iter().filter(|x| !run.iter().any(|y| y.2 != x.2 && y.1 == x.1)) {
+                extents[x.2 as usize].2 += a.distance(b);
+            }
+        }
+        extents.sort_unstable_by_key(|x| x.0);
+        let extents: Vec<(FaceId, f64, f64)> = extents.chunk_by(|x, y| x.0 == y.0).map(|r| (r[0].0, r.iter().map(|x| x.1).sum(), r.iter().map(|x| x.2).sum())).collect();
         for run in on_edge.chunk_by(|x, y| x.0 == y.0) {
             let (edge, first) = (run[0].0, run[0].1);
             // tags are sorted within an edge: the first differing one is the second smallest
@@ -142,7 +181,7 @@ impl BoundaryIndex {
                 }
             }
         }
-        BoundaryIndex { features, sides: SideTags::new(mesh) }
+        BoundaryIndex { features, sides: SideTags::new(mesh), extents }
     }
 
     /// Feature edges of the boundary.
@@ -211,7 +250,25 @@ impl BoundaryIndex {
             nearest_face,
             nearest_edge,
             input_angle,
+            narrow_face: self.narrow_face(mesh.tets[t], longest, name),
         }
+    }
+
+    /// The narrowest face at the vertices of `tet` (longest edge `longest`) if it is narrow
+    /// ([`NARROW_RELATIVE`]); ties keep the smallest tag.
+    fn narrow_face(&self, tet: [u32; 4], longest: f64, name: &dyn Fn(FaceId) -> Option<String>) -> Option<NarrowFace> {
+        let mut best: Option<(f64, FaceId)> = None;
+        for &v in &tet {
+            for &f in self.sides.of(v) {
+                let Ok(k) = self.extents.binary_search_by_key(&f, |x| x.0) else { continue };
+                let (_, area, perimeter) = self.extents[k];
+                let width = 2.0 * area / perimeter;
+                if width.is_finite() && best.is_none_or(|(w, g)| width < w || (width == w && f < g)) {
+                    best = Some((width, f));
+                }
+            }
+        }
+        best.filter(|&(w, _)| w < NARROW_RELATIVE * longest).map(|(width, face)| NarrowFace { face, name: name(face), width })
     }
 }
 
@@ -278,6 +335,16 @@ impl TetPlace {
                 format!("between faces {} and {} at {}, {} away", face_text(e.faces[0], &e.names[0]), face_text(e.faces[1], &e.names[1]), fmt_point(e.point), fmt_num(e.distance)),
             )),
             None => out.push(("nearest edge", "none (the boundary has no feature edge)".to_string())),
+        }
+        if let Some(n) = &self.narrow_face {
+            out.push((
+                "narrow face",
+                format!(
+                    "{} is {} wide (twice its area over its perimeter), under a tenth of the tet's longest edge: a sliver face of the part, whose triangles no tet beside them spans well; widen it or merge it into a neighbour in the CAD model",
+                    face_text(n.face, &n.name),
+                    fmt_num(n.width)
+                ),
+            ));
         }
         if let Some(a) = &self.input_angle {
             let what = match a.angle.kind {
@@ -351,5 +418,42 @@ mod tests {
         assert!(text.iter().any(|l| l.starts_with("input angle: 2.1212°") && l.ends_with("the tet touches it")), "{text:?}");
         // the nearest face is one of the two at the knife edge (the centroid is as near both)
         assert!(text.iter().any(|l| l.starts_with("nearest face: 3 \"side_a\"") || l.starts_with("nearest face: 5 \"side_c\"")), "{text:?}");
+    }
+
+    #[test]
+    fn a_tet_beside_a_sliver_face_names_it_and_its_width() {
+        // a 2 × 2 × 2 Kuhn cube whose middle plane x = 0.5 is moved to x = 0.02: the bottom's
+        // strip 0 < x < 0.02 is a face of its own, 0.02 wide, under tets a unit long
+        let mut mesh = crate::mesh::shapes::kuhn_cube(2, 0.0, 1);
+        for p in &mut mesh.vertices {
+            if (p.x - 0.5).abs() < 1e-12 {
+                p.x = 0.02;
+            }
+        }
+        mesh.boundary = mesh.hull_faces();
+        mesh.face_tags = mesh
+            .boundary
+            .iter()
+            .map(|f| {
+                let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
+                let (n, m) = ((b - a).cross(c - a), (a + b + c) / 3.0);
+                let axis = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
+                FaceId(if axis == 2 && n.z < 0.0 && m.x < 0.02 { 7 } else { 1 + 2 * axis as u32 + u32::from(n[axis] > 0.0) })
+            })
+            .collect();
+        assert_eq!(mesh.validate(), Ok(()));
+        let index = BoundaryIndex::new(&mesh);
+        let strip = |t: &[u32; 4]| t.iter().filter(|&&v| mesh.vertices[v as usize].x < 0.5 && mesh.vertices[v as usize].z < 0.5).count() >= 3;
+        let t = (0..mesh.tets.len()).find(|&t| strip(&mesh.tets[t]) && mesh.tets[t].iter().any(|&v| index.sides().of(v).contains(&FaceId(7)))).expect("a tet on the strip");
+        let name = |f: FaceId| (f.0 == 7).then(|| "step".to_string());
+        let place = index.locate(&mesh, t, &[], 10.0, &name);
+        let n = place.narrow_face.as_ref().expect("the strip is named");
+        assert_eq!(n.face, FaceId(7));
+        assert!((n.width - 2.0 * 0.02 / 2.04).abs() < 1e-12, "{}", n.width);
+        let text: Vec<String> = place.lines().into_iter().map(|(l, t)| format!("{l}: {t}")).collect();
+        assert!(text.iter().any(|l| l.starts_with("narrow face: 7 \"step\" is 0.0196078 wide")), "{text:?}");
+        // a tet of the upper half touches no narrow face
+        let far = (0..mesh.tets.len()).find(|&t| mesh.tets[t].iter().all(|&v| mesh.vertices[v as usize].z > 0.25)).expect("a tet off the strip");
+        assert_eq!(index.locate(&mesh, far, &[], 10.0, &name).narrow_face, None);
     }
 }
