@@ -31,6 +31,29 @@ pub fn torus(major: f64, minor: f64, n: usize, m: usize) -> TriSurface {
     TriSurface::with_single_tag(v, t, FaceId(1))
 }
 
+/// Sets `mesh`'s boundary to its hull faces, each tagged `tag(unit outward normal, centroid)`:
+/// for tests on tagged boundaries.
+#[cfg(test)]
+pub(crate) fn tag_hull(mesh: &mut TetMesh, tag: impl Fn(DVec3, DVec3) -> u32) {
+    mesh.boundary = mesh.hull_faces();
+    let tags = mesh
+        .boundary
+        .iter()
+        .map(|f| {
+            let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
+            FaceId(tag((b - a).cross(c - a).normalize(), (a + b + c) / 3.0))
+        })
+        .collect();
+    mesh.face_tags = tags;
+}
+
+/// One tag per side of an axis-aligned box, by the outward normal `n`'s axis and sign (1 to 6).
+#[cfg(test)]
+pub(crate) fn side_tag(n: DVec3) -> u32 {
+    let axis = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
+    1 + 2 * axis as u32 + u32::from(n[axis] > 0.0)
+}
+
 /// The unit cube split into `n³` cells of six tets each (Kuhn subdivision along the main
 /// diagonal of every cell), `6n³` positively oriented tets in `RegionId(1)`. Interior vertices
 /// move by up to `jitter / n` (a fraction of the cell, below 0.5 to keep every tet positive)

@@ -161,15 +161,11 @@ impl BoundaryIndex {
             extents.push((*tag, 0.5 * (b - a).cross(c - a).length(), 0.0));
         }
         for run in on_edge.chunk_by(|x, y| x.0 == y.0) {
-            let [a, b] = run[0].0.map(|v| mesh.vertices[v as usize]);
+            let (edge, first) = (run[0].0, run[0].1);
+            let [a, b] = edge.map(|v| mesh.vertices[v as usize]);
             for x in run.iter().filter(|x| !run.iter().any(|y| y.2 != x.2 && y.1 == x.1)) {
                 extents[x.2 as usize].2 += a.distance(b);
             }
-        }
-        extents.sort_unstable_by_key(|x| x.0);
-        let extents: Vec<(FaceId, f64, f64)> = extents.chunk_by(|x, y| x.0 == y.0).map(|r| (r[0].0, r.iter().map(|x| x.1).sum(), r.iter().map(|x| x.2).sum())).collect();
-        for run in on_edge.chunk_by(|x, y| x.0 == y.0) {
-            let (edge, first) = (run[0].0, run[0].1);
             // tags are sorted within an edge: the first differing one is the second smallest
             if let Some(other) = run.iter().map(|x| x.1).find(|&t| t != first) {
                 features.push((edge, [first, other]));
@@ -181,6 +177,8 @@ impl BoundaryIndex {
                 }
             }
         }
+        extents.sort_unstable_by_key(|x| x.0);
+        let extents: Vec<(FaceId, f64, f64)> = extents.chunk_by(|x, y| x.0 == y.0).map(|r| (r[0].0, r.iter().map(|x| x.1).sum(), r.iter().map(|x| x.2).sum())).collect();
         BoundaryIndex { features, sides: SideTags::new(mesh), extents }
     }
 
@@ -430,17 +428,7 @@ mod tests {
                 p.x = 0.02;
             }
         }
-        mesh.boundary = mesh.hull_faces();
-        mesh.face_tags = mesh
-            .boundary
-            .iter()
-            .map(|f| {
-                let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
-                let (n, m) = ((b - a).cross(c - a), (a + b + c) / 3.0);
-                let axis = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
-                FaceId(if axis == 2 && n.z < 0.0 && m.x < 0.02 { 7 } else { 1 + 2 * axis as u32 + u32::from(n[axis] > 0.0) })
-            })
-            .collect();
+        crate::mesh::shapes::tag_hull(&mut mesh, |n, m| if n.z < -0.5 && m.x < 0.02 { 7 } else { crate::mesh::shapes::side_tag(n) });
         assert_eq!(mesh.validate(), Ok(()));
         let index = BoundaryIndex::new(&mesh);
         let strip = |t: &[u32; 4]| t.iter().filter(|&&v| mesh.vertices[v as usize].x < 0.5 && mesh.vertices[v as usize].z < 0.5).count() >= 3;

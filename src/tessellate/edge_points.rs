@@ -102,7 +102,8 @@ fn with_strips(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &[f64], s
     let mut out: Vec<f64> = vec![lo, hi];
     out.extend(strip.params.iter().copied().filter(|&t| t > lo && t < hi));
     // in a strip's tip, the chord's points only
-    out.extend(ts.iter().copied().filter(|&t| strip.tips.iter().any(|&(a, b)| t > a && t < b)));
+    let in_tips: Vec<f64> = ts.iter().copied().filter(|&t| strip.tips.iter().any(|&(a, b)| t > a && t < b)).collect();
+    out.extend(&in_tips);
     // the stretches no strip covers, spaced by the size
     let mut from = lo;
     for &(a, b) in covered.iter().chain([&(hi, hi)]) {
@@ -118,7 +119,7 @@ fn with_strips(p: &dyn Fn(f64) -> DVec3, d: &dyn Fn(f64) -> DVec3, ts: &[f64], s
     out.dedup();
     // the strips' points stay, and so do the chord's points in the tips
     let mut kept: Vec<f64> = strip.params.clone();
-    kept.extend(out.iter().copied().filter(|&t| strip.tips.iter().any(|&(a, b)| t > a && t < b)));
+    kept.extend(in_tips);
     kept.sort_by(f64::total_cmp);
     drop_slivers(p, d, &mut out, &kept, tol, cos_max);
     out

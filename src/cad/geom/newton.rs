@@ -160,7 +160,6 @@ pub struct SurfaceSamples {
 }
 
 impl SurfaceSamples {
-
     /// Samples `eval` on the grid `us × vs`.
     pub fn grid(us: &[f64], vs: &[f64], eval: impl Fn(f64, f64) -> DVec3) -> SurfaceSamples {
         let mut s = SurfaceSamples { uv: Vec::with_capacity(us.len() * vs.len()), p: Vec::with_capacity(us.len() * vs.len()), size: 0.0 };
@@ -170,10 +169,7 @@ impl SurfaceSamples {
                 s.p.push(eval(u, v));
             }
         }
-        if !s.p.is_empty() {
-            let (lo, hi) = s.p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &q| (l.min(q), h.max(q)));
-            s.size = (hi - lo).length();
-        }
+        s.size = crate::core::aabb::Aabb::from_points(&s.p).diagonal();
         s
     }
 

@@ -220,29 +220,20 @@ fn slide_of(v: u32, faces: &[&Face], pts: &[DVec3]) -> Option<Slide> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::shapes::kuhn_cube;
+    use crate::mesh::shapes::{kuhn_cube, side_tag, tag_hull};
     use crate::mesh3d::optimize::measure::Targets;
     use crate::mesh3d::optimize::smooth::Smoother;
 
     /// A `n × n × n` Kuhn cube with its hull faces as boundary, tagged by `tag(normal, centroid)`.
     fn cube(n: usize, tag: impl Fn(DVec3, DVec3) -> u32) -> TetMesh {
         let mut m = kuhn_cube(n, 0.0, 1);
-        m.boundary = m.hull_faces();
-        m.face_tags = m
-            .boundary
-            .iter()
-            .map(|f| {
-                let [a, b, c] = f.map(|v| m.vertices[v as usize]);
-                FaceId(tag((b - a).cross(c - a).normalize(), (a + b + c) / 3.0))
-            })
-            .collect();
+        tag_hull(&mut m, tag);
         m
     }
 
-    /// One tag per side of the cube (by the outward normal's axis and sign).
+    /// One tag per side of the cube.
     fn by_side(n: DVec3, _: DVec3) -> u32 {
-        let axis = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
-        1 + 2 * axis as u32 + u32::from(n[axis] > 0.0)
+        side_tag(n)
     }
 
     fn vertex(m: &TetMesh, p: DVec3) -> usize {
