@@ -203,3 +203,38 @@ fn a_cap_in_the_input_is_repaired_and_the_volume_meshes() {
     assert_eq!(r.input_caps_repaired, 1);
     assert!((m.volume() - 1.0 / 6.0).abs() < 1e-12, "{}", m.volume());
 }
+
+#[test]
+fn tets_on_a_thin_boundary_triangle_trade_radius_edge_for_dihedral_angles() {
+    // a unit cube whose top is a fan from a point near its side y = 1: the fan's triangle to
+    // that side has a corner of 168°, and with the surface kept every tet on it has a
+    // radius-edge ratio far above the bound. Two tets stayed at 6.4° without the focus
+    // phase's second round (dihedral angles alone, radius-edge ratios up to three times the
+    // bound) and with it at the usual radius-edge rule; with it they reach 11.4°
+    let mut s = TriSurface::default();
+    for k in 0..8 {
+        s.vertices.push(DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, (k >> 2) as f64));
+    }
+    s.vertices.push(DVec3::new(0.3, 0.95, 1.0));
+    // the corner (x, y, z) is vertex x + 2 y + 4 z; the sides outward, counter-clockwise
+    let sides: [([u32; 4], u32); 5] = [([0, 2, 3, 1], 1), ([0, 1, 5, 4], 2), ([3, 2, 6, 7], 3), ([0, 4, 6, 2], 4), ([1, 3, 7, 5], 5)];
+    for (q, tag) in sides {
+        for tri in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            s.triangles.push(tri);
+            s.face_tags.push(FaceId(tag));
+        }
+    }
+    let top = [4, 5, 7, 6];
+    for i in 0..4 {
+        s.triangles.push([8, top[i], top[(i + 1) % 4]]);
+        s.face_tags.push(FaceId(6));
+    }
+    let opts = MeshOptions::default().with_keep_surface(true);
+    let (m, r) = mesh_surface(&s, &Seeds::default(), &UniformSize(f64::INFINITY), &opts).unwrap();
+    check(&m, 1.0);
+    let q = crate::quality::tet_mesh_quality(&m);
+    let o = r.optimize.unwrap();
+    assert!(o.focus_dihedral_attempts > 0, "{o:?}");
+    assert!(q.min_dihedral_deg >= 10.0, "smallest dihedral angle {}° ({o:?})", q.min_dihedral_deg);
+    assert!(q.max_dihedral_deg < 170.0, "largest dihedral angle {}°", q.max_dihedral_deg);
+}

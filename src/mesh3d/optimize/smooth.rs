@@ -121,6 +121,11 @@ impl Smoother {
         true
     }
 
+    /// Forgets where smoothing failed (the targets changed: it may succeed there now).
+    pub(crate) fn forget_failures(&mut self) {
+        self.failed.clear();
+    }
+
     /// Moves free vertex `v` to raise the least score of its star; true if it moved. New tets
     /// keep radius-edge ratios within `max(max_re, the star's worst before)`.
     pub(crate) fn try_smooth(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {

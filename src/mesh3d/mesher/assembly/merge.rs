@@ -171,6 +171,7 @@ fn merge_optimize(a: &OptimizeReport, b: &OptimizeReport) -> OptimizeReport {
         attempts: a.attempts + b.attempts,
         polish_attempts: a.polish_attempts + b.polish_attempts,
         focus_attempts: a.focus_attempts + b.focus_attempts,
+        focus_dihedral_attempts: a.focus_dihedral_attempts + b.focus_dihedral_attempts,
         out_of_attempts: a.out_of_attempts || b.out_of_attempts,
         seconds: a.seconds + b.seconds,
         setup_seconds: a.setup_seconds + b.setup_seconds,
