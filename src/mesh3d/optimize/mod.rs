@@ -188,7 +188,7 @@ pub const FOCUS_SHARE: f64 = 0.1;
 /// of good dihedral angles but a high ratio (a needle) is sound for a solver, a sliver is
 /// not. On the three batches of real parts in docs/benchmarks.md, 3 took the parts whose every
 /// tet under 10° touches an input angle as small from 109 to 115 of 126; 1 (the usual rule)
-/// lifted none of the eight parts with a few such tets it was tried on.
+/// brought none of the eight failing parts it was tried on within that count.
 pub const FOCUS_RADIUS_EDGE: f64 = 3.0;
 
 impl Default for OptimizeOptions {
