@@ -37,10 +37,10 @@
 //!
 //! No change makes a tet's radius-edge ratio exceed [`OptimizeOptions::max_radius_edge`] unless
 //! one of the tets it replaces already did by more (in the second round of [`Focus`], around
-//! the tets left under its bound: [`FOCUS_RADIUS_EDGE`] times it). After the first pass, a bad tet is tried
-//! again only if a tet at one of its vertices changed since it last failed (its flips and the
-//! smoothing of its vertices depend only on those tets), and a vertex is smoothed again only if
-//! a tet at it changed.
+//! the tets left under its bound: [`FOCUS_RADIUS_EDGE`] times it). After the first pass, a bad
+//! tet is tried again only if a tet at one of its vertices changed since it last failed (its
+//! flips and the smoothing of its vertices depend only on those tets), and a vertex is smoothed
+//! again only if a tet at it changed.
 //! Insertion is allowed once a pass changes nothing, or from the third pass on; then every bad
 //! tet is tried once more. Insertion is tried at most once on a tet (the same four vertices).
 //! Passes stop when one changes nothing, after [`OptimizeOptions::max_passes`], or when
@@ -368,8 +368,8 @@ struct Optimizer<'a> {
     /// During [`Optimizer::focus`]: the vertices of its region (vertices inserted since are in
     /// it); only tets with a vertex in it are worked on.
     region: Option<Vec<bool>>,
-    /// The radius-edge bound of every change ([`OptimizeOptions::max_radius_edge`], higher in
-    /// the dihedral-only phase around the worst tets).
+    /// The radius-edge bound of every change ([`OptimizeOptions::max_radius_edge`];
+    /// [`FOCUS_RADIUS_EDGE`] times it in the focus phase's second round).
     max_re: f64,
 }
 
@@ -594,7 +594,8 @@ impl Optimizer<'_> {
     }
 
     /// The phase of [`Focus`]: the region around the tets under `f.below_deg`, worked on
-    /// toward `f.target_deg`, then the targets restored. Two rounds share its attempts:
+    /// toward `f.target_deg`, then the targets restored. Two rounds, each with its own
+    /// attempts (see [`Focus`]):
     /// 1. against the phase's targets with the radius-edge term in the score;
     /// 2. around the tets still under `f.below_deg`, against the dihedral targets alone, each
     ///    change allowed radius-edge ratios up to [`FOCUS_RADIUS_EDGE`] times the bound (or
