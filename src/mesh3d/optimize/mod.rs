@@ -616,31 +616,32 @@ impl Optimizer<'_> {
         let dihedral = Targets::new(f.target_deg, self.opts.max_dihedral_deg).with_hi_cap(cap);
         self.w.retarget(dihedral.with_radius_edge(self.opts.max_radius_edge));
         self.region = Some(region);
-        let start = self.report.attempts;
-        let share = (FOCUS_SHARE * start as f64) as usize;
-        let limit = start.saturating_add(FOCUS_TRIES.saturating_mul(self.bad_tets().len()).min(share));
+        let share = (FOCUS_SHARE * self.report.attempts as f64) as usize;
         let out_of_attempts = self.report.out_of_attempts;
-        // insertion and smoothing failed on some tets against the old targets: they may
-        // succeed now
-        self.insert_failed.clear();
-        self.sm.forget_failures();
-        self.passes_below(1.0, limit);
-        self.report.focus_attempts = self.report.attempts - start;
+        self.report.focus_attempts = self.focus_round(share);
         self.region = self.focus_region(f.below_deg);
         if self.region.is_some() {
             self.w.retarget(dihedral);
             self.max_re = FOCUS_RADIUS_EDGE * self.opts.max_radius_edge;
-            self.insert_failed.clear();
-            self.sm.forget_failures();
-            let second = self.report.attempts;
-            let limit = second.saturating_add(FOCUS_TRIES.saturating_mul(self.bad_tets().len()).min(share));
-            self.passes_below(1.0, limit);
-            self.report.focus_dihedral_attempts = self.report.attempts - second;
+            self.report.focus_dihedral_attempts = self.focus_round(share);
             self.max_re = self.opts.max_radius_edge;
         }
         self.report.out_of_attempts = out_of_attempts;
         self.region = None;
         self.w.retarget(tg);
+    }
+
+    /// One round of [`Optimizer::focus`] on its region against the current targets, within
+    /// [`FOCUS_TRIES`] attempts per tet under them and at most `share`; the attempts made.
+    fn focus_round(&mut self, share: usize) -> usize {
+        let start = self.report.attempts;
+        let limit = start.saturating_add(FOCUS_TRIES.saturating_mul(self.bad_tets().len()).min(share));
+        // insertion and smoothing failed on some tets against the old targets: they may
+        // succeed now
+        self.insert_failed.clear();
+        self.sm.forget_failures();
+        self.passes_below(1.0, limit);
+        self.report.attempts - start
     }
 
     /// The vertices within [`FOCUS_RINGS`] rings of the tets under `below` degrees, `None`
