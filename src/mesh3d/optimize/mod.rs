@@ -51,6 +51,10 @@
 //! [`OptimizeOptions::polish`] (1 %) above the smallest-angle target as if the target were that
 //! much higher, a few attempts each: the smallest angle is not left a hair above the target,
 //! and it cannot fall (see `Optimizer::polish`).
+//! Where tets are left under a bound ([`Focus`]), the tets around them are worked on once more,
+//! and last the position of each movable vertex of the tets still under it is searched by
+//! deterministic random samples (`search.rs`): no tet of its star ends worse than the star's
+//! least before, no more of them under the bound.
 //!
 //! The defaults aim a little above the usual acceptance figures (smallest dihedral angle 16°,
 //! largest 158°, radius-edge 2), so that tets that cannot reach the targets usually still clear
@@ -69,6 +73,7 @@ mod edge_removal;
 mod face_removal;
 mod insert;
 mod measure;
+mod search;
 mod slide;
 mod smooth;
 mod work;
@@ -83,6 +88,7 @@ use edge_removal::EdgeRemoval;
 use face_removal::try_flip23;
 use insert::Inserter;
 use measure::{Targets, cosines, normals};
+use search::Searcher;
 use serde::Serialize;
 use smooth::Smoother;
 use std::time::Instant;
@@ -165,7 +171,10 @@ pub struct OptimizeOptions {
 /// targets). A second round, with as many attempts again (counted in
 /// [`OptimizeReport::focus_dihedral_attempts`]), works around the tets still under
 /// `below_deg` against the dihedral targets alone, with changes allowed radius-edge ratios up
-/// to [`FOCUS_RADIUS_EDGE`] times the bound (`Optimizer::focus`).
+/// to [`FOCUS_RADIUS_EDGE`] times the bound (`Optimizer::focus`). Last, each movable vertex
+/// of the tets still under `below_deg` is moved where samples around it find its star better
+/// (`search.rs`, at most [`SEARCH_VERTICES`] vertices, each once; counted in
+/// [`OptimizeReport::searched_vertices`] and [`OptimizeReport::search_moves`]).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Focus {
     /// Tets under this smallest dihedral angle (degrees) start the phase.
@@ -173,6 +182,11 @@ pub struct Focus {
     /// The smallest-angle target of the phase (degrees).
     pub target_deg: f64,
 }
+
+/// The most vertices the search after the focus phase's rounds works on (`search.rs`): a
+/// budget that bounds its work on a part with thousands of tets under the bound near small
+/// input angles (at most 8,000 samples a vertex).
+pub const SEARCH_VERTICES: usize = 20_000;
 
 /// The rings of tets (sharing a vertex) around the worst tets that [`Focus`] works on.
 pub const FOCUS_RINGS: usize = 2;
@@ -328,6 +342,11 @@ pub struct OptimizeReport {
     /// Of those, attempts of the phase's second round, against the dihedral targets alone
     /// (its own share of the attempts made before the phase).
     pub focus_dihedral_attempts: usize,
+    /// Vertices of the tets left under the focus phase's bound whose position was searched
+    /// by samples after its rounds (`search.rs`).
+    pub searched_vertices: usize,
+    /// Of those, the vertices moved.
+    pub search_moves: usize,
     /// True if [`OptimizeOptions::max_attempts`] stopped the work.
     pub out_of_attempts: bool,
     /// Wall-clock seconds, adjacency and summaries included.
@@ -359,6 +378,7 @@ struct Optimizer<'a> {
     opts: &'a OptimizeOptions,
     er: EdgeRemoval,
     sm: Smoother,
+    search: Searcher,
     ins: Inserter,
     report: OptimizeReport,
     /// Per tet slot, the [`Work::clock`] when [`Optimizer::improve`] last failed on it.
@@ -624,6 +644,7 @@ impl Optimizer<'_> {
             self.w.retarget(dihedral);
             self.max_re = FOCUS_RADIUS_EDGE * self.opts.max_radius_edge;
             self.report.focus_dihedral_attempts = self.focus_round(share);
+            self.search_below(f.below_deg);
             self.max_re = self.opts.max_radius_edge;
         }
         self.report.out_of_attempts = out_of_attempts;
@@ -642,6 +663,30 @@ impl Optimizer<'_> {
         self.sm.forget_failures();
         self.passes_below(1.0, limit);
         self.report.attempts - start
+    }
+
+    /// The search of `search.rs` on each movable vertex of the tets under `below` degrees,
+    /// worst tet first, each vertex once, at most [`SEARCH_VERTICES`] vertices.
+    fn search_below(&mut self, below: f64) {
+        let mut bad: Vec<(f64, u32)> = self.w.live_slots().map(|t| (self.w.judged[t as usize].lo, t)).filter(|&(lo, _)| lo < below).collect();
+        bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut tried = rustc_hash::FxHashSet::default();
+        for (_, t) in bad {
+            if !self.w.alive(t) || !(self.w.judged[t as usize].lo < below) {
+                continue;
+            }
+            for v in self.w.tets[t as usize] {
+                if tried.len() >= SEARCH_VERTICES || !self.w.movable(v) || !tried.insert(v) {
+                    continue;
+                }
+                self.report.searched_vertices += 1;
+                if self.search.try_search(&mut self.w, v, self.max_re, below) {
+                    self.report.search_moves += 1;
+                    self.report.smoothing_moves += 1;
+                    self.report.boundary_moves += usize::from(self.w.fixed[v as usize]);
+                }
+            }
+        }
     }
 
     /// The vertices within [`FOCUS_RINGS`] rings of the tets under `below` degrees, `None`
@@ -706,6 +751,7 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
         opts,
         er: EdgeRemoval::default(),
         sm: Smoother::default(),
+        search: Searcher::default(),
         ins: Inserter::default(),
         report,
         failed: Vec::new(),

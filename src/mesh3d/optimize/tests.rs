@@ -315,6 +315,8 @@ fn the_focus_works_around_the_worst_tets_within_its_share_and_caps_the_largest_a
     assert!(r.focus_attempts > 0 && r.focus_attempts as f64 <= FOCUS_SHARE * r0.attempts as f64 + 1.0, "{r:?}");
     // the second round (the hull's slivers stay under the bound) within its own share
     assert!(r.focus_dihedral_attempts > 0 && r.focus_dihedral_attempts as f64 <= FOCUS_SHARE * r0.attempts as f64 + 1.0, "{r:?}");
+    // then the search, on the free vertices of the tets still under the bound
+    assert!(r.searched_vertices > 0 && r.search_moves <= r.searched_vertices, "{r:?}");
     let (lo, hi) = min_max_dihedral(&out);
     // the hull's slivers cannot change (their faces are the boundary); the others around them
     // get better, and the worst does not get worse
@@ -326,5 +328,5 @@ fn the_focus_works_around_the_worst_tets_within_its_share_and_caps_the_largest_a
     let mut kept = good.clone();
     let r = optimize(&mut kept, &OptimizeOptions::default().with_focus(Some(Focus { below_deg: 10.0, target_deg: 30.0 }))).unwrap();
     assert_eq!(kept, good);
-    assert_eq!((r.focus_attempts, r.focus_dihedral_attempts), (0, 0));
+    assert_eq!((r.focus_attempts, r.focus_dihedral_attempts, r.searched_vertices), (0, 0, 0));
 }
