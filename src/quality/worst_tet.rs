@@ -19,6 +19,12 @@ use crate::quality::tetrahedron::{TET_EDGES, tet_measures};
 use glam::DVec3;
 use serde::Serialize;
 
+/// A small input angle that a tet does not touch is named with the tet's place when it lies
+/// within this many of the tet's longest edges: a sliver flat against a wall a few tet
+/// lengths from a knife edge of the part (where the gap between the walls is a fraction of
+/// the tet) is there because of it, and the user is shown where it is and how far.
+pub const NEAR_REACH: f64 = 4.0;
+
 /// A tet touches an input angle when one of its vertices lies within this fraction of its
 /// longest edge from the angle's edge or vertex (Steiner points on an input edge are on it up
 /// to rounding).
@@ -109,9 +115,9 @@ pub struct TetPlace {
     pub nearest_face: Option<NearestFace>,
     /// The nearest feature edge (none when the boundary has one tag).
     pub nearest_edge: Option<NearestEdge>,
-    /// The smallest input angle the tet touches; else the nearest whose edge or vertex lies
-    /// within the tet's longest edge of one of its vertices (none when no small angle is
-    /// that near).
+    /// The smallest input angle the tet touches; else the smallest between whose sides it
+    /// lies; else the nearest whose edge or vertex lies within [`NEAR_REACH`] times the tet's
+    /// longest edge of one of its vertices (none when no small angle is that near).
     pub input_angle: Option<NearAngle>,
     /// The narrowest face at the tet's vertices, where its width is under
     /// [`NARROW_RELATIVE`] of the tet's longest edge.
@@ -226,8 +232,8 @@ impl BoundaryIndex {
             NearestEdge { faces, names: faces.map(name), point: q.to_array(), distance: d }
         });
         // the smallest angle the tet touches (angles come smallest first), else the nearest
-        // one within its longest edge
-        let near: Vec<(usize, f64)> = angles.iter().enumerate().map(|(k, a)| (k, p.iter().map(|&v| a.distance(v)).fold(f64::INFINITY, f64::min))).filter(|&(_, d)| d <= longest).collect();
+        // one within reach
+        let near: Vec<(usize, f64)> = angles.iter().enumerate().map(|(k, a)| (k, p.iter().map(|&v| a.distance(v)).fold(f64::INFINITY, f64::min))).filter(|&(_, d)| d <= NEAR_REACH * longest).collect();
         let touch = near.iter().find(|&&(_, d)| d <= TOUCH_RELATIVE * longest).copied();
         // else the smallest angle between whose sides it lies, else the nearest in reach
         let between = || {
