@@ -311,12 +311,14 @@ fn the_focus_works_around_the_worst_tets_within_its_share_and_caps_the_largest_a
     let r = optimize(&mut out, &opts.clone().with_focus(Some(focus))).unwrap();
     check_kept(&m, &out, &r);
     // the same work first, then the phase within its share of the attempts made before it
-    assert_eq!(r.attempts - r.focus_attempts - r.focus_dihedral_attempts, r0.attempts, "{r:?}");
+    assert_eq!(r.attempts - r.focus_attempts - r.focus_dihedral_attempts - r.focus_repeat_attempts, r0.attempts, "{r:?}");
     assert!(r.focus_attempts > 0 && r.focus_attempts as f64 <= FOCUS_SHARE * r0.attempts as f64 + 1.0, "{r:?}");
     // the second round (the hull's slivers stay under the bound) within its own share
     assert!(r.focus_dihedral_attempts > 0 && r.focus_dihedral_attempts as f64 <= FOCUS_SHARE * r0.attempts as f64 + 1.0, "{r:?}");
-    // then the search, on the free vertices of the tets still under the bound
+    // then the search, on the free vertices of the tets still under the bound, and the
+    // round's repeats, each within its own share
     assert!(r.searched_vertices > 0 && r.search_moves <= r.searched_vertices, "{r:?}");
+    assert!(r.focus_repeat_attempts as f64 <= (FOCUS_SEARCH_ROUNDS - 1) as f64 * (FOCUS_SHARE * r0.attempts as f64 + 1.0), "{r:?}");
     let (lo, hi) = min_max_dihedral(&out);
     // the hull's slivers cannot change (their faces are the boundary); the others around them
     // get better, and the worst does not get worse
@@ -328,5 +330,5 @@ fn the_focus_works_around_the_worst_tets_within_its_share_and_caps_the_largest_a
     let mut kept = good.clone();
     let r = optimize(&mut kept, &OptimizeOptions::default().with_focus(Some(Focus { below_deg: 10.0, target_deg: 30.0 }))).unwrap();
     assert_eq!(kept, good);
-    assert_eq!((r.focus_attempts, r.focus_dihedral_attempts, r.searched_vertices), (0, 0, 0));
+    assert_eq!((r.focus_attempts, r.focus_dihedral_attempts, r.focus_repeat_attempts, r.searched_vertices), (0, 0, 0, 0));
 }

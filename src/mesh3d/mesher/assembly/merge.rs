@@ -172,6 +172,7 @@ fn merge_optimize(a: &OptimizeReport, b: &OptimizeReport) -> OptimizeReport {
         polish_attempts: a.polish_attempts + b.polish_attempts,
         focus_attempts: a.focus_attempts + b.focus_attempts,
         focus_dihedral_attempts: a.focus_dihedral_attempts + b.focus_dihedral_attempts,
+        focus_repeat_attempts: a.focus_repeat_attempts + b.focus_repeat_attempts,
         searched_vertices: a.searched_vertices + b.searched_vertices,
         search_moves: a.search_moves + b.search_moves,
         out_of_attempts: a.out_of_attempts || b.out_of_attempts,
