@@ -182,12 +182,7 @@ impl Searcher {
         if !(f > f0 + MIN_GAIN) {
             return false;
         }
-        w.pts[v as usize] = x;
-        w.tick();
-        for &t in &self.star {
-            w.rescore(t);
-            w.touch(t);
-        }
+        w.move_vertex(v, x, &self.star);
         true
     }
 }

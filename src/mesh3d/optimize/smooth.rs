@@ -167,12 +167,7 @@ impl Smoother {
                 return false;
             }
         }
-        w.pts[v as usize] = x;
-        w.tick();
-        for &t in &self.star {
-            w.rescore(t);
-            w.touch(t);
-        }
+        w.move_vertex(v, x, &self.star);
         true
     }
 
@@ -249,12 +244,7 @@ impl Smoother {
         if f <= f0 + MIN_GAIN {
             return false;
         }
-        w.pts[v as usize] = x;
-        w.tick();
-        for &t in &self.star {
-            w.rescore(t);
-            w.touch(t);
-        }
+        w.move_vertex(v, x, &self.star);
         true
     }
 }

@@ -346,6 +346,17 @@ impl Work {
         self.clock += 1;
     }
 
+    /// Moves vertex `v` to `x`, its star `star` (checked positive there by the caller):
+    /// counts the move, rescores and touches the star's tets.
+    pub(crate) fn move_vertex(&mut self, v: u32, x: DVec3, star: &[u32]) {
+        self.pts[v as usize] = x;
+        self.tick();
+        for &t in star {
+            self.rescore(t);
+            self.touch(t);
+        }
+    }
+
     /// Marks the vertices of live tet `t` as touched now (its shape changed).
     #[inline]
     pub(crate) fn touch(&mut self, t: u32) {
