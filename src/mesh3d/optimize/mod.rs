@@ -76,6 +76,7 @@ mod measure;
 mod search;
 mod slide;
 mod smooth;
+mod star;
 mod work;
 
 #[cfg(test)]
@@ -173,8 +174,10 @@ pub struct OptimizeOptions {
 /// `below_deg` against the dihedral targets alone, with changes allowed radius-edge ratios up
 /// to [`FOCUS_RADIUS_EDGE`] times the bound (`Optimizer::focus`). Last, each movable vertex
 /// of the tets still under `below_deg` is moved where samples around it find its star better
-/// (`search.rs`, at most [`SEARCH_VERTICES`] vertices, each once; counted in
-/// [`OptimizeReport::searched_vertices`] and [`OptimizeReport::search_moves`]).
+/// (`search.rs`, at most [`SEARCH_VERTICES`] vertices, each once a time; counted in
+/// [`OptimizeReport::searched_vertices`] and [`OptimizeReport::search_moves`]); the second
+/// round and the search run again while tets under `below_deg` are left, up to
+/// [`FOCUS_SEARCH_ROUNDS`] times in all.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Focus {
     /// Tets under this smallest dihedral angle (degrees) start the phase.
@@ -624,7 +627,8 @@ impl Optimizer<'_> {
 
     /// The phase of [`Focus`]: the region around the tets under `f.below_deg`, worked on
     /// toward `f.target_deg`, then the targets restored. Two rounds, each with its own
-    /// attempts (see [`Focus`]):
+    /// attempts (see [`Focus`]), the second followed by the search and run again while tets
+    /// under the bound are left, up to [`FOCUS_SEARCH_ROUNDS`] times:
     /// 1. against the phase's targets with the radius-edge term in the score;
     /// 2. around the tets still under `f.below_deg`, against the dihedral targets alone, each
     ///    change allowed radius-edge ratios up to [`FOCUS_RADIUS_EDGE`] times the bound (or

@@ -28,7 +28,8 @@
 use crate::core::Sign;
 use crate::core::predicates::orient3d;
 use crate::mesh3d::optimize::measure::Judged;
-use crate::mesh3d::optimize::work::{Work, local};
+use crate::mesh3d::optimize::star::Star;
+use crate::mesh3d::optimize::work::Work;
 use glam::DVec3;
 
 /// The weight of the largest angle's gap to 180° in the merit: 10° for a gap of 15°.
@@ -86,19 +87,10 @@ impl Rng {
 /// Scratch space for the search, reused across calls.
 #[derive(Default)]
 pub(crate) struct Searcher {
-    star: Vec<u32>,
-    at: Vec<u8>,
+    star: Star,
 }
 
 impl Searcher {
-    /// The tet of star entry `s` with the vertex at `x`.
-    #[inline]
-    fn corners_at(&self, w: &Work, s: usize, x: DVec3) -> [DVec3; 4] {
-        let mut p = w.corners(&w.tets[self.star[s] as usize]);
-        p[self.at[s] as usize] = x;
-        p
-    }
-
     /// The star's least merit with the vertex at `x`, `None` where a tet would not be
     /// positively oriented (exact), would pass `max_re`, or where more than `most_under` tets
     /// would have a merit under `below`. It may stop at a tet whose merit is at most `beat`
@@ -108,7 +100,7 @@ impl Searcher {
         let mut least = f64::INFINITY;
         let mut under = 0;
         for s in 0..self.star.len() {
-            let p = self.corners_at(w, s, x);
+            let p = self.star.corners_at(w, s, x);
             if orient3d(p[0], p[1], p[2], p[3]) != Sign::Positive {
                 return None;
             }
@@ -133,31 +125,21 @@ impl Searcher {
     /// true if it moved. New tets keep radius-edge ratios within `max(max_re, the star's worst
     /// before)`, and no more tets of the star than before have a merit under `below`.
     pub(crate) fn try_search(&mut self, w: &mut Work, v: u32, max_re: f64, below: f64) -> bool {
-        if !w.movable(v) || !w.star(v, &mut self.star) {
+        if !self.star.load(w, v) {
             return false;
         }
         // the star's worst tets first, so that most samples are judged on a few tets
-        let judged = |t: &u32| w.judged[*t as usize];
-        self.star.sort_by(|a, b| merit(&judged(a)).total_cmp(&merit(&judged(b))).then(a.cmp(b)));
-        self.at.clear();
-        for &t in &self.star {
-            self.at.push(local(&w.tets[t as usize], v).unwrap_or(0) as u8);
-        }
+        self.star.order_by(|t| merit(&w.judged[t as usize]));
         let x0 = w.pts[v as usize];
-        let f0 = self.star.iter().map(|&t| merit(&w.judged[t as usize])).fold(f64::INFINITY, f64::min);
-        let under0 = self.star.iter().filter(|&&t| merit(&w.judged[t as usize]) < below).count();
-        let re0 = self.star.iter().map(|&t| w.judged[t as usize].re).fold(0.0, f64::max);
+        let f0 = self.star.tets.iter().map(|&t| merit(&w.judged[t as usize])).fold(f64::INFINITY, f64::min);
+        let under0 = self.star.tets.iter().filter(|&&t| merit(&w.judged[t as usize]) < below).count();
+        let re0 = self.star.tets.iter().map(|&t| w.judged[t as usize].re).fold(0.0, f64::max);
         let bound = max_re.max(re0);
         // no largest angle past the star's, or past the one a merit of `below` allows
-        let hi0 = self.star.iter().map(|&t| w.judged[t as usize].hi).fold(0.0, f64::max);
+        let hi0 = self.star.tets.iter().map(|&t| w.judged[t as usize].hi).fold(0.0, f64::max);
         let max_hi = hi0.max(180.0 - below / HI_WEIGHT);
         let slide = w.slide[v as usize];
-        let mut scale = 0.0;
-        for s in 0..self.star.len() {
-            let p = self.corners_at(w, s, x0);
-            scale += (0..4).map(|i| p[i].distance(x0)).sum::<f64>() / 3.0;
-        }
-        scale /= self.star.len() as f64;
+        let scale = self.star.scale(w, x0);
         let mut rng = Rng(u64::from(v).wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x5EED);
         let (mut x, mut f) = (x0, f0);
         for _ in 0..REPEATS {
@@ -182,7 +164,7 @@ impl Searcher {
         if !(f > f0 + MIN_GAIN) {
             return false;
         }
-        w.move_vertex(v, x, &self.star);
+        w.move_vertex(v, x, &self.star.tets);
         true
     }
 }

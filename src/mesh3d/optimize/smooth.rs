@@ -24,7 +24,8 @@ use crate::core::Sign;
 use crate::core::predicates::orient3d;
 use crate::mesh3d::optimize::measure::{LeastScore, Term, terms_below};
 use crate::mesh3d::optimize::slide::Slide;
-use crate::mesh3d::optimize::work::{Work, local};
+use crate::mesh3d::optimize::star::Star;
+use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::tet_radius_edge;
 use glam::DVec3;
 
@@ -42,8 +43,7 @@ pub(crate) const MIN_GAIN: f64 = 1e-6;
 /// Scratch space for smoothing, reused across calls.
 #[derive(Default)]
 pub(crate) struct Smoother {
-    star: Vec<u32>,
-    at: Vec<u8>,
+    star: Star,
     terms: Vec<Term>,
     grads: Vec<DVec3>,
     /// Per vertex, the [`Work::clock`] when smoothing it last failed (0: never).
@@ -75,14 +75,6 @@ fn min_norm(g: &[DVec3]) -> DVec3 {
 }
 
 impl Smoother {
-    /// The tet of star entry `s` with vertex `v` at `x`.
-    #[inline]
-    fn corners_at(&self, w: &Work, s: usize, x: DVec3) -> [DVec3; 4] {
-        let mut p = w.corners(&w.tets[self.star[s] as usize]);
-        p[self.at[s] as usize] = x;
-        p
-    }
-
     /// The least score of the star with the vertex at `x`, or `None` if a tet would not be
     /// positively oriented (exact). It may stop at a tet that surely scores at most `beat`
     /// and then gives a value at most `beat` (the caller only asks whether `beat` is beaten).
@@ -94,7 +86,7 @@ impl Smoother {
         let (fail_lo, fail_hi) = fail;
         let mut least = LeastScore::new();
         for s in 0..self.star.len() {
-            let [a, b, c, d] = self.corners_at(w, s, x);
+            let [a, b, c, d] = self.star.corners_at(w, s, x);
             if orient3d(a, b, c, d) != Sign::Positive {
                 return None;
             }
@@ -107,18 +99,6 @@ impl Smoother {
             }
         }
         Some(least.value(&w.tg))
-    }
-
-    /// Loads the star of `v`; false if `v` is fixed or has no star.
-    fn load(&mut self, w: &mut Work, v: u32) -> bool {
-        if !w.movable(v) || !w.star(v, &mut self.star) {
-            return false;
-        }
-        self.at.clear();
-        for &t in &self.star {
-            self.at.push(local(&w.tets[t as usize], v).unwrap_or(0) as u8);
-        }
-        true
     }
 
     /// Forgets where smoothing failed (the targets changed: it may succeed there now).
@@ -145,11 +125,11 @@ impl Smoother {
     }
 
     fn smooth_free(&mut self, w: &mut Work, v: u32, max_re: f64) -> bool {
-        if !self.load(w, v) {
+        if !self.star.load(w, v) {
             return false;
         }
         let x0 = w.pts[v as usize];
-        let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        let f0 = self.star.tets.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
         let slide = w.slide[v as usize];
         let Some((x, f)) = self.optimise(w, x0, f0, slide) else {
             return false;
@@ -159,15 +139,15 @@ impl Smoother {
         }
         let mut old_re = 0.0f64;
         for s in 0..self.star.len() {
-            old_re = old_re.max(tet_radius_edge(&self.corners_at(w, s, x0)));
+            old_re = old_re.max(tet_radius_edge(&self.star.corners_at(w, s, x0)));
         }
         let bound = max_re.max(old_re);
         for s in 0..self.star.len() {
-            if tet_radius_edge(&self.corners_at(w, s, x)) > bound {
+            if tet_radius_edge(&self.star.corners_at(w, s, x)) > bound {
                 return false;
             }
         }
-        w.move_vertex(v, x, &self.star);
+        w.move_vertex(v, x, &self.star.tets);
         true
     }
 
@@ -175,20 +155,15 @@ impl Smoother {
     /// position found and its least score, every star tet positive there.
     fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64, slide: Option<Slide>) -> Option<(DVec3, f64)> {
         // a length scale: the mean distance to the star's other vertices
-        let mut scale = 0.0;
-        for s in 0..self.star.len() {
-            let p = self.corners_at(w, s, x0);
-            scale += (0..4).map(|i| p[i].distance(x0)).sum::<f64>() / 3.0;
-        }
-        scale /= self.star.len() as f64;
+        let scale = self.star.scale(w, x0);
         let (mut x, mut f) = (x0, f0);
         for _ in 0..ITERATIONS {
             self.terms.clear();
             let quiet = w.tg.quiet_cosines(f + WINDOW);
             for s in 0..self.star.len() {
-                let p = self.corners_at(w, s, x);
+                let p = self.star.corners_at(w, s, x);
                 let terms = &mut self.terms;
-                terms_below(&p, self.at[s] as usize, &w.tg, f + WINDOW, quiet, f + ACTIVE, |t| terms.push(t));
+                terms_below(&p, self.star.at(s), &w.tg, f + WINDOW, quiet, f + ACTIVE, |t| terms.push(t));
             }
             self.grads.clear();
             for t in &self.terms {
@@ -233,18 +208,18 @@ impl Smoother {
     /// [`Smoother::try_smooth`] without the radius-edge comparison (the caller judges the
     /// result); true if it moved.
     pub(crate) fn smooth_new(&mut self, w: &mut Work, v: u32) -> bool {
-        if !self.load(w, v) {
+        if !self.star.load(w, v) {
             return false;
         }
         let x0 = w.pts[v as usize];
-        let f0 = self.star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        let f0 = self.star.tets.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
         let Some((x, f)) = self.optimise(w, x0, f0, None) else {
             return false;
         };
         if f <= f0 + MIN_GAIN {
             return false;
         }
-        w.move_vertex(v, x, &self.star);
+        w.move_vertex(v, x, &self.star.tets);
         true
     }
 }
