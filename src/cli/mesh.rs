@@ -75,6 +75,13 @@ pub struct Args {
     /// Keep the input surface exactly: no Steiner point on the boundary.
     #[arg(long)]
     pub keep_surface: bool,
+    /// Close up strips of the input narrower than L (model units) before meshing: a sliver
+    /// face, a step between two faces that almost meet, which no quality mesh resolves at a
+    /// sensible size (Gmsh's small-face fixing, a CAD mesher's defeaturing tolerance). Short
+    /// edges collapse and flat triangles go to their neighbours; the report lists the faces
+    /// that lost triangles. Default 1e-4 of the diagonal; 0 keeps every strip.
+    #[arg(long, value_name = "L", value_parser = crate::cli::parse_fraction)]
+    pub narrow_tol: Option<f64>,
     /// The volume mesher: `delaunay` (a closed, non-self-intersecting surface, kept as the
     /// boundary) or `octree` (isosurface stuffing on a BCC lattice of cell size --size;
     /// without one, diagonal / 25 made finer by √2 until every solid holds lattice vertices
@@ -151,7 +158,7 @@ pub fn run(args: &Args) -> Result<()> {
     let plan = Plan {
         density,
         unit: 1.0,
-        mesh: crate::mesh3d::mesher::MeshOptions::default().with_max_radius_edge(args.max_radius_edge).with_min_dihedral(args.min_dihedral).with_keep_surface(args.keep_surface),
+        mesh: crate::mesh3d::mesher::MeshOptions::default().with_max_radius_edge(args.max_radius_edge).with_min_dihedral(args.min_dihedral).with_keep_surface(args.keep_surface).with_narrow_tolerance(args.narrow_tol),
         require_min_dihedral: args.require_min_dihedral,
         require_max_radius_edge: args.require_max_radius_edge,
         require_volume_error: args.require_volume_error,

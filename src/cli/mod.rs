@@ -235,6 +235,19 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
     if m.input_caps_repaired > 0 {
         outln!("input caps       {} flat input triangles with a vertex on their long side, each repaired with its neighbour", m.input_caps_repaired);
     }
+    if let Some(n) = &m.narrow {
+        let mut faces = n.faces.clone();
+        faces.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+        let list: Vec<String> = faces.iter().take(6).map(|(f, k)| format!("{} ({k})", f.0)).collect();
+        let more = if faces.len() > 6 { format!(" and {} more", faces.len() - 6) } else { String::new() };
+        outln!(
+            "narrow strips    input narrower than {} closed up (--narrow-tol; 0 keeps them): {} short edges collapsed, {} flat triangles given to their neighbours; triangles lost by face {}{more}",
+            fmt_num(n.tolerance),
+            n.collapses,
+            n.caps,
+            list.join(", ")
+        );
+    }
     if m.flattening_volume > 1e-9 * m.volume.abs() {
         outln!("flat facets      input triangles flat within 0.1° merged and retriangulated (TetGen's -p rule): the volume moves by at most {} ({:.2e} of it)", fmt_num(m.flattening_volume), m.flattening_volume / m.volume.abs().max(f64::MIN_POSITIVE));
     }

@@ -23,7 +23,7 @@ A job file (every key in docs/job-file.md):
   size = 4.5                                   # global; grading, min, max, curvature, deviation
   face = [{ faces = \"holes\", size = 2.25 }]    # also: distance, point, box
   [mesh]
-  method = \"delaunay\"                          # max_radius_edge, min_dihedral, keep_surface
+  method = \"delaunay\"                          # max_radius_edge, min_dihedral, keep_surface, narrow_tolerance
   [[output]]
   file = \"bracket.msh\"                         # .msh .vtu .mesh .ele (tets), .stl .obj (surface), .json (report),
                                                # .inp (CalculiX/Abaqus deck: needs [materials], [[section]], [[step]])

@@ -5,6 +5,7 @@
 //! adjacency is derived on demand, never stored.
 
 pub mod caps;
+pub mod narrow;
 pub mod error;
 pub mod planar_mesh;
 pub mod shapes;

@@ -137,6 +137,9 @@ pub struct MeshSection {
     /// See [`MeshOptions::keep_surface`].
     #[serde(default)]
     pub keep_surface: bool,
+    /// See [`MeshOptions::narrow_tolerance`]: a length in the job's unit, 0 keeps every
+    /// strip (default 1e-4 of the diagonal).
+    pub narrow_tolerance: Option<Spanned<f64>>,
     /// See [`MeshOptions::optimize`] (default true).
     pub optimize: Option<bool>,
 }
@@ -283,6 +286,11 @@ impl JobFile {
                 return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35]", d.get_ref())));
             }
         }
+        if let Some(t) = &m.narrow_tolerance {
+            if !(t.get_ref().is_finite() && *t.get_ref() >= 0.0) {
+                return Err(self.error_at(t.span().start, format!("key `narrow_tolerance`: {} must be a length >= 0 (0 keeps every strip)", t.get_ref())));
+            }
+        }
         if let Some(d) = &self.job.require.min_dihedral {
             if !(d.get_ref().is_finite() && (0.0..=35.0).contains(d.get_ref())) {
                 return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35] (no mesher can promise more)", d.get_ref())));
@@ -346,6 +354,10 @@ impl JobFile {
         }
         if let Some(on) = m.optimize {
             o = o.with_optimize(on);
+        }
+        if let Some(t) = &m.narrow_tolerance {
+            // in the job's unit: the caller scales it to the part's (see `carry_out`)
+            o = o.with_narrow_tolerance(Some(*t.get_ref()));
         }
         o
     }
@@ -481,6 +493,9 @@ file = "part.json"
         let (line, m) = err("[input]\nfile = \"a.step\"\n[mesh]\nmax_radius_edge = 0.5\n");
         assert_eq!(line, 4, "{m}");
         assert!(m.contains("max_radius_edge"), "{m}");
+        let (line, m) = err("[input]\nfile = \"a.step\"\n[mesh]\nnarrow_tolerance = -1\n");
+        assert_eq!(line, 4, "{m}");
+        assert!(m.contains("narrow_tolerance"), "{m}");
         let (line, m) = err("[input]\nfile = \"a.step\"\n[require]\nmin_dihedral = 50\n");
         assert_eq!(line, 4, "{m}");
         assert!(m.contains("min_dihedral") && m.contains("[0, 35]"), "{m}");

@@ -198,7 +198,11 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         density: job.density.clone(),
         unit,
         method: jf.method(),
-        mesh: jf.mesh_options(),
+        mesh: {
+            let o = jf.mesh_options();
+            let tol = o.narrow_tolerance.map(|t| t * unit);
+            o.with_narrow_tolerance(tol)
+        },
         octree: jf.octree_options(),
         require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),

@@ -98,6 +98,9 @@ pub struct MeshSummary {
     /// Input triangles that were caps (flat up to rounding, a vertex on their long side),
     /// each repaired with its neighbour before meshing.
     pub input_caps_repaired: usize,
+    /// The strips narrower than the narrow tolerance closed up before meshing (a sliver face,
+    /// a step between two faces that almost meet), where there were any.
+    pub narrow: Option<crate::mesh::narrow::NarrowReport>,
     /// The most the volume can differ from the input's by merging nearly flat input triangles
     /// into facets (TetGen's `-p` rule, 0.1 degrees); zero for exactly flat ones.
     pub flattening_volume: f64,
@@ -119,10 +122,11 @@ pub(crate) struct Summarised {
 /// them); a tag not in it keeps the mesh's own name.
 pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &MeshReport, plan: &Plan, face_table: &[FaceEntry], cad_volume: Option<f64>) -> Summarised {
     let bound = plan.require_min_dihedral.unwrap_or(plan.mesh.min_dihedral);
-    // the angles of the surface the mesher took: where it repaired caps, repaired the same
-    // way (their zero angles are gone); found while the tets are judged
-    let repaired = if report.input_caps_repaired > 0 { surface.and_then(crate::mesh::caps::repair_caps) } else { None };
-    let surface = repaired.as_ref().map(|r| &r.0).or(surface);
+    // the angles of the surface the mesher took: where it repaired caps or closed narrow
+    // strips, prepared the same way (their zero angles are gone); found while the tets are
+    // judged
+    let prepared = if report.input_caps_repaired > 0 || report.narrow.is_some() { surface.and_then(|s| crate::mesh3d::mesher::prepared_surface(s, &plan.mesh)) } else { None };
+    let surface = prepared.as_ref().or(surface);
     let r_bound = plan.mesh.max_radius_edge;
     let ((q, against), angles) = rayon::join(|| tet_mesh_quality_against(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
     let boundary = BoundaryIndex::new(mesh);
@@ -181,6 +185,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         worst_tet,
         worst_unexplained_tet,
         input_caps_repaired: report.input_caps_repaired,
+        narrow: report.narrow.clone(),
         flattening_volume: report.flattening_volume,
     };
     Summarised { summary, quality: q, boundary, angles, bound }

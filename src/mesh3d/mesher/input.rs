@@ -1,10 +1,44 @@
 //! The mesher's input checks: a closed, edge-manifold surface without degenerate or crossing
 //! triangles. Each failure names what to fix.
 
+use crate::core::FaceId;
 use crate::mesh::TriSurface;
+use crate::mesh::narrow::{NarrowReport, collapse_narrow};
+use crate::mesh3d::mesher::MeshOptions;
 use crate::mesh::topology::{intersecting_pairs, nonmanifold_edges_list, open_edges_list};
 use crate::mesh3d::mesher::MeshingError;
 use crate::core::intersection::is_degenerate;
+
+/// The surface the mesher takes: `surface` with its caps repaired and its narrow strips
+/// closed up, where it had any (`surface: None` where it is taken as it is).
+pub(crate) struct Prepared {
+    pub surface: Option<TriSurface>,
+    pub caps: usize,
+    pub narrow: Option<NarrowReport>,
+}
+
+/// Prepares `surface` for meshing and checks it. Caps (flat triangles with a vertex on their
+/// long side) would make input edges meet at an angle of zero: each takes its neighbour's
+/// other half instead, before the checks (a cap may look like a crossing of its neighbours).
+/// Then strips narrower than `options`' narrow tolerance are closed up, faces tagged `pinned`
+/// left as they are; where the surface that leaves fails the checks that the input passes,
+/// the input is meshed as it is.
+///
+/// # Errors
+/// What [`check`] finds in the input.
+pub(crate) fn prepare(surface: &TriSurface, options: &MeshOptions, pinned: &[FaceId]) -> Result<Prepared, MeshingError> {
+    let repaired = crate::mesh::caps::repair_caps(surface);
+    let caps = repaired.as_ref().map_or(0, |r| r.1);
+    let base = repaired.as_ref().map_or(surface, |r| &r.0);
+    check(base)?;
+    let tol = options.narrow_length(surface);
+    if let Some((closed, report)) = collapse_narrow(base, tol, pinned) {
+        if check(&closed).is_ok() {
+            return Ok(Prepared { surface: Some(closed), caps, narrow: Some(report) });
+        }
+    }
+    Ok(Prepared { surface: repaired.map(|r| r.0), caps, narrow: None })
+}
 
 /// Checks `s` for meshing.
 ///

@@ -238,3 +238,23 @@ fn tets_on_a_thin_boundary_triangle_trade_radius_edge_for_dihedral_angles() {
     assert!(q.min_dihedral_deg >= 10.0, "smallest dihedral angle {}° ({o:?})", q.min_dihedral_deg);
     assert!(q.max_dihedral_deg < 170.0, "largest dihedral angle {}°", q.max_dihedral_deg);
 }
+
+#[test]
+fn a_step_narrower_than_the_tolerance_is_closed_up_before_meshing() {
+    // a unit box whose top steps up by 1e-5 halfway: at the default tolerance (1e-4 of the
+    // diagonal) the step's face is closed up and the tets are as good as a box's
+    let s = crate::mesh::narrow::tests::stepped_box(1e-5);
+    let (m, r) = mesh_surface(&s, &Seeds::default(), &UniformSize(0.25), &MeshOptions::default()).unwrap();
+    m.validate().unwrap();
+    let n = r.narrow.as_ref().expect("the step is closed up");
+    assert!(n.faces.iter().any(|&(f, _)| f == FaceId(4)), "{n:?}");
+    assert!(!m.face_tags.contains(&FaceId(4)));
+    let q = crate::quality::tet_mesh_quality(&m);
+    assert!(q.min_dihedral_deg >= 10.0, "{}", q.min_dihedral_deg);
+    assert!((m.volume() - 1.0).abs() < 1e-4, "{}", m.volume());
+    // with the tolerance at zero the step is meshed as it is
+    let (m0, r0) = mesh_surface(&s, &Seeds::default(), &UniformSize(0.25), &MeshOptions::default().with_narrow_tolerance(Some(0.0))).unwrap();
+    m0.validate().unwrap();
+    assert!(r0.narrow.is_none());
+    assert!(m0.face_tags.contains(&FaceId(4)));
+}

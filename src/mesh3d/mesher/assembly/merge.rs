@@ -128,6 +128,9 @@ pub(crate) fn merge_reports(reports: &[MeshReport]) -> MeshReport {
         out.volume_steiner_points += r.volume_steiner_points;
         out.refinement_boundary_points += r.refinement_boundary_points;
         out.input_caps_repaired += r.input_caps_repaired;
+        if let Some(n) = &r.narrow {
+            out.narrow.get_or_insert_with(Default::default).add(n);
+        }
         out.flattening_volume += r.flattening_volume;
         out.refinement_stopped |= r.refinement_stopped;
         out.refinement_stop = out.refinement_stop.take().or_else(|| r.refinement_stop.clone());

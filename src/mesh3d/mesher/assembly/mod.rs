@@ -133,6 +133,8 @@ pub fn mesh_solids(surface: &TriSurface, solids: &Solids, gap: f64, size: &dyn S
     // the error reported is the first solid's in order, whatever the thread count: a solid
     // after one known to fail is not started, every solid before it still is
     let first_failed = AtomicUsize::new(usize::MAX);
+    // one narrow-strip tolerance for all the solids: the whole assembly's
+    let options = &options.clone().with_narrow_tolerance(Some(options.narrow_length(surface)));
     let meshed: Vec<Option<Result<(TetMesh, MeshReport), MeshingError>>> = parts
         .par_iter()
         .enumerate()
