@@ -92,22 +92,29 @@ pub fn collapse_narrow(s: &TriSurface, tol: f64, frozen: &[FaceId]) -> Option<(T
     report.removed = w.dead.iter().filter(|&&d| d).count();
     report.faces = w.lost.iter().map(|(&f, &n)| (f, n)).collect();
     report.faces.sort_unstable();
-    // renumber: the live triangles, the vertices they use
+    // renumber: the vertices the live triangles use, in their order (the mesher's insertion
+    // order and ties follow it: a surface with one cap flipped stays the same elsewhere)
+    let mut used = vec![false; w.p.len()];
+    for (t, &d) in w.t.iter().zip(&w.dead) {
+        if !d {
+            for &v in t {
+                used[v as usize] = true;
+            }
+        }
+    }
     let mut map = vec![u32::MAX; w.p.len()];
     let mut out = TriSurface { face_names: s.face_names.clone(), ..Default::default() };
-    for (i, t) in w.t.iter().enumerate() {
-        if w.dead[i] {
-            continue;
+    for (v, &u) in used.iter().enumerate() {
+        if u {
+            map[v] = out.vertices.len() as u32;
+            out.vertices.push(w.p[v]);
         }
-        let t = t.map(|v| {
-            if map[v as usize] == u32::MAX {
-                map[v as usize] = out.vertices.len() as u32;
-                out.vertices.push(w.p[v as usize]);
-            }
-            map[v as usize]
-        });
-        out.triangles.push(t);
-        out.face_tags.push(w.tags[i]);
+    }
+    for (i, t) in w.t.iter().enumerate() {
+        if !w.dead[i] {
+            out.triangles.push(t.map(|v| map[v as usize]));
+            out.face_tags.push(w.tags[i]);
+        }
     }
     Some((out, report))
 }
