@@ -191,3 +191,54 @@ fn bracket_msh_has_one_uniquely_named_group_per_face() {
         assert_eq!(names, want);
     }
 }
+
+#[test]
+fn a_step_narrower_than_the_narrow_tolerance_is_closed_up_and_reported() {
+    // a unit box whose top steps up by 1e-5 halfway (a face 1e-5 high, group "step"), as a
+    // CAD model leaves where two faces almost meet
+    let dir = tempfile::tempdir().unwrap();
+    let e = 1e-5_f64;
+    let h = 1.0 + e;
+    let points = [
+        [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0], [0.5, 0.0, 1.0], [0.5, 1.0, 1.0], [0.0, 1.0, 1.0],
+        [0.5, 0.0, h], [1.0, 0.0, h], [1.0, 1.0, h], [0.5, 1.0, h],
+    ];
+    let faces: [(&str, &[usize]); 8] = [("bottom", &[0, 3, 2, 1]), ("low", &[4, 5, 6, 7]), ("high", &[8, 9, 10, 11]), ("step", &[5, 8, 11, 6]), ("front", &[5, 4, 0, 1, 9, 8]), ("back", &[6, 11, 10, 2, 3, 7]), ("left", &[0, 4, 7, 3]), ("right", &[1, 2, 10, 9])];
+    let mut obj = String::new();
+    for p in points {
+        obj += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    for (name, poly) in faces {
+        obj += &format!("g {name}\n");
+        for k in 1..poly.len() - 1 {
+            obj += &format!("f {} {} {}\n", poly[0] + 1, poly[k] + 1, poly[k + 1] + 1);
+        }
+    }
+    let input = dir.path().join("stepped.obj");
+    std::fs::write(&input, obj).unwrap();
+    let out = dir.path().join("m.mesh");
+    let run = |extra: &[&str]| {
+        let o = fepre().arg("mesh").arg(&input).arg("-o").arg(&out).args(["--size", "0.25", "--json"]).args(extra).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).expect("JSON")
+    };
+    // the default tolerance, 1e-4 of the diagonal
+    let v = run(&[]);
+    let tol = v["narrow"]["tolerance"].as_f64().unwrap_or_else(|| panic!("no narrow report in {v}"));
+    assert!((tol - 1e-4 * (2.0 + h * h).sqrt()).abs() < 1e-12, "{tol}");
+    assert!(v["narrow"]["collapses"].as_u64().unwrap() > 0, "{v}");
+    assert!(v["min_dihedral_deg"].as_f64().unwrap() >= 10.0, "{v}");
+    // the text report says so
+    let o = fepre().arg("mesh").arg(&input).arg("-o").arg(&out).args(["--size", "0.25"]).output().unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("narrow strips"), "{}", String::from_utf8_lossy(&o.stdout));
+    // 0 keeps the step
+    let v = run(&["--narrow-tol", "0", "--require-min-dihedral", "0"]);
+    assert!(v["narrow"].is_null(), "{v}");
+    // a negative width is bad usage, nothing written
+    let bad = dir.path().join("bad.mesh");
+    let o = fepre().arg("mesh").arg(&input).arg("-o").arg(&bad).args(["--narrow-tol", "-1"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!bad.exists());
+}
