@@ -158,7 +158,6 @@ impl Work {
     /// One pass of edge collapses: each edge shorter than the tolerance, shortest first, where
     /// neither end was touched yet in this pass.
     fn needles(&mut self) -> usize {
-        let star = self.stars();
         let mut edges: Vec<(f64, u32, u32)> = Vec::new();
         for (i, t) in self.t.iter().enumerate() {
             if self.dead[i] {
@@ -172,7 +171,11 @@ impl Work {
                 }
             }
         }
+        if edges.is_empty() {
+            return 0;
+        }
         edges.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1, x.2).cmp(&(y.1, y.2))));
+        let star = self.stars();
         let mut touched = vec![false; self.p.len()];
         let mut done = 0;
         for (_, a, b) in edges {
@@ -253,11 +256,14 @@ impl Work {
         true
     }
 
-    /// One pass of cap splits: a triangle `(v, a, b)` whose vertex `v` lies within the
-    /// tolerance of its side `(a, b)`, at more than the tolerance from both ends, gives `v` to
-    /// the neighbour `(b, a, w)`: the two become `(b, v, w)` and `(v, a, w)`, the neighbour's
-    /// tag on both (the cap is gone, the neighbour split at `v`).
+    /// One pass of cap splits: a cap `(v, a, b)` ([`Work::cap`]) gives `v` to the neighbour
+    /// `(b, a, w)`: the two become `(b, v, w)` and `(v, a, w)`, the neighbour's tag on both
+    /// (the cap is gone, the neighbour split at `v`).
     fn caps(&mut self) -> usize {
+        // the adjacency only where there is a cap to split
+        if !self.t.iter().zip(&self.dead).any(|(&t, &d)| !d && self.cap(t).is_some()) {
+            return 0;
+        }
         let mut on_edge: FxHashMap<(u32, u32), u32> = Default::default();
         for (i, t) in self.t.iter().enumerate() {
             if !self.dead[i] {

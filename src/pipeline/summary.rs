@@ -125,7 +125,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     // the angles of the surface the mesher took: where it repaired caps or closed narrow
     // strips, prepared the same way (their zero angles are gone); found while the tets are
     // judged
-    let prepared = if report.input_caps_repaired > 0 || report.narrow.is_some() { surface.and_then(|s| crate::mesh3d::mesher::prepared_surface(s, &plan.mesh)) } else { None };
+    let prepared = surface.and_then(|s| crate::mesh3d::mesher::prepared_surface(s, report));
     let surface = prepared.as_ref().or(surface);
     let r_bound = plan.mesh.max_radius_edge;
     let ((q, against), angles) = rayon::join(|| tet_mesh_quality_against(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());

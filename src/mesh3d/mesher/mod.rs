@@ -141,10 +141,7 @@ impl MeshOptions {
         if self.keep_surface {
             return 0.0;
         }
-        self.narrow_tolerance.unwrap_or_else(|| {
-            let (lo, hi) = surface.vertices.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
-            if lo.cmple(hi).all() { NARROW_SHARE * lo.distance(hi) } else { 0.0 }
-        })
+        self.narrow_tolerance.unwrap_or_else(|| NARROW_SHARE * surface.bbox().diagonal())
     }
 }
 
@@ -337,10 +334,14 @@ fn faces_text(faces: &[(FaceId, Option<String>)]) -> String {
     format!(" (along face{} {})", if faces.len() == 1 { "" } else { "s" }, list.join(", "))
 }
 
-/// The surface [`mesh_surface`] meshes for `surface`: its caps repaired and its narrow strips
-/// closed up, or `None` where it meshes `surface` as it is (or refuses it).
-pub(crate) fn prepared_surface(surface: &TriSurface, options: &MeshOptions) -> Option<TriSurface> {
-    input::prepare(surface, options, &[]).ok().and_then(|p| p.surface)
+/// The surface [`mesh_surface`] meshed for `surface`, as its `report` says: the caps repaired
+/// and the narrow strips closed up at the report's tolerance where it did so (the same steps,
+/// deterministic, without the checks the mesher made), or `None` where it meshed `surface` as
+/// it is.
+pub(crate) fn prepared_surface(surface: &TriSurface, report: &MeshReport) -> Option<TriSurface> {
+    let repaired = if report.input_caps_repaired > 0 { crate::mesh::caps::repair_caps(surface).map(|r| r.0) } else { None };
+    let Some(n) = &report.narrow else { return repaired };
+    crate::mesh::narrow::collapse_narrow(repaired.as_ref().unwrap_or(surface), n.tolerance, &[]).map(|r| r.0).or(repaired)
 }
 
 /// Meshes the volume enclosed by `surface`.
