@@ -466,7 +466,9 @@ pub(crate) fn mesh_surface_pinned(
             .with_boundary_sliding(options.slide_boundary && !options.keep_surface)
             .with_pinned_faces(pinned.to_vec())
             .with_focus(Some(FOCUS));
-        let r = crate::mesh3d::optimize::optimize(&mut mesh, &opts).map_err(|e| MeshingError::Internal(e.to_string()))?;
+        // tets at the input's small angles do not keep the focus phase's repeats going
+        let angles = || crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface);
+        let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles).map_err(|e| MeshingError::Internal(e.to_string()))?;
         report.optimize = Some(r);
         stage("optimize", &mut clock);
     }

@@ -71,6 +71,7 @@
 
 mod edge_removal;
 mod face_removal;
+mod focus;
 mod insert;
 mod measure;
 mod search;
@@ -84,8 +85,10 @@ mod tests;
 
 use crate::core::FaceId;
 use crate::mesh::{MeshError, TetMesh};
+use crate::quality::input_angles::InputAngle;
 use crate::quality::tetrahedron::TET_EDGES;
 use edge_removal::EdgeRemoval;
+pub use focus::{FOCUS_RADIUS_EDGE, FOCUS_RINGS, FOCUS_ROUND_GAIN_DEG, FOCUS_SEARCH_ROUNDS, FOCUS_SHARE, FOCUS_TRIES, Focus, SEARCH_VERTICES};
 use face_removal::try_flip23;
 use insert::Inserter;
 use measure::{Targets, cosines, normals};
@@ -156,63 +159,6 @@ pub struct OptimizeOptions {
     /// toward a smallest angle of `target` degrees ([`Focus`]); `None`: off.
     pub focus: Option<Focus>,
 }
-
-/// A last phase around the worst tets: where the passes leave tets under
-/// [`Focus::below_deg`], the tets with a vertex within [`FOCUS_RINGS`] rings of them are worked
-/// on toward a smallest angle of [`Focus::target_deg`], the largest-angle and radius-edge
-/// targets as before. No largest angle may grow past the mesh's own (or past the target, where
-/// the mesh is within it). Its attempts: [`FOCUS_TRIES`] per tet of the region under the
-/// phase's target, and never more than [`FOCUS_SHARE`] of the attempts made before it.
-///
-/// At the usual target the passes stop improving a tet once it meets it, so the tets around a
-/// bad one settle at the target and leave it no room; a higher target moves them further.
-/// Only the region around the worst tets is worked on, so a mesh without tets under
-/// `below_deg` is untouched and the cost stays with the few that have them. Like every change
-/// here, it never lowers the least score of the tets it replaces (judged against the phase's
-/// targets). A second round, with as many attempts again (counted in
-/// [`OptimizeReport::focus_dihedral_attempts`]), works around the tets still under
-/// `below_deg` against the dihedral targets alone, with changes allowed radius-edge ratios up
-/// to [`FOCUS_RADIUS_EDGE`] times the bound (`Optimizer::focus`). Last, each movable vertex
-/// of the tets still under `below_deg` is moved where samples around it find its star better
-/// (`search.rs`, at most [`SEARCH_VERTICES`] vertices, each once a time; counted in
-/// [`OptimizeReport::searched_vertices`] and [`OptimizeReport::search_moves`]); the second
-/// round and the search run again while tets under `below_deg` are left, up to
-/// [`FOCUS_SEARCH_ROUNDS`] times in all.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct Focus {
-    /// Tets under this smallest dihedral angle (degrees) start the phase.
-    pub below_deg: f64,
-    /// The smallest-angle target of the phase (degrees).
-    pub target_deg: f64,
-}
-
-/// How many times the second round of [`Focus`] and the search after it run while tets under
-/// its bound are left. On the three batches of real parts in docs/benchmarks.md (parts whose
-/// every tet under 10° touches an input angle as small): once 116 of 126, twice 118, three
-/// times 119, four 119, six 120; no largest angle rose past 162.52° where it was under it.
-pub const FOCUS_SEARCH_ROUNDS: usize = 6;
-
-/// The most vertices the search after the focus phase's rounds works on (`search.rs`): a
-/// budget that bounds its work on a part with thousands of tets under the bound near small
-/// input angles (at most 8,000 samples a vertex).
-pub const SEARCH_VERTICES: usize = 20_000;
-
-/// The rings of tets (sharing a vertex) around the worst tets that [`Focus`] works on.
-pub const FOCUS_RINGS: usize = 2;
-
-/// Attempts [`Focus`] may spend, per tet of its region under the phase's target when it starts.
-pub const FOCUS_TRIES: usize = 4;
-
-/// The most attempts [`Focus`] may spend, as a share of those made before it.
-pub const FOCUS_SHARE: f64 = 0.1;
-
-/// In the second round of [`Focus`], changes may make radius-edge ratios up to this many
-/// times [`OptimizeOptions::max_radius_edge`] (or the worst of the tets they replace): a tet
-/// of good dihedral angles but a high ratio (a needle) is sound for a solver, a sliver is
-/// not. On the three batches of real parts in docs/benchmarks.md, 3 took the parts whose every
-/// tet under 10° touches an input angle as small from 109 to 115 of 126; 1 (the usual rule)
-/// brought none of the eight failing parts it was tried on within that count.
-pub const FOCUS_RADIUS_EDGE: f64 = 3.0;
 
 impl Default for OptimizeOptions {
     fn default() -> Self {
@@ -354,6 +300,9 @@ pub struct OptimizeReport {
     /// Of those, attempts of the second round's repeats after the search
     /// ([`FOCUS_SEARCH_ROUNDS`]), each within its own share.
     pub focus_repeat_attempts: usize,
+    /// Rounds of the phase's second kind run, its first included (at most
+    /// [`FOCUS_SEARCH_ROUNDS`]; see [`Focus`] for when it stops sooner).
+    pub focus_rounds: usize,
     /// Vertices of the tets left under the focus phase's bound whose position was searched
     /// by samples after its rounds (`search.rs`).
     pub searched_vertices: usize,
@@ -403,6 +352,10 @@ struct Optimizer<'a> {
     /// The radius-edge bound of every change ([`OptimizeOptions::max_radius_edge`];
     /// [`FOCUS_RADIUS_EDGE`] times it in the focus phase's second round).
     max_re: f64,
+    /// Gives the input's small angles ([`optimize_explained`]), called at most once.
+    angles: &'a dyn Fn() -> Vec<InputAngle>,
+    /// What [`Optimizer::angles`] gave, once asked.
+    input_angles: Option<Vec<InputAngle>>,
 }
 
 impl Optimizer<'_> {
@@ -625,121 +578,6 @@ impl Optimizer<'_> {
         self.w.retarget(tg);
     }
 
-    /// The phase of [`Focus`]: the region around the tets under `f.below_deg`, worked on
-    /// toward `f.target_deg`, then the targets restored. Two rounds, each with its own
-    /// attempts (see [`Focus`]), the second followed by the search and run again while tets
-    /// under the bound are left, up to [`FOCUS_SEARCH_ROUNDS`] times:
-    /// 1. against the phase's targets with the radius-edge term in the score;
-    /// 2. around the tets still under `f.below_deg`, against the dihedral targets alone, each
-    ///    change allowed radius-edge ratios up to [`FOCUS_RADIUS_EDGE`] times the bound (or
-    ///    the worst it replaces). Next to a thin boundary triangle (a small corner of a CAD
-    ///    face, a tangent fillet's edge) every tet has a radius-edge ratio above the bound, so
-    ///    the first round's least score is that term and no move of the free vertex raises
-    ///    it; the dihedral angles then stay where they are although moving it lifts them.
-    fn focus(&mut self, f: Focus) {
-        if f.target_deg <= self.opts.min_dihedral_deg {
-            return;
-        }
-        let Some(region) = self.focus_region(f.below_deg) else {
-            return;
-        };
-        // no largest angle may pass the mesh's, or the target where the mesh is within it
-        let cap = self.w.worst().hi.max(self.opts.max_dihedral_deg);
-        let tg = self.w.tg;
-        let dihedral = Targets::new(f.target_deg, self.opts.max_dihedral_deg).with_hi_cap(cap);
-        self.w.retarget(dihedral.with_radius_edge(self.opts.max_radius_edge));
-        self.region = Some(region);
-        let share = (FOCUS_SHARE * self.report.attempts as f64) as usize;
-        let out_of_attempts = self.report.out_of_attempts;
-        self.report.focus_attempts = self.focus_round(share);
-        // the second round and the search, again while tets under the bound are left (the
-        // vertices the search moved open flips and moves that failed before), each round
-        // within its own share
-        self.w.retarget(dihedral);
-        self.max_re = FOCUS_RADIUS_EDGE * self.opts.max_radius_edge;
-        for round in 0..FOCUS_SEARCH_ROUNDS {
-            self.region = self.focus_region(f.below_deg);
-            if self.region.is_none() {
-                break;
-            }
-            let made = self.focus_round(share);
-            if round == 0 {
-                self.report.focus_dihedral_attempts = made;
-            } else {
-                self.report.focus_repeat_attempts += made;
-            }
-            self.search_below(f.below_deg);
-        }
-        self.max_re = self.opts.max_radius_edge;
-        self.report.out_of_attempts = out_of_attempts;
-        self.region = None;
-        self.w.retarget(tg);
-    }
-
-    /// One round of [`Optimizer::focus`] on its region against the current targets, within
-    /// [`FOCUS_TRIES`] attempts per tet under them and at most `share`; the attempts made.
-    fn focus_round(&mut self, share: usize) -> usize {
-        let start = self.report.attempts;
-        let limit = start.saturating_add(FOCUS_TRIES.saturating_mul(self.bad_tets().len()).min(share));
-        // insertion and smoothing failed on some tets against the old targets: they may
-        // succeed now
-        self.insert_failed.clear();
-        self.sm.forget_failures();
-        self.passes_below(1.0, limit);
-        self.report.attempts - start
-    }
-
-    /// The search of `search.rs` on each movable vertex of the tets under `below` degrees,
-    /// worst tet first, each vertex once, at most [`SEARCH_VERTICES`] vertices.
-    fn search_below(&mut self, below: f64) {
-        let mut bad: Vec<(f64, u32)> = self.w.live_slots().map(|t| (self.w.judged[t as usize].lo, t)).filter(|&(lo, _)| lo < below).collect();
-        bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut tried = rustc_hash::FxHashSet::default();
-        for (_, t) in bad {
-            if !self.w.alive(t) || !(self.w.judged[t as usize].lo < below) {
-                continue;
-            }
-            for v in self.w.tets[t as usize] {
-                if tried.len() >= SEARCH_VERTICES || !self.w.movable(v) || !tried.insert(v) {
-                    continue;
-                }
-                self.report.searched_vertices += 1;
-                if self.search.try_search(&mut self.w, v, self.max_re, below) {
-                    self.report.search_moves += 1;
-                    self.report.smoothing_moves += 1;
-                    self.report.boundary_moves += usize::from(self.w.fixed[v as usize]);
-                }
-            }
-        }
-    }
-
-    /// The vertices within [`FOCUS_RINGS`] rings of the tets under `below` degrees, `None`
-    /// where there are none.
-    fn focus_region(&self, below: f64) -> Option<Vec<bool>> {
-        let seeds: Vec<u32> = self.w.live_slots().filter(|&t| self.w.judged[t as usize].lo < below).collect();
-        if seeds.is_empty() {
-            return None;
-        }
-        let mut region = vec![false; self.w.pts.len()];
-        for &t in &seeds {
-            for v in self.w.tets[t as usize] {
-                region[v as usize] = true;
-            }
-        }
-        // each ring: every vertex of a tet that has one in the region
-        for _ in 0..FOCUS_RINGS {
-            let before = region.clone();
-            for t in self.w.live_slots() {
-                let tet = self.w.tets[t as usize];
-                if tet.iter().any(|&v| before[v as usize]) {
-                    for v in tet {
-                        region[v as usize] = true;
-                    }
-                }
-            }
-        }
-        Some(region)
-    }
 }
 
 /// Improves `mesh` in place: see the [module documentation](self) for what is kept and how.
@@ -748,6 +586,20 @@ impl Optimizer<'_> {
 /// [`OptimizeError::InvalidMesh`] if the mesh fails the checks of [`TetMesh::validate`] (the
 /// mesh is then left as it was), [`OptimizeError::TooLarge`] beyond 2³⁰ − 1 tets.
 pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeReport, OptimizeError> {
+    optimize_explained(mesh, opts, &Vec::new)
+}
+
+/// [`optimize`], told where the input explains a tet: `angles` gives the input's angles under
+/// [`Focus::below_deg`]
+/// ([`small_input_angles`](crate::quality::input_angles::small_input_angles) of the surface
+/// meshed). A tet that touches one
+/// ([`touches_angle_below`](crate::quality::worst_tet::touches_angle_below)) is explained by
+/// the input, and does not keep [`Focus`]'s repeats going on its own. `angles` is called at
+/// most once, and only where the focus phase leaves tets under its bound.
+///
+/// # Errors
+/// As [`optimize`].
+pub fn optimize_explained(mesh: &mut TetMesh, opts: &OptimizeOptions, angles: &dyn Fn() -> Vec<InputAngle>) -> Result<OptimizeReport, OptimizeError> {
     let start = Instant::now();
     if mesh.tets.len() > work::MAX_TETS {
         return Err(OptimizeError::TooLarge { tets: mesh.tets.len(), max: work::MAX_TETS });
@@ -782,6 +634,8 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
         insert_failed: rustc_hash::FxHashSet::default(),
         region: None,
         max_re: opts.max_radius_edge,
+        angles,
+        input_angles: None,
     };
     o.run();
     let mut report = o.report;

@@ -332,3 +332,49 @@ fn the_focus_works_around_the_worst_tets_within_its_share_and_caps_the_largest_a
     assert_eq!(kept, good);
     assert_eq!((r.focus_attempts, r.focus_dihedral_attempts, r.focus_repeat_attempts, r.searched_vertices), (0, 0, 0, 0));
 }
+
+#[test]
+fn the_focus_repeats_only_while_its_rounds_make_progress() {
+    let focus = Focus { below_deg: 14.0, target_deg: 30.0 };
+    let corner = |p: DVec3| InputAngle { kind: crate::quality::input_angles::InputAngleKind::Corner, angle_deg: 5.0, at: [p.to_array(); 2], faces: [FaceId(1); 2], across: [FaceId(1); 2] };
+    // the fixture of the focus test: slivers left at the hull after two passes
+    let m = with_hull_boundary(random_box(400, 5));
+    let mut hull: Vec<u32> = m.boundary.iter().flatten().copied().collect();
+    hull.sort_unstable();
+    hull.dedup();
+    let hull: Vec<DVec3> = hull.iter().map(|&v| m.vertices[v as usize]).collect();
+    let opts = OptimizeOptions::default().with_max_passes(2).with_polish(0.0).with_focus(Some(focus));
+    let mut plain = m.clone();
+    let r = optimize(&mut plain, &opts).unwrap();
+    check_kept(&m, &plain, &r);
+    // the slivers at the hull, unexplained, keep getting better: every round runs
+    assert_eq!(r.focus_rounds, FOCUS_SEARCH_ROUNDS, "{r:?}");
+    // an input angle at every hull vertex (they do not move) explains them: the same work
+    // up to the end of the first search, and a mesh as sound
+    let mut out = m.clone();
+    let r1 = optimize_explained(&mut out, &opts, &|| hull.iter().map(|&p| corner(p)).collect()).unwrap();
+    check_kept(&m, &out, &r1);
+    assert!(r1.focus_rounds >= 1 && r1.focus_rounds <= FOCUS_SEARCH_ROUNDS, "{r1:?}");
+    assert_eq!((r1.focus_attempts, r1.focus_dihedral_attempts), (r.focus_attempts, r.focus_dihedral_attempts));
+    // angles far from every tet explain none: the same work as without them
+    let mut far = m.clone();
+    let r2 = optimize_explained(&mut far, &opts, &|| vec![corner(DVec3::splat(10.0))]).unwrap();
+    assert_eq!((far, r2.focus_rounds), (plain, r.focus_rounds));
+
+    // beside a cube, a flat tet on its own, every face of it boundary and every vertex a
+    // corner: nothing changes it, so after the first round and its search nothing got better
+    // and the phase stops
+    let mut cube = kuhn_cube(3, 0.0, 1);
+    let n = cube.vertices.len() as u32;
+    cube.vertices.extend([DVec3::new(5.0, 0.0, 0.0), DVec3::new(6.0, 0.0, 0.0), DVec3::new(5.5, 1.0, 0.0), DVec3::new(5.5, 0.3, 0.02)]);
+    let p = [0, 1, 2, 3].map(|k| cube.vertices[(n + k) as usize]);
+    cube.tets.push(if crate::core::predicates::orient3d(p[0], p[1], p[2], p[3]) == crate::core::Sign::Positive { [n, n + 1, n + 2, n + 3] } else { [n + 1, n, n + 2, n + 3] });
+    cube.region_tags.push(cube.region_tags[0]);
+    let cube = with_hull_boundary(cube);
+    assert_eq!(cube.validate(), Ok(()));
+    assert!(tet_min_max_dihedral(&p).0 < 14.0);
+    let mut out = cube.clone();
+    let r = optimize(&mut out, &OptimizeOptions::default().with_focus(Some(focus))).unwrap();
+    check_kept(&cube, &out, &r);
+    assert_eq!((r.focus_rounds, r.focus_repeat_attempts), (1, 0), "{r:?}");
+}

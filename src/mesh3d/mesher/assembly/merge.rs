@@ -176,6 +176,7 @@ fn merge_optimize(a: &OptimizeReport, b: &OptimizeReport) -> OptimizeReport {
         focus_attempts: a.focus_attempts + b.focus_attempts,
         focus_dihedral_attempts: a.focus_dihedral_attempts + b.focus_dihedral_attempts,
         focus_repeat_attempts: a.focus_repeat_attempts + b.focus_repeat_attempts,
+        focus_rounds: a.focus_rounds + b.focus_rounds,
         searched_vertices: a.searched_vertices + b.searched_vertices,
         search_moves: a.search_moves + b.search_moves,
         out_of_attempts: a.out_of_attempts || b.out_of_attempts,
