@@ -228,6 +228,16 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
     for (label, text) in m.worst_tet.as_ref().map(|w| w.lines()).unwrap_or_default() {
         outln!("{label:<16} {text}");
     }
+    // where the worst tet sits at a small input angle, the worst one the input does not explain
+    if let Some(u) = m.worst_unexplained_tet_under_10_deg.as_ref().filter(|u| m.worst_tet.as_ref().is_none_or(|w| w.tet != u.tet)) {
+        for (i, (label, text)) in u.lines().into_iter().enumerate() {
+            if i == 0 {
+                outln!("unexplained tet  {text} (the worst of the {} under 10° touching no input angle under 10°)", m.tets_under_10_deg_unexplained);
+            } else {
+                outln!("  {label:<14} {text}");
+            }
+        }
+    }
     match &m.smallest_input_angle {
         Some(a) => outln!("input angles     {} under {}°, the smallest {}° at {}", m.small_input_angles, m.input_angle_bound_deg, fmt_num(a.angle_deg), fmt_point(a.at[0])),
         None => outln!("input angles     none under {}°", m.input_angle_bound_deg),

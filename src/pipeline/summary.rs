@@ -95,6 +95,13 @@ pub struct MeshSummary {
     /// Of the tets under 1° that touch no input angle under 1°, the one with the smallest
     /// angle, and where it sits: what fails a run that did not set its own requirement.
     pub worst_unexplained_tet: Option<TetPlace>,
+    /// Of the tets under 10° that touch no input angle under 10°, the one with the smallest
+    /// angle, and where it sits (the input angle it lies between the sides of, if any): where
+    /// the solver-grade rule's "every angle ≥ 10° but at small input angles" fails.
+    pub worst_unexplained_tet_under_10_deg: Option<TetPlace>,
+    /// Likewise under the bound ([`MeshSummary::input_angle_bound_deg`]): named by a failed
+    /// `--require-min-dihedral` where the worst tet itself is explained.
+    pub worst_unexplained_tet_under_bound: Option<TetPlace>,
     /// Input triangles that were caps (flat up to rounding, a vertex on their long side),
     /// each repaired with its neighbour before meshing.
     pub input_caps_repaired: usize,
@@ -134,22 +141,30 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, bound, &name));
     // a second pass over the tets, with the input angles under 10° as well where the bound is
     // lower
+    let mut angles_10 = None;
     let counts = if !(q.min_dihedral_deg < bound.max(10.0)) {
         Explained::default()
     } else if bound >= 10.0 && angles.is_empty() {
         // no input angle under the bound: no tet touches one, the quality pass counted them
         let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
-        Explained { under, between: [0, 0], worst: q.min_dihedral.argmin.filter(|_| q.tets_min_dihedral_below_1 > 0).map(|t| (q.min_dihedral_deg, t)) }
+        let worst = [1.0, 5.0, 10.0, bound].map(|limit| q.min_dihedral.argmin.filter(|_| q.min_dihedral_deg < limit).map(|t| (q.min_dihedral_deg, t)));
+        Explained { under, between: [0, 0], worst }
     } else if bound >= 10.0 {
         explained(mesh, boundary.sides(), &angles, bound)
     } else {
-        explained(mesh, boundary.sides(), &surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default(), bound)
+        let a10 = angles_10.insert(surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default());
+        explained(mesh, boundary.sides(), a10, bound)
     };
     // most often the worst tet itself, already located
-    let worst_unexplained_tet = counts.worst.map(|(_, t)| match &worst_tet {
-        Some(w) if w.tet == t => w.clone(),
-        _ => boundary.locate(mesh, t, &angles, bound, &name),
-    });
+    let place = |found: Option<(f64, usize)>, angles: &[InputAngle], limit: f64| {
+        found.map(|(_, t)| match &worst_tet {
+            Some(w) if w.tet == t && limit == bound => w.clone(),
+            _ => boundary.locate(mesh, t, angles, limit, &name),
+        })
+    };
+    let worst_unexplained_tet = place(counts.worst[0], &angles, bound);
+    let worst_unexplained_tet_under_10_deg = place(counts.worst[2], angles_10.as_deref().unwrap_or(&angles), 10.0);
+    let worst_unexplained_tet_under_bound = place(counts.worst[3], &angles, bound);
     let above = against.above_radius_edge;
     let opt = report.optimize.as_ref();
     let summary = MeshSummary {
@@ -184,6 +199,8 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         smallest_input_angle: angles.first().cloned(),
         worst_tet,
         worst_unexplained_tet,
+        worst_unexplained_tet_under_10_deg,
+        worst_unexplained_tet_under_bound,
         input_caps_repaired: report.input_caps_repaired,
         narrow: report.narrow.clone(),
         flattening_volume: report.flattening_volume,
@@ -214,7 +231,17 @@ impl Summarised {
                     s.tets_under_5_deg,
                     s.tets_under_1_deg
                 );
-                return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, s.worst_tet.as_ref()) });
+                let mut message = with_place(head, s.worst_tet.as_ref());
+                // the worst tet at a small input angle: the worst one the input does not
+                // explain is what a better mesh could change
+                if let Some(u) = s.worst_unexplained_tet_under_bound.as_ref().filter(|u| s.worst_tet.as_ref().is_none_or(|w| w.tet != u.tet)) {
+                    message.push_str(&format!("\n  {} tets under {d}° touch no input angle as small; the worst of them:", s.tets_under_bound_unexplained));
+                    for (i, (label, text)) in u.lines().into_iter().enumerate() {
+                        let label = if i == 0 { "unexplained tet" } else { label };
+                        message.push_str(&format!("\n  {label:<14} {text}"));
+                    }
+                }
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), message });
             }
         } else if s.tets_under_1_deg_unexplained > 0 {
             // the default requirement: no tet under 1° that no input angle under 1° explains

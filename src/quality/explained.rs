@@ -19,9 +19,9 @@ pub struct Explained {
     /// Of the tets under 10° and under the bound that touch no input angle as small, those
     /// between the two sides of one.
     pub between: [usize; 2],
-    /// Of the tets under 1° that touch no input angle under 1°, the smallest angle's: (angle,
-    /// tet); the first tet on a tie.
-    pub worst: Option<(f64, usize)>,
+    /// Under 1°, 5°, 10° and the bound, of the tets that touch no input angle as small, the
+    /// smallest angle's: (angle, tet); the first tet on a tie.
+    pub worst: [Option<(f64, usize)>; 4],
 }
 
 /// The counts of [`Explained`] for `mesh`, `sides` its boundary's tags
@@ -47,8 +47,8 @@ pub fn explained(mesh: &TetMesh, sides: &SideTags, angles: &[InputAngle], bound:
                             if k >= 2 && sides.between_sides(mesh, *t, angles, limit).is_some() {
                                 out.between[k - 2] += 1;
                             }
-                            if k == 0 && out.worst.is_none_or(|(w, _)| lo < w) {
-                                out.worst = Some((lo, a + i));
+                            if out.worst[k].is_none_or(|(w, _)| lo < w) {
+                                out.worst[k] = Some((lo, a + i));
                             }
                         }
                     }
@@ -65,9 +65,11 @@ pub fn explained(mesh: &TetMesh, sides: &SideTags, angles: &[InputAngle], bound:
                 *x += y;
             }
             // chunks come in order: a later one wins only with a smaller angle
-            if let Some((w, t)) = part.worst {
-                if acc.worst.is_none_or(|(v, _)| w < v) {
-                    acc.worst = Some((w, t));
+            for (x, y) in acc.worst.iter_mut().zip(part.worst) {
+                if let Some((w, t)) = y {
+                    if x.is_none_or(|(v, _)| w < v) {
+                        *x = Some((w, t));
+                    }
                 }
             }
         },
