@@ -92,30 +92,16 @@ pub fn collapse_narrow(s: &TriSurface, tol: f64, frozen: &[FaceId]) -> Option<(T
     report.removed = w.dead.iter().filter(|&&d| d).count();
     report.faces = w.lost.iter().map(|(&f, &n)| (f, n)).collect();
     report.faces.sort_unstable();
-    // renumber: the vertices the live triangles use, in their order (the mesher's insertion
-    // order and ties follow it: a surface with one cap flipped stays the same elsewhere)
-    let mut used = vec![false; w.p.len()];
-    for (t, &d) in w.t.iter().zip(&w.dead) {
-        if !d {
-            for &v in t {
-                used[v as usize] = true;
-            }
-        }
-    }
-    let mut map = vec![u32::MAX; w.p.len()];
-    let mut out = TriSurface { face_names: s.face_names.clone(), ..Default::default() };
-    for (v, &u) in used.iter().enumerate() {
-        if u {
-            map[v] = out.vertices.len() as u32;
-            out.vertices.push(w.p[v]);
-        }
-    }
-    for (i, t) in w.t.iter().enumerate() {
-        if !w.dead[i] {
-            out.triangles.push(t.map(|v| map[v as usize]));
-            out.face_tags.push(w.tags[i]);
-        }
-    }
+    // the vertices the live triangles use, in their order (the mesher's insertion order and
+    // ties follow it: a surface with one cap flipped stays the same elsewhere)
+    let live = |i: &usize| !w.dead[*i];
+    let mut out = TriSurface {
+        triangles: (0..w.t.len()).filter(live).map(|i| w.t[i]).collect(),
+        face_tags: (0..w.t.len()).filter(live).map(|i| w.tags[i]).collect(),
+        vertices: w.p,
+        face_names: s.face_names.clone(),
+    };
+    out.remove_unused_vertices();
     Some((out, report))
 }
 
