@@ -2,6 +2,7 @@
 //! relative to the model's size and the [`SizeField`] trait. Nothing here knows about meshes or files.
 
 pub mod aabb;
+pub mod array_map;
 pub mod bucket_sort;
 pub mod bvh;
 pub mod closest;

@@ -21,6 +21,7 @@
 //! a non-zero determinant and non-zero faces both compute the same thing.) Non-finite
 //! coordinates are outside the contract: they propagate as they may.
 
+use crate::core::array_map::{map4, map6};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -73,7 +74,7 @@ fn parts(p: &[DVec3; 4]) -> Parts {
     let mut lmin2 = f64::INFINITY;
     let mut lmax2 = 0.0f64;
     let mut lsum2 = 0.0;
-    let l2 = TET_EDGES.map(|[i, j]| {
+    let l2 = map6(TET_EDGES, |[i, j]| {
         let e = p[j] - p[i];
         e.dot(e)
     });
@@ -98,7 +99,7 @@ pub fn tet_volume(p: &[DVec3; 4]) -> f64 {
 /// Outward face normals (not normalised): face `k` is opposite vertex `k`.
 #[inline]
 fn outward_normals(p: &[DVec3; 4]) -> [DVec3; 4] {
-    std::array::from_fn(|k| {
+    map4([0, 1, 2, 3], |k: usize| {
         let (i0, i1, i2) = ((k + 1) % 4, (k + 2) % 4, (k + 3) % 4);
         let n = (p[i1] - p[i0]).cross(p[i2] - p[i0]);
         if n.dot(p[k] - p[i0]) > 0.0 { -n } else { n }
@@ -121,7 +122,7 @@ fn dihedrals_given_det(p: &[DVec3; 4], det: f64) -> Option<[f64; 6]> {
         return None;
     }
     let n = outward_normals(p);
-    let len = n.map(|v| v.length());
+    let len = map4(n, |v| v.length());
     dihedral_cosines(&n, &len).map(|c| c.map(dihedral_from_cosine))
 }
 
@@ -135,7 +136,7 @@ fn dihedral_cosines(n: &[DVec3; 4], len: &[f64; 4]) -> Option<[f64; 6]> {
     }
     // Edge (i, j) lies between the faces opposite the two other vertices (k, l).
     const OPPOSITE: [[usize; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], [0, 2], [0, 1]];
-    Some(OPPOSITE.map(|[k, l]| (n[k].dot(n[l]) / (len[k] * len[l])).clamp(-1.0, 1.0)))
+    Some(map6(OPPOSITE, |[k, l]| (n[k].dot(n[l]) / (len[k] * len[l])).clamp(-1.0, 1.0)))
 }
 
 /// The dihedral angle in degrees, `180 − acos(c)·180/π`, from the cosine `c` of the angle
@@ -170,7 +171,7 @@ pub fn tet_extreme_dihedral_cosines(p: &[DVec3; 4]) -> Option<(f64, f64)> {
         return None;
     }
     let n = outward_normals(p);
-    let len = n.map(|v| v.length());
+    let len = map4(n, |v| v.length());
     let c = dihedral_cosines(&n, &len)?;
     Some(c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x))))
 }
@@ -275,7 +276,7 @@ fn tet_measures_with(p: &[DVec3; 4], q: &Parts, cosines_out: Option<&mut Option<
     let volume = q.det / 6.0;
     let degenerate = q.det == 0.0 || q.lmin2 == 0.0;
     let n = outward_normals(p);
-    let len = n.map(|v| v.length());
+    let len = map4(n, |v| v.length());
     let cosines = if q.det == 0.0 || !q.det.is_finite() { None } else { dihedral_cosines(&n, &len) };
     // only two acos: the angle is monotone in the cosine
     let (min_dihedral, max_dihedral) = match &cosines {

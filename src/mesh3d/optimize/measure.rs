@@ -25,6 +25,7 @@
 //!   invariance of `θ` under translations and rotations and from `∂θ/∂q ⊥ e`; `p` likewise with
 //!   the roles of `p` and `q` exchanged.
 
+use crate::core::array_map::{map4, map6};
 use crate::mesh::tet_mesh::TET_FACES;
 use crate::quality::tetrahedron::{TET_EDGES, dihedrals_of_extreme_cosines, tet_extreme_dihedral_cosines, tet_min_max_dihedral_radius_edge, tet_radius_edge};
 use glam::DVec3;
@@ -99,7 +100,7 @@ impl Targets {
 /// Outward normals (unnormalised) of a positively oriented tet: face `k` opposite vertex `k`.
 #[inline]
 pub(crate) fn normals(p: &[DVec3; 4]) -> [DVec3; 4] {
-    TET_FACES.map(|[a, b, c]| (p[b] - p[a]).cross(p[c] - p[a]))
+    map4(TET_FACES, |[a, b, c]| (p[b] - p[a]).cross(p[c] - p[a]))
 }
 
 /// The cosines `n̂_k · n̂_l` at the six edges ([`TET_EDGES`] order); the dihedral angle is
@@ -107,12 +108,12 @@ pub(crate) fn normals(p: &[DVec3; 4]) -> [DVec3; 4] {
 /// degenerate in floating point.
 #[inline]
 pub(crate) fn cosines(n: &[DVec3; 4]) -> Option<[f64; 6]> {
-    let l2 = n.map(|v| v.length_squared());
+    let l2 = map4(*n, |v| v.length_squared());
     if l2.iter().any(|&x| x.is_nan() || x <= 0.0 || !x.is_finite()) {
         return None;
     }
-    let inv = l2.map(|x| 1.0 / x.sqrt());
-    Some(EDGE_FACES.map(|[k, l]| (n[k].dot(n[l]) * inv[k] * inv[l]).clamp(-1.0, 1.0)))
+    let inv = map4(l2, |x| 1.0 / x.sqrt());
+    Some(map6(EDGE_FACES, |[k, l]| (n[k].dot(n[l]) * inv[k] * inv[l]).clamp(-1.0, 1.0)))
 }
 
 /// The dihedral angle in degrees from the cosine of the outward normals.
