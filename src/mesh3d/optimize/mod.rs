@@ -431,20 +431,20 @@ impl Optimizer<'_> {
         changed
     }
 
-    /// Whether live tet `t` is in the region being worked on (everywhere but during
-    /// [`Optimizer::focus`]).
-    fn in_region(&self, t: u32) -> bool {
-        match &self.region {
-            None => true,
-            Some(r) => self.w.tets[t as usize].iter().any(|&v| r.get(v as usize).copied().unwrap_or(true)),
-        }
-    }
-
-    /// The live tets below target, worst first.
+    /// The live tets below target, worst first (ties by slot). Gathered and sorted in
+    /// parallel: the order is total, so the list is the same for any thread count.
     fn bad_tets(&self) -> Vec<(f64, u32)> {
-        let mut bad: Vec<(f64, u32)> =
-            self.w.live_slots().filter(|&t| self.w.q[t as usize] < 1.0 && self.in_region(t)).map(|t| (self.w.q[t as usize], t)).collect();
-        bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        use rayon::prelude::*;
+        let (w, region) = (&self.w, self.region.as_deref());
+        // in the region being worked on (everywhere but during `Optimizer::focus`)
+        let in_region = |t: u32| region.is_none_or(|r| w.tets[t as usize].iter().any(|&v| r.get(v as usize).copied().unwrap_or(true)));
+        let mut bad: Vec<(f64, u32)> = (0..w.tets.len() as u32)
+            .into_par_iter()
+            .with_min_len(1 << 14)
+            .filter(|&t| w.alive(t) && w.q[t as usize] < 1.0 && in_region(t))
+            .map(|t| (w.q[t as usize], t))
+            .collect();
+        bad.par_sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         bad
     }
 
