@@ -48,6 +48,9 @@ pub(crate) struct Smoother {
     grads: Vec<DVec3>,
     /// Per vertex, the [`Work::clock`] when smoothing it last failed (0: never).
     failed: Vec<u32>,
+    /// The order [`Smoother::evaluate`] goes through the star in: the tet that failed the last
+    /// position tried first (the next, half as far, usually fails on the same tet).
+    order: Vec<usize>,
 }
 
 /// The point of least norm in the convex hull of `g` (Gilbert's algorithm, approximately).
@@ -82,12 +85,19 @@ impl Smoother {
     /// not two per tet, and the same bits.
     /// `fail` is [`Targets::failing_cosines`](crate::mesh3d::optimize::measure::Targets) of
     /// `beat`.
-    fn evaluate(&self, w: &Work, x: DVec3, beat: f64, fail: (f64, f64)) -> Option<f64> {
+    ///
+    /// The tets are taken in [`Smoother::order`], and the one that stops it goes to the front.
+    /// The answer does not depend on the order: the least of the scores is the least in any
+    /// order (the cosines and the radius-edge term are folded by `min` and `max`), and where
+    /// one tet stops it, that tet stops it in every order, so `beat` is not beaten either way.
+    fn evaluate(&mut self, w: &Work, x: DVec3, beat: f64, fail: (f64, f64)) -> Option<f64> {
         let (fail_lo, fail_hi) = fail;
         let mut least = LeastScore::new();
-        for s in 0..self.star.len() {
+        for i in 0..self.order.len() {
+            let s = self.order[i];
             let [a, b, c, d] = self.star.corners_at(w, s, x);
             if orient3d(a, b, c, d) != Sign::Positive {
+                self.order[..=i].rotate_right(1);
                 return None;
             }
             let sure_fail = match least.add(&[a, b, c, d], &w.tg) {
@@ -95,6 +105,7 @@ impl Smoother {
                 Some((lo, hi)) => lo < fail_lo || hi > fail_hi || least.re_term() <= beat,
             };
             if sure_fail {
+                self.order[..=i].rotate_right(1);
                 return Some(least.value(&w.tg).min(beat));
             }
         }
@@ -156,6 +167,8 @@ impl Smoother {
     fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64, slide: Option<Slide>) -> Option<(DVec3, f64)> {
         // a length scale: the mean distance to the star's other vertices
         let scale = self.star.scale(w, x0);
+        self.order.clear();
+        self.order.extend(0..self.star.len());
         let (mut x, mut f) = (x0, f0);
         for _ in 0..ITERATIONS {
             self.terms.clear();
