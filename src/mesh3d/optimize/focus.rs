@@ -97,7 +97,7 @@ impl Optimizer<'_> {
         if f.target_deg <= self.opts.min_dihedral_deg {
             return;
         }
-        let Some(region) = self.focus_region(f.below_deg) else {
+        let Some(region) = self.focus_region(&self.tets_under(f.below_deg)) else {
             return;
         };
         // no largest angle may pass the mesh's, or the target where the mesh is within it
@@ -114,16 +114,19 @@ impl Optimizer<'_> {
         // within its own share
         self.w.retarget(dihedral);
         self.max_re = FOCUS_RADIUS_EDGE * self.opts.max_radius_edge;
-        let mut last = self.under(f.below_deg);
+        // the tets under the bound, found once a round for the progress rule and the region
+        let mut seeds = self.tets_under(f.below_deg);
+        let mut last = self.under(&seeds);
         for round in 0..FOCUS_SEARCH_ROUNDS {
             if round > 0 {
-                let now = self.under(f.below_deg);
+                seeds = self.tets_under(f.below_deg);
+                let now = self.under(&seeds);
                 if !now.progress_since(&last) {
                     break;
                 }
                 last = now;
             }
-            self.region = self.focus_region(f.below_deg);
+            self.region = self.focus_region(&seeds);
             if self.region.is_none() {
                 break;
             }
@@ -158,7 +161,7 @@ impl Optimizer<'_> {
     /// The search of `search.rs` on each movable vertex of the tets under `below` degrees,
     /// worst tet first, each vertex once, at most [`SEARCH_VERTICES`] vertices.
     fn search_below(&mut self, below: f64) {
-        let mut bad: Vec<(f64, u32)> = self.w.live_slots().map(|t| (self.w.judged[t as usize].lo, t)).filter(|&(lo, _)| lo < below).collect();
+        let mut bad: Vec<(f64, u32)> = self.tets_under(below).into_iter().map(|t| (self.w.judged[t as usize].lo, t)).collect();
         bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let mut tried = rustc_hash::FxHashSet::default();
         for (_, t) in bad {
@@ -179,16 +182,20 @@ impl Optimizer<'_> {
         }
     }
 
-    /// The tets under `below` degrees, all of them and those that touch none of the input's
-    /// angles (asked for the first time there are tets under it).
-    fn under(&mut self, below: f64) -> Under {
+    /// The live tets under `below` degrees, by slot.
+    fn tets_under(&self, below: f64) -> Vec<u32> {
+        self.w.live_slots().filter(|&t| self.w.judged[t as usize].lo < below).collect()
+    }
+
+    /// Of the tets `under` the bound ([`Optimizer::tets_under`]), all of them and those that
+    /// touch none of the input's angles (asked for the first time there are some).
+    fn under(&mut self, under: &[u32]) -> Under {
         let mut out = Under { all: (0, f64::INFINITY), unexplained: (0, f64::INFINITY) };
-        let under: Vec<u32> = self.w.live_slots().filter(|&t| self.w.judged[t as usize].lo < below).collect();
         if under.is_empty() {
             return out;
         }
         let angles = self.input_angles.get_or_insert_with(self.angles);
-        for t in under {
+        for &t in under {
             let lo = self.w.judged[t as usize].lo;
             out.all = (out.all.0 + 1, out.all.1.min(lo));
             if !touches_angle_below(&self.w.tets[t as usize].map(|v| self.w.pts[v as usize]), angles, f64::INFINITY) {
@@ -198,15 +205,14 @@ impl Optimizer<'_> {
         out
     }
 
-    /// The vertices within [`FOCUS_RINGS`] rings of the tets under `below` degrees, `None`
-    /// where there are none.
-    fn focus_region(&self, below: f64) -> Option<Vec<bool>> {
-        let seeds: Vec<u32> = self.w.live_slots().filter(|&t| self.w.judged[t as usize].lo < below).collect();
+    /// The vertices within [`FOCUS_RINGS`] rings of the tets `seeds` (those under the bound),
+    /// `None` where there are none.
+    fn focus_region(&self, seeds: &[u32]) -> Option<Vec<bool>> {
         if seeds.is_empty() {
             return None;
         }
         let mut region = vec![false; self.w.pts.len()];
-        for &t in &seeds {
+        for &t in seeds {
             for v in self.w.tets[t as usize] {
                 region[v as usize] = true;
             }
