@@ -319,12 +319,12 @@ impl SurfaceModel {
             }
         }
         // flood from the left of every boundary subsegment, never across a constraint
-        let mut inside: FxHashMap<FixedFaceHandle<InnerTag>, ()> = FxHashMap::default();
+        let mut inside = vec![false; tri.num_all_faces()];
         let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
         for (a, b) in seeds {
             if let Some(e) = tri.get_edge_from_neighbors(a, b) {
                 if let Some(face) = e.face().as_inner() {
-                    if inside.insert(face.fix(), ()).is_none() {
+                    if !std::mem::replace(&mut inside[face.fix().index()], true) {
                         stack.push(face.fix());
                     }
                 }
@@ -336,24 +336,37 @@ impl SurfaceModel {
                     continue;
                 }
                 if let Some(n) = e.rev().face().as_inner() {
-                    if inside.insert(n.fix(), ()).is_none() {
+                    if !std::mem::replace(&mut inside[n.fix().index()], true) {
                         stack.push(n.fix());
                     }
                 }
             }
         }
-        let side_sets: Vec<&Vec<u32>> = fc.sides.iter().map(|&s| &self.segments[s as usize].points).collect();
-        let one_side = |t: [u32; 3]| side_sets.iter().any(|p| t.iter().all(|v| p.contains(v)));
-        let mut subfaces = Vec::with_capacity(inside.len());
-        let mut faces: Vec<FixedFaceHandle<InnerTag>> = inside.into_keys().collect();
-        faces.sort_unstable_by_key(|h| h.index());
-        for fh in faces {
-            let t = tri.face(fh).vertices().map(|h| ids[h.fix().index()]);
-            // a sliver along one side (points of one segment only) is no part of the facet
-            if one_side(t) {
+        // the sides (positions in `fc.sides`) through each point, by the point's handle
+        let mut sides_at: Vec<Vec<u32>> = vec![Vec::new(); ids.len()];
+        for (k, &s) in fc.sides.iter().enumerate() {
+            for v in &self.segments[s as usize].points {
+                if let Some(h) = handle.get(v) {
+                    let at = &mut sides_at[h.index()];
+                    if at.last() != Some(&(k as u32)) {
+                        at.push(k as u32);
+                    }
+                }
+            }
+        }
+        // whether one side holds all three points of a triangle (by handles)
+        let one_side = |t: [usize; 3]| sides_at[t[0]].iter().any(|k| sides_at[t[1]].contains(k) && sides_at[t[2]].contains(k));
+        let mut subfaces = Vec::new();
+        for fh in tri.fixed_inner_faces() {
+            if !inside[fh.index()] {
                 continue;
             }
-            subfaces.push(t);
+            let h = tri.face(fh).vertices().map(|h| h.fix().index());
+            // a sliver along one side (points of one segment only) is no part of the facet
+            if one_side(h) {
+                continue;
+            }
+            subfaces.push(h.map(|i| ids[i]));
         }
         if subfaces.is_empty() {
             return;
