@@ -335,7 +335,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                     if fresh(&touched, &t, faces_present.get(&t)) {
                         return false;
                     }
-                    let here = tr.face_of(t[0], t[1], t[2], &mut buf).is_some();
+                    let here = tr.has_face(t[0], t[1], t[2], &mut buf);
                     if here {
                         faces_present.insert(t, round);
                     }
@@ -355,13 +355,13 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
         }
         if !changed {
             // nothing could be split: every subface must be there now, or the facet is named
-            if let Some((f, t)) = sm.subfaces().find(|&(_, [a, b, c])| tr.face_of(a, b, c, &mut buf).is_none()) {
+            if let Some((f, t)) = sm.subfaces().find(|&(_, [a, b, c])| !tr.has_face(a, b, c, &mut buf)) {
                 return Err(fail(sm, f, &format!("subface {t:?} could not be recovered (no Steiner point could be inserted for it)")));
             }
             return Ok(stats);
         }
         if stats.segment_points + stats.facet_points > budget {
-            let f = sm.subfaces().find(|&(_, [a, b, c])| tr.face_of(a, b, c, &mut buf).is_none()).map_or(0, |x| x.0);
+            let f = sm.subfaces().find(|&(_, [a, b, c])| !tr.has_face(a, b, c, &mut buf)).map_or(0, |x| x.0);
             return Err(fail(sm, f, &format!("more than {budget} Steiner points were needed")));
         }
     }

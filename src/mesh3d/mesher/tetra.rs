@@ -440,6 +440,51 @@ impl Tetra {
         self.star_find(a, buf, |t| self.tets[t as usize].v.contains(&b))
     }
 
+    /// Whether `(a, b, c)` is a face of the tetrahedralization: [`Tetra::face_of`]`.is_some()`,
+    /// found by walking the star of `a` only to the first tet on edge `(a, b)` and then around
+    /// that edge (a face `(a, b, c)` is held by two of the tets around it, the edge by all of
+    /// them, so the walk stops sooner).
+    pub fn has_face(&self, a: u32, b: u32, c: u32, buf: &mut Vec<u32>) -> bool {
+        let Some(t0) = self.edge_tet(a, b, buf) else {
+            return false;
+        };
+        let v0 = self.tets[t0 as usize].v;
+        if v0.contains(&c) {
+            return true;
+        }
+        // the tets around edge (a, b) in both directions from t0: leaving a tet across the
+        // face opposite `opp`, the next tet is left across the face opposite the vertex the
+        // two share besides a and b
+        let mut others = v0.iter().copied().filter(|&x| x != a && x != b);
+        let (Some(x), Some(y)) = (others.next(), others.next()) else {
+            return false;
+        };
+        for (first, shared) in [(x, y), (y, x)] {
+            let (mut t, mut opp, mut keep) = (t0, first, shared);
+            // the most steps: the tets around an edge (a bound against a broken structure)
+            for _ in 0..self.tets.len() {
+                let tv = self.tets[t as usize].v;
+                let Some(f) = tv.iter().position(|&w| w == opp) else {
+                    return false;
+                };
+                let n = self.tets[t as usize].n[f] >> 2;
+                if n == 0 {
+                    break; // the hull: the other direction
+                }
+                if n == t0 {
+                    return false; // all the way round
+                }
+                let nv = self.tets[n as usize].v;
+                if nv.contains(&c) {
+                    return true;
+                }
+                (opp, keep) = (keep, nv.iter().copied().find(|&w| w != a && w != b && w != keep).unwrap_or(keep));
+                t = n;
+            }
+        }
+        false
+    }
+
     /// The tet and face index of face `(a, b, c)`, if it is a face of the tetrahedralization
     /// (one of the two sides).
     pub fn face_of(&self, a: u32, b: u32, c: u32, buf: &mut Vec<u32>) -> Option<(u32, usize)> {
@@ -486,4 +531,44 @@ fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
     let c = *order.iter().find(|&&i| !k.collinear(a, b, i))?;
     let d = *order.iter().find(|&&i| !k.orient(a, b, c, i).is_zero())?;
     Some(if k.orient(a, b, c, d) == Sign::Positive { [a, b, c, d] } else { [b, a, c, d] })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `has_face` answers as `face_of` does for every triple of points of a tetrahedralization
+    /// with hull edges and cospherical points (a grid), both present faces and absent ones.
+    #[test]
+    fn has_face_agrees_with_face_of() {
+        let mut points = Vec::new();
+        for i in 0..3 {
+            for j in 0..3 {
+                for k in 0..3 {
+                    points.push(DVec3::new(i as f64, j as f64, k as f64 + 0.1 * ((i * j) % 2) as f64));
+                }
+            }
+        }
+        let n = points.len() as u32;
+        let tr = Tetra::new(points, (0..n).collect(), 3).unwrap();
+        let mut buf = Vec::new();
+        let (mut present, mut absent) = (0, 0);
+        for a in 0..n {
+            for b in 0..n {
+                for c in 0..n {
+                    if a == b || b == c || a == c {
+                        continue;
+                    }
+                    let want = tr.face_of(a, b, c, &mut buf).is_some();
+                    assert_eq!(tr.has_face(a, b, c, &mut buf), want, "face ({a}, {b}, {c})");
+                    if want {
+                        present += 1;
+                    } else {
+                        absent += 1;
+                    }
+                }
+            }
+        }
+        assert!(present > 100 && absent > 1000, "{present} present, {absent} absent");
+    }
 }
