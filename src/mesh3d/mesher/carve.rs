@@ -50,7 +50,7 @@ pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<
     let subfaces: Vec<[u32; 3]> = sm.subfaces().map(|(_, t)| t).collect();
     for [a, b, c] in subfaces {
         let (t, f) = tr
-            .face_of(a, b, c, &mut buf)
+            .face_tet(a, b, c, &mut buf)
             .ok_or_else(|| MeshingError::Internal(format!("subface ({a}, {b}, {c}) is missing after recovery")))?;
         tr.set_wall(t, f, true);
     }

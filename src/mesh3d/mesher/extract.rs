@@ -45,7 +45,7 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
     let mut buf = Vec::new();
     for (f, s) in sm.subfaces() {
         let (t, k) = tr
-            .face_of(s[0], s[1], s[2], &mut buf)
+            .face_tet(s[0], s[1], s[2], &mut buf)
             .ok_or_else(|| MeshingError::Internal(format!("subface {s:?} is missing at the end")))?;
         let other = tr.tets[t as usize].n[k] >> 2;
         let (lt, lo) = (labels.get(t), labels.get(other));

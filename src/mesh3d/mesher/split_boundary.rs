@@ -227,7 +227,7 @@ fn insert(tr: &mut Tetra, sm: &mut SurfaceModel, edges: &mut FacetEdges, labels:
         };
         if matches!(res, Inserted::Yes(_)) {
             for t in &added {
-                match tr.face_of(t[0], t[1], t[2], &mut buf) {
+                match tr.face_tet(t[0], t[1], t[2], &mut buf) {
                     Some((tt, k)) => tr.set_wall(tt, k, true),
                     None => debug_assert!(false, "new subface {t:?} missing after the checked insertion"),
                 }

@@ -440,49 +440,53 @@ impl Tetra {
         self.star_find(a, buf, |t| self.tets[t as usize].v.contains(&b))
     }
 
-    /// Whether `(a, b, c)` is a face of the tetrahedralization: [`Tetra::face_of`]`.is_some()`,
-    /// found by walking the star of `a` only to the first tet on edge `(a, b)` and then around
-    /// that edge (a face `(a, b, c)` is held by two of the tets around it, the edge by all of
-    /// them, so the walk stops sooner).
+    /// Whether `(a, b, c)` is a face of the tetrahedralization: [`Tetra::face_of`]`.is_some()`
+    /// (see [`Tetra::face_tet`]).
     pub fn has_face(&self, a: u32, b: u32, c: u32, buf: &mut Vec<u32>) -> bool {
-        let Some(t0) = self.edge_tet(a, b, buf) else {
-            return false;
+        self.face_tet(a, b, c, buf).is_some()
+    }
+
+    /// A tet holding face `(a, b, c)` and the face's index in it, if it is a face of the
+    /// tetrahedralization: either of the two sides, where [`Tetra::face_of`] gives the first
+    /// in the walk around `a`. Found by walking the star of `a` only to the first tet on edge
+    /// `(a, b)` and then around that edge (the face is held by two of the tets around it, the
+    /// edge by all of them, so the walk stops sooner).
+    pub fn face_tet(&self, a: u32, b: u32, c: u32, buf: &mut Vec<u32>) -> Option<(u32, usize)> {
+        let t0 = self.edge_tet(a, b, buf)?;
+        let at = |t: u32| {
+            let v = self.tets[t as usize].v;
+            if v.contains(&c) { v.iter().position(|&w| w != a && w != b && w != c).map(|k| (t, k)) } else { None }
         };
-        let v0 = self.tets[t0 as usize].v;
-        if v0.contains(&c) {
-            return true;
+        if let Some(x) = at(t0) {
+            return Some(x);
         }
         // the tets around edge (a, b) in both directions from t0: leaving a tet across the
         // face opposite `opp`, the next tet is left across the face opposite the vertex the
         // two share besides a and b
+        let v0 = self.tets[t0 as usize].v;
         let mut others = v0.iter().copied().filter(|&x| x != a && x != b);
-        let (Some(x), Some(y)) = (others.next(), others.next()) else {
-            return false;
-        };
+        let (x, y) = (others.next()?, others.next()?);
         for (first, shared) in [(x, y), (y, x)] {
             let (mut t, mut opp, mut keep) = (t0, first, shared);
             // the most steps: the tets around an edge (a bound against a broken structure)
             for _ in 0..self.tets.len() {
-                let tv = self.tets[t as usize].v;
-                let Some(f) = tv.iter().position(|&w| w == opp) else {
-                    return false;
-                };
+                let f = self.tets[t as usize].v.iter().position(|&w| w == opp)?;
                 let n = self.tets[t as usize].n[f] >> 2;
                 if n == 0 {
                     break; // the hull: the other direction
                 }
                 if n == t0 {
-                    return false; // all the way round
+                    return None; // all the way round
+                }
+                if let Some(x) = at(n) {
+                    return Some(x);
                 }
                 let nv = self.tets[n as usize].v;
-                if nv.contains(&c) {
-                    return true;
-                }
                 (opp, keep) = (keep, nv.iter().copied().find(|&w| w != a && w != b && w != keep).unwrap_or(keep));
                 t = n;
             }
         }
-        false
+        None
     }
 
     /// The tet and face index of face `(a, b, c)`, if it is a face of the tetrahedralization
@@ -537,7 +541,7 @@ fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
 mod tests {
     use super::*;
 
-    /// `has_face` answers as `face_of` does for every triple of points of a tetrahedralization
+    /// `has_face` and `face_tet` answer as `face_of` does for every triple of points of a tetrahedralization
     /// with hull edges and cospherical points (a grid), both present faces and absent ones.
     #[test]
     fn has_face_agrees_with_face_of() {
@@ -559,8 +563,17 @@ mod tests {
                     if a == b || b == c || a == c {
                         continue;
                     }
-                    let want = tr.face_of(a, b, c, &mut buf).is_some();
-                    assert_eq!(tr.has_face(a, b, c, &mut buf), want, "face ({a}, {b}, {c})");
+                    let want = tr.face_of(a, b, c, &mut buf);
+                    let got = tr.face_tet(a, b, c, &mut buf);
+                    assert_eq!(got.is_some(), want.is_some(), "face ({a}, {b}, {c})");
+                    assert_eq!(tr.has_face(a, b, c, &mut buf), want.is_some());
+                    if let (Some((t, k)), Some((u, l))) = (got, want) {
+                        // the same tet or the one across the face, the face opposite k
+                        let v = tr.tets[t as usize].v;
+                        assert!(![a, b, c].contains(&v[k]) && [a, b, c].iter().all(|x| v.contains(x)));
+                        assert!(t == u || tr.tets[u as usize].n[l] >> 2 == t, "face ({a}, {b}, {c})");
+                    }
+                    let want = want.is_some();
                     if want {
                         present += 1;
                     } else {
