@@ -11,12 +11,13 @@ use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::Tetra;
 
-/// Builds the output mesh.
+/// Builds the output mesh; with `check`, validated ([`TetMesh::validate`]). Without it the
+/// caller checks it: the optimiser's working mesh is built with the same checks.
 ///
 /// # Errors
-/// [`MeshingError::Internal`] if the result fails [`TetMesh::validate`] or a subface is
-/// missing (both would be bugs).
-pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &TriSurface) -> Result<TetMesh, MeshingError> {
+/// [`MeshingError::Internal`] if a subface is missing or, with `check`, the result fails
+/// [`TetMesh::validate`] (both would be bugs).
+pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &TriSurface, check: bool) -> Result<TetMesh, MeshingError> {
     let n_in = input.vertices.len();
     let mut index = vec![NONE; tr.num_points()];
     let mut vertices = input.vertices.clone();
@@ -80,6 +81,8 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
         face_names: input.face_names.clone(),
         region_names: Default::default(),
     };
-    mesh.validate().map_err(|e| MeshingError::Internal(format!("the mesh does not validate: {e}")))?;
+    if check {
+        mesh.validate().map_err(|e| MeshingError::Internal(format!("the mesh does not validate: {e}")))?;
+    }
     Ok(mesh)
 }

@@ -452,7 +452,9 @@ pub(crate) fn mesh_surface_pinned(
         stop = stop.or(refinement_stop(again.stopped, tr.num_points(), max_points));
     }
     stage("refine", &mut clock);
-    let mut mesh = extract::extract(&tr, &sm, &labels, surface)?;
+    // validated here, or by the optimiser: it builds its working mesh with the same checks
+    // (orientation, faces, boundary triangles), and the mesh is checked once, not twice
+    let mut mesh = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
     stage("extract", &mut clock);
     if options.optimize {
         let opts = crate::mesh3d::optimize::OptimizeOptions::default()
@@ -468,7 +470,10 @@ pub(crate) fn mesh_surface_pinned(
             .with_focus(Some(FOCUS));
         // tets at the input's small angles do not keep the focus phase's repeats going
         let angles = || crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface);
-        let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles).map_err(|e| MeshingError::Internal(e.to_string()))?;
+        let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles).map_err(|e| match e {
+            crate::mesh3d::optimize::OptimizeError::InvalidMesh(m) => MeshingError::Internal(format!("the mesh does not validate: {m}")),
+            e => MeshingError::Internal(e.to_string()),
+        })?;
         report.optimize = Some(r);
         stage("optimize", &mut clock);
     }
