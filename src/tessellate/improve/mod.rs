@@ -250,11 +250,20 @@ impl<'a> Work<'a> {
         if self.boundary.contains(&(x.min(y), x.max(y))) {
             return None;
         }
-        let both = self.with_edge(x, y);
-        if both.len() != 2 {
+        // the triangles on the edge: exactly two, `t` and the other
+        let (mut count, mut other) = (0, None);
+        for &k in &self.star[x as usize] {
+            if self.tris[k as usize].contains(&y) {
+                count += 1;
+                if k != t && other.is_none() {
+                    other = Some(k);
+                }
+            }
+        }
+        if count != 2 {
             return None;
         }
-        let u = *both.iter().find(|&&k| k != t)?;
+        let u = other?;
         let ut = self.tris[u as usize];
         if !self.real(ut) {
             return None;
@@ -384,7 +393,8 @@ impl<'a> Work<'a> {
     /// into `(x, d, c)` and `(d, y, c)` if every check passes and the smaller angle grows.
     fn try_flip(&mut self, t: u32, x: u32, y: u32, c: u32) -> bool {
         let Some((u, ut, d)) = self.across(t, x, y) else { return false };
-        if self.key[c as usize] == self.key[d as usize] || self.neighbours(c).binary_search(&d).is_ok() {
+        // no flip onto an edge that is there already
+        if self.key[c as usize] == self.key[d as usize] || self.star[c as usize].iter().any(|&k| self.tris[k as usize].contains(&d)) {
             return false;
         }
         let (n1, n2) = ([x, d, c], [d, y, c]);
