@@ -541,8 +541,9 @@ fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
 mod tests {
     use super::*;
 
-    /// `has_face` and `face_tet` answer as `face_of` does for every triple of points of a tetrahedralization
-    /// with hull edges and cospherical points (a grid), both present faces and absent ones.
+    /// `has_face` and `face_tet` answer as `face_of` does for every triple of points of a
+    /// tetrahedralization with hull edges and cospherical points (a grid), both present faces
+    /// and absent ones.
     #[test]
     fn has_face_agrees_with_face_of() {
         let mut points = Vec::new();
