@@ -123,7 +123,7 @@ fn dihedrals_given_det(p: &[DVec3; 4], det: f64) -> Option<[f64; 6]> {
     }
     let n = outward_normals(p);
     let len = map4(n, |v| v.length());
-    dihedral_cosines(&n, &len).map(|c| c.map(dihedral_from_cosine))
+    dihedral_cosines(&n, &len).map(|c| map6(c, dihedral_from_cosine))
 }
 
 /// The cosines `n̂_k · n̂_l` (clamped to `[-1, 1]`) of the outward normals of the two faces at

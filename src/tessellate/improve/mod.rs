@@ -252,12 +252,10 @@ impl<'a> Work<'a> {
         }
         // the triangles on the edge: exactly two, `t` and the other
         let (mut count, mut other) = (0, None);
-        for &k in &self.star[x as usize] {
-            if self.tris[k as usize].contains(&y) {
-                count += 1;
-                if k != t && other.is_none() {
-                    other = Some(k);
-                }
+        for k in self.on_edge(x, y) {
+            count += 1;
+            if k != t && other.is_none() {
+                other = Some(k);
             }
         }
         if count != 2 {
@@ -274,7 +272,12 @@ impl<'a> Work<'a> {
 
     /// The live triangles with both `a` and `b`.
     fn with_edge(&self, a: u32, b: u32) -> Vec<u32> {
-        self.star[a as usize].iter().copied().filter(|&t| self.tris[t as usize].contains(&b)).collect()
+        self.on_edge(a, b).collect()
+    }
+
+    /// The triangles of `a`'s star that hold `b` (those on edge `a b`), in star order.
+    fn on_edge(&self, a: u32, b: u32) -> impl Iterator<Item = u32> + '_ {
+        self.star[a as usize].iter().copied().filter(move |&t| self.tris[t as usize].contains(&b))
     }
 
     fn collapse_pass(&mut self) -> usize {
@@ -394,7 +397,7 @@ impl<'a> Work<'a> {
     fn try_flip(&mut self, t: u32, x: u32, y: u32, c: u32) -> bool {
         let Some((u, ut, d)) = self.across(t, x, y) else { return false };
         // no flip onto an edge that is there already
-        if self.key[c as usize] == self.key[d as usize] || self.star[c as usize].iter().any(|&k| self.tris[k as usize].contains(&d)) {
+        if self.key[c as usize] == self.key[d as usize] || self.on_edge(c, d).next().is_some() {
             return false;
         }
         let (n1, n2) = ([x, d, c], [d, y, c]);
