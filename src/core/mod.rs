@@ -1,8 +1,10 @@
 //! Layer 0: identifiers and the names of tags, exact predicates, bounding boxes, tolerances
-//! relative to the model's size and the [`SizeField`] trait. Nothing here knows about meshes or files.
+//! relative to the model's size, the [`SizeField`] trait and the [`BoundaryGeometry`] trait.
+//! Nothing here knows about meshes or files.
 
 pub mod aabb;
 pub mod array_map;
+pub mod boundary_geometry;
 pub mod bucket_sort;
 pub mod bvh;
 pub mod closest;
@@ -17,6 +19,7 @@ pub mod tolerance;
 pub(crate) mod union_find;
 
 pub use aabb::Aabb;
+pub use boundary_geometry::BoundaryGeometry;
 pub use ids::{FaceId, RegionId};
 pub use predicates::Sign;
 pub use size_field::SizeField;

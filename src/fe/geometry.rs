@@ -1,21 +1,14 @@
-//! Where a boundary mid-edge node goes: the [`BoundaryGeometry`] oracle, and its B-rep
-//! implementation (closest point on the CAD face's surface, or on the curve of the CAD edge
-//! two faces share).
+//! The B-rep as the [`BoundaryGeometry`] oracle: the closest point on a CAD face's surface,
+//! or on the curve of the CAD edge two faces share. Boundary mid nodes go there, and the
+//! optimiser's sliding boundary vertices go back there.
 
 use crate::cad::brep::Model;
 use crate::core::FaceId;
-use glam::DVec3;
+use crate::cad::geom::surface::Surface;
+use glam::{DVec2, DVec3};
 use std::collections::{BTreeMap, BTreeSet};
 
-/// The geometry a boundary mesh edge's mid node is placed on.
-pub trait BoundaryGeometry: Sync {
-    /// The point of CAD face `face` closest to `p` (the chord midpoint of mesh edge `a`-`b`,
-    /// both on the face), or `None` where the face has no geometry.
-    fn on_face(&self, face: FaceId, a: DVec3, b: DVec3, p: DVec3) -> Option<DVec3>;
-    /// The point of the CAD edge between faces `f` and `g` closest to `p` (the chord midpoint
-    /// of mesh edge `a`-`b`), or `None` where they share no curved edge.
-    fn on_edge(&self, f: FaceId, g: FaceId, a: DVec3, b: DVec3, p: DVec3) -> Option<DVec3>;
-}
+pub use crate::core::BoundaryGeometry;
 
 /// A B-rep as a [`BoundaryGeometry`]; face tags are B-rep [`FaceId`]s.
 pub struct BrepGeometry<'a> {
@@ -40,6 +33,14 @@ impl<'a> BrepGeometry<'a> {
     }
 }
 
+impl BrepGeometry<'_> {
+    /// The surface of face `face`.
+    fn surface(&self, face: FaceId) -> Option<&Surface> {
+        let f = self.model.faces.get(face.index()?)?;
+        self.model.surfaces.get(f.surface as usize)
+    }
+}
+
 impl BoundaryGeometry for BrepGeometry<'_> {
     fn on_face(&self, face: FaceId, a: DVec3, _b: DVec3, p: DVec3) -> Option<DVec3> {
         let f = self.model.faces.get(face.index()?)?;
@@ -48,6 +49,26 @@ impl BoundaryGeometry for BrepGeometry<'_> {
         let uv = s.project_near(p, near);
         let q = s.point(uv.x, uv.y);
         q.is_finite().then_some(q)
+    }
+
+    fn face_hint(&self, face: FaceId, p: DVec3) -> Option<DVec2> {
+        let s = self.surface(face)?;
+        // closed forms project at once; the others search globally, once here
+        let searched = !matches!(s, Surface::Plane(_) | Surface::Cylinder(_) | Surface::Cone(_) | Surface::Sphere(_) | Surface::Torus(_));
+        let uv = s.project(p);
+        (searched && uv.is_finite()).then_some(uv)
+    }
+
+    fn on_face_from(&self, face: FaceId, from: DVec3, hint: Option<DVec2>, p: DVec3) -> Option<DVec3> {
+        if let (Some(uv), Some(s)) = (hint, self.surface(face)) {
+            // Newton from the hint; the global search only where that fails
+            let uv = s.refine(p, uv);
+            let q = s.point(uv.x, uv.y);
+            if q.is_finite() {
+                return Some(q);
+            }
+        }
+        self.on_face(face, from, from, p)
     }
 
     fn on_edge(&self, f: FaceId, g: FaceId, _a: DVec3, _b: DVec3, p: DVec3) -> Option<DVec3> {

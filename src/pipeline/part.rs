@@ -6,10 +6,11 @@ use crate::attributes::density::RegionSizes;
 use crate::attributes::{Density, DensityField, FaceCatalogue, Selection, Selector};
 use crate::cad::brep::{Dropped, FaceEntry, Model, face_table_of_names};
 use crate::cad::step;
-use crate::core::{RegionId, SizeField};
+use crate::core::{BoundaryGeometry, RegionId, SizeField};
+use crate::fe::BrepGeometry;
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids, mesh_surface};
+use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids_on, mesh_surface_on};
 use super::assembly::{ContactReport, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
@@ -344,11 +345,14 @@ impl Part {
     /// Meshes `surface` (the part's solids in it, each on its own when there are several).
     fn mesh_once(&self, surface: &TriSurface, field: &dyn SizeField, opts: &MeshOptions) -> Result<(TetMesh, MeshReport, Solids, Option<Vec<Contact>>), MeshingError> {
         let solids = solids_of(self, surface);
+        // a CAD part's boundary vertices slide on its curved faces and edges, back onto them
+        let brep = self.model.as_ref().map(BrepGeometry::new);
+        let geometry = brep.as_ref().map(|g| g as &dyn BoundaryGeometry);
         if solids.solids.len() > 1 {
-            let (mesh, report, contacts) = mesh_solids(surface, &solids, gap_of(self), field, opts)?;
+            let (mesh, report, contacts) = mesh_solids_on(surface, &solids, gap_of(self), field, opts, geometry)?;
             Ok((mesh, report, solids, Some(contacts)))
         } else {
-            let (mesh, report) = mesh_surface(surface, &self.seeds, field, opts)?;
+            let (mesh, report) = mesh_surface_on(surface, &self.seeds, field, opts, geometry)?;
             Ok((mesh, report, solids, None))
         }
     }

@@ -33,9 +33,9 @@ mod surface_model;
 mod tetra;
 mod ties;
 
-pub use assembly::{Contact, SolidFace, SolidInfo, Solids, assembly_contacts, merge_solids, mesh_solids, solid_surfaces};
+pub use assembly::{Contact, SolidFace, SolidInfo, Solids, assembly_contacts, merge_solids, mesh_solids, mesh_solids_on, solid_surfaces};
 
-use crate::core::{FaceId, RegionId, SizeField};
+use crate::core::{BoundaryGeometry, FaceId, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
 use glam::DVec3;
 use serde::Serialize;
@@ -355,7 +355,24 @@ pub fn mesh_surface(
     size: &dyn SizeField,
     options: &MeshOptions,
 ) -> Result<(TetMesh, MeshReport), MeshingError> {
-    mesh_surface_pinned(surface, seeds, size, options, &[])
+    mesh_surface_pinned(surface, seeds, size, options, &[], None)
+}
+
+/// [`mesh_surface`] on the geometry the surface approximates (a B-rep whose face ids are the
+/// surface's tags): the optimiser's boundary vertices then slide on curved faces and along
+/// curved edges too, put back onto the geometry after each move
+/// ([`MeshOptions::slide_boundary`]).
+///
+/// # Errors
+/// As [`mesh_surface`].
+pub fn mesh_surface_on(
+    surface: &TriSurface,
+    seeds: &Seeds,
+    size: &dyn SizeField,
+    options: &MeshOptions,
+    geometry: Option<&dyn BoundaryGeometry>,
+) -> Result<(TetMesh, MeshReport), MeshingError> {
+    mesh_surface_pinned(surface, seeds, size, options, &[], geometry)
 }
 
 /// [`mesh_surface`] with the vertices of faces tagged `pinned` kept where they are (an
@@ -366,6 +383,7 @@ pub(crate) fn mesh_surface_pinned(
     size: &dyn SizeField,
     options: &MeshOptions,
     pinned: &[FaceId],
+    geometry: Option<&dyn BoundaryGeometry>,
 ) -> Result<(TetMesh, MeshReport), MeshingError> {
     let start = Instant::now();
     let mut report = MeshReport::default();
@@ -470,7 +488,7 @@ pub(crate) fn mesh_surface_pinned(
             .with_focus(Some(FOCUS));
         // tets at the input's small angles do not keep the focus phase's repeats going
         let angles = || crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface);
-        let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles).map_err(|e| match e {
+        let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles, geometry).map_err(|e| match e {
             crate::mesh3d::optimize::OptimizeError::InvalidMesh(m) => MeshingError::Internal(format!("the mesh does not validate: {m}")),
             e => MeshingError::Internal(e.to_string()),
         })?;

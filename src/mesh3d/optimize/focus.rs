@@ -177,6 +177,7 @@ impl Optimizer<'_> {
                     self.report.search_moves += 1;
                     self.report.smoothing_moves += 1;
                     self.report.boundary_moves += usize::from(self.w.fixed[v as usize]);
+                    self.report.curved_boundary_moves += usize::from(self.w.slide[v as usize].is_some_and(|s| s.curved()));
                 }
             }
         }

@@ -11,8 +11,11 @@
 //!   face between tets of different regions) are never removed, and their vertices never move,
 //!   but with [`OptimizeOptions::slide_boundary`] where the boundary keeps its shape: in the
 //!   plane of a flat surface (one face tag, one pair of regions) and along a straight crease
-//!   between two flat surfaces (`slide.rs`). `boundary` and `face_tags` are left untouched
-//!   and stay faces of the mesh; every tagged face keeps its area.
+//!   between two flat surfaces (`slide.rs`), and, given the geometry the boundary approximates
+//!   ([`optimize_explained`]'s [`BoundaryGeometry`]), on a curved CAD face and along a curved
+//!   CAD edge, put back onto it after each move. `boundary` and `face_tags` are left untouched
+//!   and stay faces of the mesh; every tagged face keeps its area, or on curved faces the
+//!   area its chords have on the CAD face.
 //! - Region tags: changes only replace tets of one region by tets of the same region.
 //! - The vertices: existing vertices keep their indices; vertices on no constrained face may
 //!   move. Vertex insertion (optional, [`OptimizeOptions::insert`]) appends new vertices at the
@@ -32,7 +35,8 @@
 //!    rings of up to 12 tets, best ring triangulation by dynamic programming);
 //! 2. the 2-3 flip of each of its four faces;
 //! 3. smoothing of each of its free vertices (non-smooth steepest ascent of the star's least
-//!    score), and of its sliding boundary vertices within their plane or line;
+//!    score), and of its sliding boundary vertices within their plane or line, or on their
+//!    CAD face or edge;
 //! 4. vertex insertion at its circumcentre or centroid, with the new vertex smoothed.
 //!
 //! No change makes a tet's radius-edge ratio exceed [`OptimizeOptions::max_radius_edge`] unless
@@ -83,7 +87,7 @@ mod work;
 #[cfg(test)]
 mod tests;
 
-use crate::core::FaceId;
+use crate::core::{BoundaryGeometry, FaceId};
 use crate::mesh::{MeshError, TetMesh};
 use crate::quality::input_angles::InputAngle;
 use crate::quality::tetrahedron::TET_EDGES;
@@ -279,9 +283,11 @@ pub struct OptimizeReport {
     pub edge_removals: usize,
     /// Vertex moves by smoothing.
     pub smoothing_moves: usize,
-    /// Of those, moves of boundary vertices within their plane or along their straight edge
-    /// ([`OptimizeOptions::slide_boundary`]).
+    /// Of those, moves of boundary vertices within their plane or along their straight edge,
+    /// or on their CAD face or edge ([`OptimizeOptions::slide_boundary`]).
     pub boundary_moves: usize,
+    /// Of those, moves on a curved CAD face or along a curved CAD edge (with the geometry).
+    pub curved_boundary_moves: usize,
     /// Vertices inserted (appended to `vertices`).
     pub insertions: usize,
     /// Bad tets on which insertion was tried (kept or undone).
@@ -335,7 +341,7 @@ pub enum OptimizeError {
 
 /// The optimiser's state and scratch.
 struct Optimizer<'a> {
-    w: Work,
+    w: Work<'a>,
     opts: &'a OptimizeOptions,
     er: EdgeRemoval,
     sm: Smoother,
@@ -402,6 +408,7 @@ impl Optimizer<'_> {
                 if self.sm.try_smooth(&mut self.w, v, max_re) {
                     self.report.smoothing_moves += 1;
                     self.report.boundary_moves += usize::from(self.w.fixed[v as usize]);
+                    self.report.curved_boundary_moves += usize::from(self.w.slide[v as usize].is_some_and(|s| s.curved()));
                     changed = true;
                     if self.w.q[t as usize] >= 1.0 {
                         return true;
@@ -586,7 +593,7 @@ impl Optimizer<'_> {
 /// [`OptimizeError::InvalidMesh`] if the mesh fails the checks of [`TetMesh::validate`] (the
 /// mesh is then left as it was), [`OptimizeError::TooLarge`] beyond 2³⁰ − 1 tets.
 pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeReport, OptimizeError> {
-    optimize_explained(mesh, opts, &Vec::new)
+    optimize_explained(mesh, opts, &Vec::new, None)
 }
 
 /// [`optimize`], told where the input explains a tet: `angles` gives the input's angles under
@@ -595,11 +602,18 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
 /// meshed). A tet that touches one
 /// ([`touches_angle_below`](crate::quality::worst_tet::touches_angle_below)) is explained by
 /// the input, and does not keep [`Focus`]'s repeats going on its own. `angles` is called at
-/// most once, and only where the focus phase leaves tets under its bound.
+/// most once, and only where the focus phase leaves tets under its bound. `geometry`, where
+/// the boundary approximates one (a B-rep whose face ids are the boundary's tags), lets
+/// [`OptimizeOptions::slide_boundary`] slide vertices on curved faces and edges too.
 ///
 /// # Errors
 /// As [`optimize`].
-pub fn optimize_explained(mesh: &mut TetMesh, opts: &OptimizeOptions, angles: &dyn Fn() -> Vec<InputAngle>) -> Result<OptimizeReport, OptimizeError> {
+pub fn optimize_explained(
+    mesh: &mut TetMesh,
+    opts: &OptimizeOptions,
+    angles: &dyn Fn() -> Vec<InputAngle>,
+    geometry: Option<&dyn BoundaryGeometry>,
+) -> Result<OptimizeReport, OptimizeError> {
     let start = Instant::now();
     if mesh.tets.len() > work::MAX_TETS {
         return Err(OptimizeError::TooLarge { tets: mesh.tets.len(), max: work::MAX_TETS });
@@ -607,7 +621,8 @@ pub fn optimize_explained(mesh: &mut TetMesh, opts: &OptimizeOptions, angles: &d
     let tg = Targets::new(opts.min_dihedral_deg, opts.max_dihedral_deg).with_radius_edge(opts.max_radius_edge);
     let mut w = Work::build(mesh, tg)?;
     if opts.slide_boundary && opts.smooth {
-        w.slide = slide::slides(mesh, &w, &opts.pinned_faces);
+        (w.slide, w.fans) = slide::slides(mesh, &w, &opts.pinned_faces, geometry);
+        w.geo = geometry;
     }
     let setup_seconds = start.elapsed().as_secs_f64();
     let before = w.worst();

@@ -138,7 +138,12 @@ impl Searcher {
         // no largest angle past the star's, or past the one a merit of `below` allows
         let hi0 = self.star.tets.iter().map(|&t| w.judged[t as usize].hi).fold(0.0, f64::max);
         let max_hi = hi0.max(180.0 - below / HI_WEIGHT);
+        let geo = w.geo;
+        if let Some(s) = w.slide[v as usize].as_mut() {
+            s.prepare(geo);
+        }
         let slide = w.slide[v as usize];
+        let fan = w.fans.get(&v).map(|fan| (fan, fan.bounds(&w.pts, x0)));
         let scale = self.star.scale(w, x0);
         let mut rng = Rng(u64::from(v).wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x5EED);
         let (mut x, mut f) = (x0, f0);
@@ -148,8 +153,12 @@ impl Searcher {
             for _ in 0..ROUNDS {
                 for _ in 0..SAMPLES {
                     let d = DVec3::new(rng.normal(), rng.normal(), rng.normal()) * step;
-                    let y = slide.map_or(x + d, |s| s.snap(x + d));
-                    if let Some(fy) = self.evaluate(w, y, f, bound, max_hi, below, under0) {
+                    let y = match slide {
+                        None => Some(x + d),
+                        Some(s) => s.snap(x, x + d, w.geo),
+                    };
+                    let y = y.filter(|&y| fan.is_none_or(|(fan, bounds)| fan.keeps(&w.pts, y, bounds)));
+                    if let Some((y, fy)) = y.and_then(|y| Some((y, self.evaluate(w, y, f, bound, max_hi, below, under0)?))) {
                         if fy > f {
                             (x, f) = (y, fy);
                         }
@@ -177,7 +186,7 @@ mod tests {
 
     /// A 2×2×2 Kuhn cube with its centre pushed near a face: the star's least merit, its
     /// count under `below`, and the work.
-    fn pushed(to: DVec3) -> (crate::mesh::TetMesh, Work, u32) {
+    fn pushed(to: DVec3) -> (crate::mesh::TetMesh, Work<'static>, u32) {
         let mut m = kuhn_cube(2, 0.0, 1);
         let centre = m.vertices.iter().position(|p| (*p - DVec3::splat(0.5)).length() < 1e-12).unwrap() as u32;
         m.vertices[centre as usize] = to;

@@ -1,4 +1,4 @@
-//! Boundary vertices that may slide without changing the boundary: a vertex whose constrained
+//! Boundary vertices that may slide without leaving the boundary: a vertex whose constrained
 //! faces all lie in one plane and belong to one surface (same face tag, same regions on either
 //! side) may move in that plane, and a vertex on a straight crease between two such flat
 //! surfaces may move along the crease, as Klingner and Shewchuk let their smoothing move
@@ -15,18 +15,45 @@
 //! 1e-9, vertices within 1e-9 of the star's longest edge from the plane): points that were put
 //! on a plane by floating-point arithmetic (Steiner points) count as on it, the chords of a
 //! tessellated curved face, whose neighbours turn by 1e-4 and more, do not.
+//!
+//! Where the mesh is given the geometry its boundary approximates (a
+//! [`BoundaryGeometry`]: the B-rep of a STEP part), a vertex of one curved face moves in its
+//! tangent plane and is put back onto the face, and a vertex on a smooth crease between two
+//! faces moves along the crease and is put back onto the CAD edge between them ("sliding
+//! on their CAD face and along their CAD edge, never off it"). Its place stays on the CAD
+//! geometry; the chords around it change, so the areas and the volume change by what the
+//! chords' sag changes. A vertex whose faces turn sharply (a cone's apex, a corner where the
+//! crease turns) stays. Flat faces and straight creases slide as above, exactly.
 
-use crate::core::{FaceId, RegionId};
+use crate::core::{BoundaryGeometry, FaceId, RegionId};
 use crate::core::ids::NONE;
 use crate::mesh::TetMesh;
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh3d::optimize::work::Work;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Normals this close to parallel (the sine of their angle), and vertices this close to the
 /// plane (relative to the longest edge of the faces at the vertex), count as flat.
 const FLAT: f64 = 1e-9;
+
+/// A curved surface's faces at a sliding vertex turn at most this far from their mean normal,
+/// and a curved crease turns at most this far at the vertex (the cosine of 30°): beyond that
+/// the vertex is a feature of the tessellation (a cone's apex, a corner of the crease) and
+/// stays.
+const SMOOTH_COS: f64 = 0.866;
+
+/// A vertex sliding on a curved face or edge leaves no angle of the boundary triangles at it
+/// under this one (the cosine of 20°), or under the smallest of them before where that was
+/// smaller: the tets measure the triangles only through their dihedral angles,
+/// and measured on real parts, slides along a strip's edge left needles and caps there (on
+/// T-Lind_Part1 boundary triangles with an angle over 170° went from 4 to 10, and tets at
+/// the strip's corners from 11.7° to 4.0°).
+const FAN_MIN_COS: f64 = 0.9397;
+
+/// As [`FAN_MIN_COS`] for the largest angle (the cosine of 120°): none over it, or over the
+/// largest before.
+const FAN_MAX_COS: f64 = -0.5;
 
 /// How a boundary vertex may move.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -35,6 +62,13 @@ pub(crate) enum Slide {
     Plane { at: DVec3, n: DVec3 },
     /// Along the line through `at` with unit direction `dir`.
     Line { at: DVec3, dir: DVec3 },
+    /// On curved face `face` (through `at`, unit normal about `n` there): moves in the tangent
+    /// plane, then onto the face by the geometry, searched from `hint`
+    /// ([`BoundaryGeometry::face_hint`] at `at`, once `hinted`).
+    Surface { at: DVec3, n: DVec3, face: FaceId, hint: Option<DVec2>, hinted: bool },
+    /// On the curved edge between `faces` (through `at`, direction about `dir` there): moves
+    /// along it, then onto the edge by the geometry.
+    Curve { at: DVec3, dir: DVec3, faces: [FaceId; 2] },
 }
 
 impl Slide {
@@ -42,18 +76,83 @@ impl Slide {
     #[inline]
     pub(crate) fn project(&self, g: DVec3) -> DVec3 {
         match *self {
-            Slide::Plane { n, .. } => g - n * n.dot(g),
-            Slide::Line { dir, .. } => dir * dir.dot(g),
+            Slide::Plane { n, .. } | Slide::Surface { n, .. } => g - n * n.dot(g),
+            Slide::Line { dir, .. } | Slide::Curve { dir, .. } => dir * dir.dot(g),
         }
     }
 
-    /// The point of the plane or line nearest `x`.
+    /// Where the vertex, now at `from`, goes when moved to `x`: the point of the plane or line
+    /// nearest `x`, or the point of the CAD face or edge nearest `x` by `geo`. `None` where
+    /// the geometry gives none, or one farther from `x` than `from` is (a projection onto
+    /// another sheet of the surface: the vertex's own place is nearer).
     #[inline]
-    pub(crate) fn snap(&self, x: DVec3) -> DVec3 {
-        match *self {
-            Slide::Plane { at, n } => x - n * n.dot(x - at),
-            Slide::Line { at, dir } => at + dir * dir.dot(x - at),
+    pub(crate) fn snap(&self, from: DVec3, x: DVec3, geo: Option<&dyn BoundaryGeometry>) -> Option<DVec3> {
+        let y = match *self {
+            Slide::Plane { at, n } => return Some(x - n * n.dot(x - at)),
+            Slide::Line { at, dir } => return Some(at + dir * dir.dot(x - at)),
+            Slide::Surface { face, hint, .. } => geo?.on_face_from(face, from, hint, x)?,
+            Slide::Curve { faces: [f, g], .. } => geo?.on_edge(f, g, from, from, x)?,
+        };
+        (y.is_finite() && y.distance_squared(x) <= x.distance_squared(from)).then_some(y)
+    }
+
+    /// Asks `geo` where to start searching the face from, the first time (the search for it
+    /// may be slow: it is made only for vertices that the optimiser moves).
+    pub(crate) fn prepare(&mut self, geo: Option<&dyn BoundaryGeometry>) {
+        if let (Slide::Surface { at, face, hint, hinted, .. }, Some(geo)) = (self, geo) {
+            if !*hinted {
+                *hint = geo.face_hint(*face, *at);
+                *hinted = true;
+            }
         }
+    }
+
+    /// Whether the vertex moves off its flat surface's plane or straight crease (onto the
+    /// CAD geometry).
+    pub(crate) fn curved(&self) -> bool {
+        matches!(self, Slide::Surface { .. } | Slide::Curve { .. })
+    }
+}
+
+/// The boundary triangles at a vertex sliding on a curved face or edge, as the pairs of their
+/// other vertices: the slide's guard ([`Fan::keeps`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Fan {
+    pairs: Vec<[u32; 2]>,
+}
+
+impl Fan {
+    /// The largest and the smallest cosine of the angles of the fan's triangles with the
+    /// vertex at `x`.
+    fn cosines(&self, pts: &[DVec3], x: DVec3) -> (f64, f64) {
+        let (mut hi, mut lo) = (-1.0f64, 1.0f64);
+        for &[a, b] in &self.pairs {
+            let (pa, pb) = (pts[a as usize], pts[b as usize]);
+            for (o, p, q) in [(x, pa, pb), (pa, pb, x), (pb, x, pa)] {
+                let (u, v) = (p - o, q - o);
+                let c = u.dot(v) / (u.length() * v.length());
+                if !c.is_finite() {
+                    return (1.0, -1.0);
+                }
+                hi = hi.max(c);
+                lo = lo.min(c);
+            }
+        }
+        (hi, lo)
+    }
+
+    /// The bounds on the cosines that a move of the vertex from `x0` must keep
+    /// ([`FAN_MIN_COS`], [`FAN_MAX_COS`]; see [`Fan::keeps`]).
+    pub(crate) fn bounds(&self, pts: &[DVec3], x0: DVec3) -> (f64, f64) {
+        let (hi, lo) = self.cosines(pts, x0);
+        (hi.max(FAN_MIN_COS), lo.min(FAN_MAX_COS))
+    }
+
+    /// Whether the fan's triangles with the vertex at `y` keep `bounds` (from
+    /// [`Fan::bounds`]): no angle smaller, none larger.
+    pub(crate) fn keeps(&self, pts: &[DVec3], y: DVec3, bounds: (f64, f64)) -> bool {
+        let (hi, lo) = self.cosines(pts, y);
+        hi <= bounds.0 && lo >= bounds.1
     }
 }
 
@@ -62,15 +161,20 @@ impl Slide {
 struct Face {
     v: [u32; 3],
     key: (u32, RegionId, RegionId),
+    /// Its boundary triangle's tag, if it is one.
+    tag: Option<u32>,
+    /// Its normal times twice its area.
+    area_n: DVec3,
     n: DVec3,
 }
 
 /// The slide of every vertex of `w` (built from `mesh`): `None` for vertices that are free
-/// (no constrained face) or must stay (a corner, a curved or tag-crossing neighbourhood, a
-/// vertex of a boundary triangle tagged `pinned`).
-pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId]) -> Vec<Option<Slide>> {
+/// (no constrained face) or must stay (a corner, a tag-crossing neighbourhood, a curved one
+/// without `geo` or turning sharply, a vertex of a boundary triangle tagged `pinned`).
+pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId], geo: Option<&dyn BoundaryGeometry>) -> (Vec<Option<Slide>>, FxHashMap<u32, Fan>) {
     let nv = w.pts.len();
     let mut out = vec![None; nv];
+    let mut fans = FxHashMap::default();
     let tag_of: FxHashMap<[u32; 3], u32> = mesh.boundary.iter().zip(&mesh.face_tags).map(|(t, g)| (sorted3(*t).0, g.0)).collect();
     // every constrained face once (an interface face is seen from both of its tets)
     let mut seen: FxHashSet<[u32; 3]> = FxHashSet::default();
@@ -93,8 +197,9 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId]) -> Vec<Option<
             let r1 = if other == NONE { RegionId(u32::MAX) } else { w.region[(other >> 2) as usize] };
             let (ra, rb) = if r0.0 <= r1.0 { (r0, r1) } else { (r1, r0) };
             let [a, b, c] = v.map(|i| w.pts[i as usize]);
-            let n = (b - a).cross(c - a).normalize_or_zero();
-            faces.push(Face { v, key: (tag_of.get(&key).copied().unwrap_or(0), ra, rb), n });
+            let area_n = (b - a).cross(c - a);
+            let tag = tag_of.get(&key).copied();
+            faces.push(Face { v, key: (tag.unwrap_or(0), ra, rb), tag, area_n, n: area_n.normalize_or_zero() });
         }
     }
     // faces by vertex (counting sort)
@@ -132,9 +237,19 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId]) -> Vec<Option<
         let mine: Vec<&Face> = at[start[v]..start[v + 1]].iter().map(|&i| &faces[i as usize]).collect();
         if !mine.is_empty() {
             out[v] = slide_of(v as u32, &mine, &w.pts);
+            if out[v].is_none() && geo.is_some() {
+                out[v] = curved_slide_of(v as u32, &mine, &w.pts);
+                if out[v].is_some() {
+                    let pairs = mine.iter().map(|f| {
+                        let k = f.v.iter().position(|&x| x == v as u32).unwrap_or(0);
+                        [f.v[(k + 1) % 3], f.v[(k + 2) % 3]]
+                    });
+                    fans.insert(v as u32, Fan { pairs: pairs.collect() });
+                }
+            }
         }
     }
-    out
+    (out, fans)
 }
 
 /// The slide of vertex `v` whose constrained faces are `faces`, if it has one.
@@ -170,8 +285,76 @@ fn slide_of(v: u32, faces: &[&Face], pts: &[DVec3]) -> Option<Slide> {
             return None;
         }
     }
-    // the edges at v: each in exactly two faces (a manifold fan around v); creases between the
-    // two surfaces
+    let creases = creases(v, faces, &group, normals.len())?;
+    match (normals.len(), creases.len()) {
+        (1, 0) => Some(Slide::Plane { at: p, n: normals[0].1 }),
+        (2, 2) => {
+            let (a, b) = (pts[creases[0] as usize] - p, pts[creases[1] as usize] - p);
+            if a.cross(b).length() > FLAT * a.length() * b.length() || a.dot(b) >= 0.0 {
+                return None;
+            }
+            let dir = (b - a).normalize_or_zero();
+            (dir != DVec3::ZERO).then_some(Slide::Line { at: p, dir })
+        }
+        _ => None,
+    }
+}
+
+/// The slide of vertex `v` on a curved face or along a curved crease (its constrained faces
+/// `faces`), if it has one: the faces of at most two tagged surfaces, each one fan, each
+/// turning less than [`SMOOTH_COS`] from its mean normal; on two, the crease between them
+/// through `v` turning less than that too.
+fn curved_slide_of(v: u32, faces: &[&Face], pts: &[DVec3]) -> Option<Slide> {
+    let p = pts[v as usize];
+    // the surfaces at v, by key
+    let mut keys: Vec<(u32, RegionId, RegionId)> = Vec::with_capacity(2);
+    let mut group = vec![0usize; faces.len()];
+    for (i, f) in faces.iter().enumerate() {
+        f.tag?;
+        group[i] = match keys.iter().position(|k| *k == f.key) {
+            Some(g) => g,
+            None => {
+                if keys.len() == 2 {
+                    return None;
+                }
+                keys.push(f.key);
+                keys.len() - 1
+            }
+        };
+    }
+    // each surface's mean normal, and every face near it
+    let mut mean = [DVec3::ZERO; 2];
+    for (i, f) in faces.iter().enumerate() {
+        mean[group[i]] += f.area_n;
+    }
+    let mean = mean.map(|m| m.normalize_or_zero());
+    for (i, f) in faces.iter().enumerate() {
+        if !(f.n.dot(mean[group[i]]) >= SMOOTH_COS) {
+            return None;
+        }
+    }
+    let creases = creases(v, faces, &group, keys.len())?;
+    let face = |g: usize| FaceId(keys[g].0);
+    match (keys.len(), creases.len()) {
+        (1, 0) => (mean[0] != DVec3::ZERO).then_some(Slide::Surface { at: p, n: mean[0], face: face(0), hint: None, hinted: false }),
+        (2, 2) => {
+            let (a, b) = (pts[creases[0] as usize], pts[creases[1] as usize]);
+            let (into, out) = ((p - a).normalize_or_zero(), (b - p).normalize_or_zero());
+            if !(into.dot(out) >= SMOOTH_COS) {
+                return None;
+            }
+            let dir = (b - a).normalize_or_zero();
+            (dir != DVec3::ZERO && face(0) != face(1)).then_some(Slide::Curve { at: p, dir, faces: [face(0), face(1)] })
+        }
+        _ => None,
+    }
+}
+
+/// The creases at vertex `v` between the `groups` surfaces its constrained `faces` belong to
+/// (`group` of each face), as their other vertices, sorted: `None` unless the faces make a
+/// manifold fan around `v` (each edge at `v` in exactly two of them) and each surface's part
+/// of it is connected across the edges that are no crease.
+fn creases(v: u32, faces: &[&Face], group: &[usize], groups: usize) -> Option<Vec<u32>> {
     let mut edges: FxHashMap<u32, (usize, [usize; 2])> = FxHashMap::default();
     for (i, f) in faces.iter().enumerate() {
         for &x in &f.v {
@@ -189,32 +372,20 @@ fn slide_of(v: u32, faces: &[&Face], pts: &[DVec3]) -> Option<Slide> {
     }
     let mut creases: Vec<u32> = edges.iter().filter(|(_, e)| group[e.1[0]] != group[e.1[1]]).map(|(&x, _)| x).collect();
     creases.sort_unstable();
-    // each surface's faces connected across the edges that are no crease (one fan)
     let mut uf = crate::core::union_find::UnionFind::new(faces.len());
     for e in edges.values() {
         if group[e.1[0]] == group[e.1[1]] {
             uf.union(e.1[0] as u32, e.1[1] as u32);
         }
     }
-    for g in 0..normals.len() {
+    for g in 0..groups {
         let mut roots = (0..faces.len()).filter(|&i| group[i] == g).map(|i| uf.find(i as u32));
         let first = roots.next()?;
         if roots.any(|r| r != first) {
             return None;
         }
     }
-    match (normals.len(), creases.len()) {
-        (1, 0) => Some(Slide::Plane { at: p, n: normals[0].1 }),
-        (2, 2) => {
-            let (a, b) = (pts[creases[0] as usize] - p, pts[creases[1] as usize] - p);
-            if a.cross(b).length() > FLAT * a.length() * b.length() || a.dot(b) >= 0.0 {
-                return None;
-            }
-            let dir = (b - a).normalize_or_zero();
-            (dir != DVec3::ZERO).then_some(Slide::Line { at: p, dir })
-        }
-        _ => None,
-    }
+    Some(creases)
 }
 
 #[cfg(test)]
@@ -242,7 +413,7 @@ mod tests {
 
     fn slides_of(m: &TetMesh) -> Vec<Option<Slide>> {
         let w = Work::build(m, Targets::new(18.0, 160.0)).unwrap();
-        slides(m, &w, &[])
+        slides(m, &w, &[], None).0
     }
 
     #[test]
@@ -311,7 +482,7 @@ mod tests {
         let mut sm = Smoother::default();
         // fixed without slides
         assert!(!sm.try_smooth(&mut w, c as u32, 2.0));
-        w.slide = slides(&m, &w, &[]);
+        w.slide = slides(&m, &w, &[], None).0;
         let mut star = Vec::new();
         w.star(c as u32, &mut star);
         let before = star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
@@ -326,6 +497,138 @@ mod tests {
         assert!((out.volume() - v0).abs() < 1e-14);
         for (x, y) in tag_areas(&out).iter().zip(&a0) {
             assert!((x - y).abs() < 1e-14, "{x} {y}");
+        }
+    }
+
+    /// The cube's bottom (tag 5) bent onto a sphere of radius `r` whose centre lies under the
+    /// cube's middle, the bottom's middle touching z = 0 (each vertex lifted straight up or
+    /// down): a curved face, and curved creases with the sides y = 0 and y = 1 (tags 3 and 4),
+    /// which stay planes.
+    struct Dome {
+        r: f64,
+    }
+
+    impl Dome {
+        fn centre(&self) -> DVec3 {
+            DVec3::new(0.5, 0.5, -self.r)
+        }
+
+        /// The point of the sphere nearest `p`.
+        fn onto(&self, p: DVec3) -> DVec3 {
+            self.centre() + (p - self.centre()).normalize() * self.r
+        }
+
+        /// The point of the sphere over `(x, y)`.
+        fn lift(&self, x: f64, y: f64) -> DVec3 {
+            let (dx, dy) = (x - 0.5, y - 0.5);
+            DVec3::new(x, y, -self.r + (self.r * self.r - dx * dx - dy * dy).sqrt())
+        }
+
+        fn off(&self, p: DVec3) -> f64 {
+            ((p - self.centre()).length() - self.r).abs()
+        }
+
+        fn bent(&self, n: usize) -> TetMesh {
+            let mut m = cube(n, by_side);
+            for p in &mut m.vertices {
+                if p.z == 0.0 {
+                    *p = self.lift(p.x, p.y);
+                }
+            }
+            m
+        }
+    }
+
+    impl BoundaryGeometry for Dome {
+        fn on_face(&self, face: FaceId, _: DVec3, _: DVec3, p: DVec3) -> Option<DVec3> {
+            (face == FaceId(5)).then(|| self.onto(p))
+        }
+
+        fn on_edge(&self, f: FaceId, g: FaceId, _: DVec3, _: DVec3, p: DVec3) -> Option<DVec3> {
+            let side = if f == FaceId(5) { g } else { f };
+            let y = match side.0 {
+                3 => 0.0,
+                4 => 1.0,
+                _ => return None,
+            };
+            // the circle where the sphere meets the side's plane
+            let c = DVec3::new(0.5, y, -self.r);
+            let rho = (self.r * self.r - 0.25).sqrt();
+            (f == FaceId(5) || g == FaceId(5)).then(|| c + DVec3::new(p.x - c.x, 0.0, p.z - c.z).normalize() * rho)
+        }
+    }
+
+    #[test]
+    fn with_the_geometry_curved_faces_and_creases_slide_and_corners_stay() {
+        let dome = Dome { r: 2.0 };
+        let m = dome.bent(4);
+        let w = Work::build(&m, Targets::new(18.0, 160.0)).unwrap();
+        let with = slides(&m, &w, &[], Some(&dome)).0;
+        let without = slides(&m, &w, &[], None).0;
+        let at = |x: f64, y: f64| vertex(&m, dome.lift(x, y));
+        // the bottom's vertices: on the face, on the crease with y = 0, at the corner
+        assert!(matches!(with[at(0.5, 0.5)], Some(Slide::Surface { face: FaceId(5), .. })), "{:?}", with[at(0.5, 0.5)]);
+        match with[at(0.5, 0.0)] {
+            Some(Slide::Curve { dir, faces, .. }) => {
+                assert!((dir.abs() - DVec3::X).length() < 1e-12, "{dir}");
+                assert!(faces.contains(&FaceId(5)) && faces.contains(&FaceId(3)), "{faces:?}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(with[at(0.0, 0.0)], None);
+        // the crease with the side x = 0 slides too, though this geometry has no edge there
+        // to put it on (so it will not move)
+        assert!(matches!(with[at(0.0, 0.5)], Some(Slide::Curve { .. })));
+        // without the geometry none of them slides; the flat sides still do
+        for (x, y) in [(0.5, 0.5), (0.5, 0.0), (0.0, 0.0)] {
+            assert_eq!(without[at(x, y)], None);
+        }
+        assert_eq!(with[vertex(&m, DVec3::new(0.5, 0.5, 1.0))], without[vertex(&m, DVec3::new(0.5, 0.5, 1.0))]);
+        assert!(matches!(with[vertex(&m, DVec3::new(0.5, 0.5, 1.0))], Some(Slide::Plane { .. })));
+    }
+
+    /// Smooths vertex `c` of `m` against the geometry: the star's least score before and after,
+    /// and the mesh written back.
+    fn smooth_on(m: &TetMesh, c: usize, geo: Option<&dyn BoundaryGeometry>) -> (f64, f64, TetMesh) {
+        let mut w = Work::build(m, Targets::new(30.0, 130.0)).unwrap();
+        (w.slide, w.fans) = slides(m, &w, &[], geo);
+        w.geo = geo;
+        let mut star = Vec::new();
+        w.star(c as u32, &mut star);
+        let least = |w: &Work| star.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
+        let before = least(&w);
+        Smoother::default().try_smooth(&mut w, c as u32, 2.0);
+        let after = least(&w);
+        let mut out = m.clone();
+        w.write_back(&mut out);
+        assert_eq!(out.validate(), Ok(()));
+        (before, after, out)
+    }
+
+    #[test]
+    fn a_vertex_on_a_curved_face_or_crease_slides_on_it_and_stays_on_it() {
+        let dome = Dome { r: 2.0 };
+        for ((x, y), (px, py)) in [((0.5, 0.5), (0.62, 0.6)), ((0.5, 0.0), (0.6, 0.0))] {
+            let mut m = dome.bent(4);
+            let home = dome.lift(x, y);
+            let c = vertex(&m, home);
+            m.vertices[c] = dome.lift(px, py);
+            assert_eq!(m.validate(), Ok(()));
+            // without the geometry it stays where it is
+            let (b0, a0, out0) = smooth_on(&m, c, None);
+            assert_eq!(out0.vertices[c], m.vertices[c]);
+            assert_eq!(a0, b0);
+            // with it, it moves back towards home, on the sphere (and on y = 0 on the crease)
+            let (b1, a1, out1) = smooth_on(&m, c, Some(&dome));
+            let p = out1.vertices[c];
+            assert!(a1 > b1 + 0.1, "{b1} -> {a1}");
+            assert!(dome.off(p) < 1e-12, "{p}");
+            assert!(p.distance(home) < 0.5 * m.vertices[c].distance(home), "{p}");
+            if y == 0.0 {
+                assert_eq!(p.y, 0.0);
+            }
+            // the volume changes by what the chords' sag changes: little
+            assert!((out1.volume() - m.volume()).abs() < 1e-3, "{} {}", out1.volume(), m.volume());
         }
     }
 

@@ -352,13 +352,13 @@ fn the_focus_repeats_only_while_its_rounds_make_progress() {
     // an input angle at every hull vertex (they do not move) explains them: the same work
     // up to the end of the first search, and a mesh as sound
     let mut out = m.clone();
-    let r1 = optimize_explained(&mut out, &opts, &|| hull.iter().map(|&p| corner(p)).collect()).unwrap();
+    let r1 = optimize_explained(&mut out, &opts, &|| hull.iter().map(|&p| corner(p)).collect(), None).unwrap();
     check_kept(&m, &out, &r1);
     assert!(r1.focus_rounds >= 1 && r1.focus_rounds <= FOCUS_SEARCH_ROUNDS, "{r1:?}");
     assert_eq!((r1.focus_attempts, r1.focus_dihedral_attempts), (r.focus_attempts, r.focus_dihedral_attempts));
     // angles far from every tet explain none: the same work as without them
     let mut far = m.clone();
-    let r2 = optimize_explained(&mut far, &opts, &|| vec![corner(DVec3::splat(10.0))]).unwrap();
+    let r2 = optimize_explained(&mut far, &opts, &|| vec![corner(DVec3::splat(10.0))], None).unwrap();
     assert_eq!((far, r2.focus_rounds), (plain, r.focus_rounds));
 
     // beside a cube, a flat tet on its own, every face of it boundary and every vertex a

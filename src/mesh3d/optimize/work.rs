@@ -9,20 +9,20 @@
 
 use crate::core::ids::NONE;
 use crate::core::predicates::orient3d;
-use crate::core::{RegionId, Sign};
+use crate::core::{BoundaryGeometry, RegionId, Sign};
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TetMesh};
 use crate::mesh3d::optimize::measure::{Judged, Targets};
-use crate::mesh3d::optimize::slide::Slide;
+use crate::mesh3d::optimize::slide::{Fan, Slide};
 use glam::DVec3;
 use rayon::prelude::*;
 
 /// The most tets the working mesh can hold (neighbour codes pack `tet << 2 | face`).
 pub(crate) const MAX_TETS: usize = (u32::MAX >> 2) as usize;
 
-/// The working mesh.
-pub(crate) struct Work {
+/// The working mesh; `'g` is the life of the boundary's geometry, if it has one.
+pub(crate) struct Work<'g> {
     /// Vertex positions (inserted vertices appended).
     pub pts: Vec<DVec3>,
     /// Tets; a dead slot holds `[NONE; 4]`.
@@ -46,6 +46,12 @@ pub(crate) struct Work {
     /// How each fixed vertex may slide without changing the boundary
     /// ([`crate::mesh3d::optimize::slide`]); all `None` unless the options allow it.
     pub slide: Vec<Option<Slide>>,
+    /// The geometry the boundary approximates, onto which vertices sliding on curved faces
+    /// and edges go back ([`Slide::snap`]).
+    pub geo: Option<&'g dyn BoundaryGeometry>,
+    /// The boundary triangles at each vertex sliding on a curved face or edge, which its moves
+    /// must keep in shape ([`Fan::keeps`]).
+    pub fans: rustc_hash::FxHashMap<u32, Fan>,
     /// Per vertex, the [`Work::clock`] of the last change of a tet at it.
     pub touched: Vec<u32>,
     /// Counts the changes (topological or moves), from 1.
@@ -193,14 +199,14 @@ fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
     Ok((nbr, cons))
 }
 
-impl Work {
+impl<'g> Work<'g> {
     /// Builds the working mesh, checking what the optimiser relies on: array lengths, finite
     /// coordinates, indices, exact positive orientation of every tet, at most two tets per face
     /// and from opposite sides, and every boundary triangle a face.
     ///
     /// # Errors
     /// The first violation, as [`MeshError`] (the same variants as [`TetMesh::validate`]).
-    pub(crate) fn build(mesh: &TetMesh, tg: Targets) -> Result<Work, MeshError> {
+    pub(crate) fn build(mesh: &TetMesh, tg: Targets) -> Result<Work<'g>, MeshError> {
         let nt = mesh.tets.len();
         if mesh.region_tags.len() != nt {
             return Err(MeshError::LengthMismatch { what: "region_tags", found: mesh.region_tags.len(), expected: nt });
@@ -266,6 +272,8 @@ impl Work {
             clock: 1,
             fixed,
             slide: vec![None; nv],
+            geo: None,
+            fans: rustc_hash::FxHashMap::default(),
             mark: vec![0; nt],
             stamp: 0,
             tg,

@@ -168,6 +168,7 @@ fn merge_optimize(a: &OptimizeReport, b: &OptimizeReport) -> OptimizeReport {
         edge_removals: a.edge_removals + b.edge_removals,
         smoothing_moves: a.smoothing_moves + b.smoothing_moves,
         boundary_moves: a.boundary_moves + b.boundary_moves,
+        curved_boundary_moves: a.curved_boundary_moves + b.curved_boundary_moves,
         insertions: a.insertions + b.insertions,
         insertion_attempts: a.insertion_attempts + b.insertion_attempts,
         passes: a.passes.max(b.passes),

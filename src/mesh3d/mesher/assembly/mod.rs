@@ -23,7 +23,7 @@ mod solid;
 
 use crate::core::bvh::Bvh;
 use crate::core::intersection::is_degenerate;
-use crate::core::{Aabb, FaceId, RegionId, SizeField};
+use crate::core::{Aabb, BoundaryGeometry, FaceId, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{MeshOptions, MeshReport, MeshingError, Seeds, input, mesh_surface_pinned};
 use glam::DVec3;
@@ -119,6 +119,21 @@ pub(crate) struct Pair {
 /// numbers are the surface's); [`MeshingError::Degenerate`] for an inconsistent `solids` or a
 /// zero-area triangle.
 pub fn mesh_solids(surface: &TriSurface, solids: &Solids, gap: f64, size: &dyn SizeField, options: &MeshOptions) -> Result<(TetMesh, MeshReport, Vec<Contact>), MeshingError> {
+    mesh_solids_on(surface, solids, gap, size, options, None)
+}
+
+/// [`mesh_solids`] on the geometry the surface approximates (see [`super::mesh_surface_on`]).
+///
+/// # Errors
+/// As [`mesh_solids`].
+pub fn mesh_solids_on(
+    surface: &TriSurface,
+    solids: &Solids,
+    gap: f64,
+    size: &dyn SizeField,
+    options: &MeshOptions,
+    geometry: Option<&dyn BoundaryGeometry>,
+) -> Result<(TetMesh, MeshReport, Vec<Contact>), MeshingError> {
     let start = Instant::now();
     let mut stages: Vec<(String, f64)> = Vec::new();
     let mut clock = Instant::now();
@@ -151,7 +166,7 @@ pub fn mesh_solids(surface: &TriSurface, solids: &Solids, gap: f64, size: &dyn S
                 .filter(|&(r, _)| r == tag)
                 .map(|(_, f)| f)
                 .collect();
-            let r = mesh_surface_pinned(&p.surface, &Seeds::default(), size, options, &pinned).map_err(|e| in_solid(s, p, e));
+            let r = mesh_surface_pinned(&p.surface, &Seeds::default(), size, options, &pinned, geometry).map_err(|e| in_solid(s, p, e));
             if r.is_err() {
                 first_failed.fetch_min(s, Ordering::Relaxed);
             }
