@@ -19,7 +19,7 @@ pub mod tolerance;
 pub(crate) mod union_find;
 
 pub use aabb::Aabb;
-pub use boundary_geometry::BoundaryGeometry;
+pub use boundary_geometry::{BoundaryGeometry, Hint};
 pub use ids::{FaceId, RegionId};
 pub use predicates::Sign;
 pub use size_field::SizeField;

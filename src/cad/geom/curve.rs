@@ -9,7 +9,7 @@ use super::domain::{CurveDomain, Interval, unwrap_near, wrap_into};
 use super::ellipse::Ellipse;
 use super::frame::Rigid;
 use super::line::Line;
-use super::newton::{CurveSamples, even_samples, refine_curve, span_samples};
+use super::newton::{CurveSamples, even_samples, refine_curve, refine_curve_within, span_samples};
 use super::offset_curve::OffsetCurve;
 use super::polyline::Polyline;
 use super::replica::CurveReplica;
@@ -219,6 +219,12 @@ impl Curve {
                 }
             }
         }
+    }
+
+    /// Refines `t0` by Newton towards the parameter of the point closest to `p`, without a
+    /// global search, until a step would move the point by `tol` relative or less.
+    pub fn refine_within(&self, p: DVec3, t0: f64, tol: f64) -> f64 {
+        refine_curve_within(|t| self.derivs(t), &self.domain(), p, t0, tol)
     }
 
     /// The curve moved.

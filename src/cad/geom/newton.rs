@@ -16,6 +16,12 @@ fn keep_in(t: f64, min: f64, max: f64, periodic: bool) -> f64 {
 /// The parameter of the point of a curve closest to `target`, by Newton's method on
 /// `(C(t) - target) · C'(t) = 0` from `t0`. Periodic parameters come back in the domain's window.
 pub fn refine_curve(eval: impl Fn(f64) -> CurveDerivs, domain: &CurveDomain, target: DVec3, t0: f64) -> f64 {
+    refine_curve_within(eval, domain, target, t0, 0.0)
+}
+
+/// [`refine_curve`], stopping once a Newton step would move the point by `tol · (1 + |C(t)|)`
+/// or less (`0`: only where rounding stops it, after its last step halvings fail).
+pub fn refine_curve_within(eval: impl Fn(f64) -> CurveDerivs, domain: &CurveDomain, target: DVec3, t0: f64, tol: f64) -> f64 {
     let periodic = domain.period.is_some();
     let (lo, hi) = (domain.range.min, domain.range.max);
     let mut t = keep_in(t0, lo, hi, periodic);
@@ -32,6 +38,9 @@ pub fn refine_curve(eval: impl Fn(f64) -> CurveDerivs, domain: &CurveDomain, tar
             break;
         }
         let mut step = -g / h;
+        if tol > 0.0 && step.abs() * c.d1.length() <= tol * (1.0 + c.p.length()) {
+            break;
+        }
         let mut improved = false;
         for _ in 0..12 {
             let nt = keep_in(t + step, lo, hi, periodic);
@@ -78,6 +87,13 @@ pub fn refine_from_best(eval: impl Fn(f64, f64) -> SurfaceDerivs, domain: &Surfa
 /// gradient of the squared distance from `start` (Gauss–Newton where the Hessian is not
 /// positive definite), with step halving. Periodic parameters come back in the domain's window.
 pub fn refine_surface(eval: impl Fn(f64, f64) -> SurfaceDerivs, domain: &SurfaceDomain, target: DVec3, start: DVec2) -> DVec2 {
+    refine_surface_within(eval, domain, target, start, 0.0)
+}
+
+/// [`refine_surface`], stopping once a Newton step would move the point by
+/// `tol · (1 + |S(u, v)|)` or less (`0`: only where rounding stops it, after its last step
+/// halvings fail).
+pub fn refine_surface_within(eval: impl Fn(f64, f64) -> SurfaceDerivs, domain: &SurfaceDomain, target: DVec3, start: DVec2, tol: f64) -> DVec2 {
     let (pu, pv) = (domain.u_period.is_some(), domain.v_period.is_some());
     let clamp = |q: DVec2| DVec2::new(keep_in(q.x, domain.u.min, domain.u.max, pu), keep_in(q.y, domain.v.min, domain.v.max, pv));
     let mut q = clamp(start);
@@ -96,6 +112,9 @@ pub fn refine_surface(eval: impl Fn(f64, f64) -> SurfaceDerivs, domain: &Surface
             break;
         }
         let mut step = DVec2::new(-(c * g.x - b * g.y) / det, -(a * g.y - b * g.x) / det);
+        if tol > 0.0 && step.x.abs() * s.du.length() + step.y.abs() * s.dv.length() <= tol * (1.0 + s.p.length()) {
+            break;
+        }
         let mut improved = false;
         let gnorm = g.x.abs() / s.du.length().max(1e-300) + g.y.abs() / s.dv.length().max(1e-300);
         for _ in 0..12 {
@@ -215,4 +234,36 @@ pub fn span_samples(knots: &[f64], degree: usize, n_ctrl: usize, per_span: usize
 /// `n + 1` evenly spaced parameters over `[a, b]`.
 pub fn even_samples(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cad::geom::domain::Interval;
+    use std::cell::Cell;
+
+    #[test]
+    fn a_tolerance_stops_the_search_sooner_at_the_same_point() {
+        // a helix, as a curve whose inverse has no closed form
+        let evals = Cell::new(0usize);
+        let eval = |t: f64| {
+            evals.set(evals.get() + 1);
+            CurveDerivs {
+                p: DVec3::new(t.cos(), t.sin(), 0.3 * t),
+                d1: DVec3::new(-t.sin(), t.cos(), 0.3),
+                d2: DVec3::new(-t.cos(), -t.sin(), 0.0),
+            }
+        };
+        let domain = CurveDomain { range: Interval { min: -10.0, max: 10.0 }, period: None, closed: false };
+        let target = DVec3::new(2.0 * 1.0f64.cos(), 2.0 * 1.0f64.sin(), 0.35);
+        let full = refine_curve(eval, &domain, target, 0.6);
+        let n_full = evals.replace(0);
+        let within = refine_curve_within(eval, &domain, target, 0.6, 1e-12);
+        let n_within = evals.get();
+        let (a, b) = (eval(full).p, eval(within).p);
+        assert!(a.distance(b) <= 1e-10, "{a} {b}");
+        assert!(n_within < n_full, "{n_within} evaluations against {n_full}");
+        // tol 0 is the full search, bit for bit
+        assert_eq!(refine_curve_within(eval, &domain, target, 0.6, 0.0), full);
+    }
 }

@@ -8,7 +8,7 @@ use super::derivs::SurfaceDerivs;
 use super::domain::{SurfaceDomain, unwrap_near};
 use super::extrusion::Extrusion;
 use super::frame::Rigid;
-use super::newton::refine_surface;
+use super::newton::{refine_surface, refine_surface_within};
 use super::offset::Offset;
 use super::plane::Plane;
 use super::replica::SurfaceReplica;
@@ -258,6 +258,11 @@ impl Surface {
     /// Refines `(u, v)` by Newton towards the point closest to `p`, without a global search.
     pub fn refine(&self, p: DVec3, start: DVec2) -> DVec2 {
         refine_surface(|u, v| self.derivs(u, v), &self.domain(), p, start)
+    }
+
+    /// [`Surface::refine`] until a step would move the point by `tol` relative or less.
+    pub fn refine_within(&self, p: DVec3, start: DVec2, tol: f64) -> DVec2 {
+        refine_surface_within(|u, v| self.derivs(u, v), &self.domain(), p, start, tol)
     }
 
     /// The surface moved.

@@ -25,12 +25,12 @@
 //! chords' sag changes. A vertex whose faces turn sharply (a cone's apex, a corner where the
 //! crease turns) stays. Flat faces and straight creases slide as above, exactly.
 
-use crate::core::{BoundaryGeometry, FaceId, RegionId};
+use crate::core::{BoundaryGeometry, FaceId, Hint, RegionId};
 use crate::core::ids::NONE;
 use crate::mesh::TetMesh;
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh3d::optimize::work::Work;
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Normals this close to parallel (the sine of their angle), and vertices this close to the
@@ -65,10 +65,11 @@ pub(crate) enum Slide {
     /// On curved face `face` (through `at`, unit normal about `n` there): moves in the tangent
     /// plane, then onto the face by the geometry, searched from `hint`
     /// ([`BoundaryGeometry::face_hint`] at `at`, once `hinted`).
-    Surface { at: DVec3, n: DVec3, face: FaceId, hint: Option<DVec2>, hinted: bool },
+    Surface { at: DVec3, n: DVec3, face: FaceId, hint: Option<Hint>, hinted: bool },
     /// On the curved edge between `faces` (through `at`, direction about `dir` there): moves
-    /// along it, then onto the edge by the geometry.
-    Curve { at: DVec3, dir: DVec3, faces: [FaceId; 2] },
+    /// along it, then onto the edge by the geometry, searched from `hint`
+    /// ([`BoundaryGeometry::edge_hint`] at `at`, once `hinted`).
+    Curve { at: DVec3, dir: DVec3, faces: [FaceId; 2], hint: Option<Hint>, hinted: bool },
 }
 
 impl Slide {
@@ -91,19 +92,25 @@ impl Slide {
             Slide::Plane { at, n } => return Some(x - n * n.dot(x - at)),
             Slide::Line { at, dir } => return Some(at + dir * dir.dot(x - at)),
             Slide::Surface { face, hint, .. } => geo?.on_face_from(face, from, hint, x)?,
-            Slide::Curve { faces: [f, g], .. } => geo?.on_edge(f, g, from, from, x)?,
+            Slide::Curve { faces: [f, g], hint, .. } => geo?.on_edge_from(f, g, from, hint, x)?,
         };
         (y.is_finite() && y.distance_squared(x) <= x.distance_squared(from)).then_some(y)
     }
 
-    /// Asks `geo` where to start searching the face from, the first time (the search for it
-    /// may be slow: it is made only for vertices that the optimiser moves).
+    /// Asks `geo` where to start searching the face or edge from, the first time (the search
+    /// for it may be slow: it is made only for vertices that the optimiser moves).
     pub(crate) fn prepare(&mut self, geo: Option<&dyn BoundaryGeometry>) {
-        if let (Slide::Surface { at, face, hint, hinted, .. }, Some(geo)) = (self, geo) {
-            if !*hinted {
+        let Some(geo) = geo else { return };
+        match self {
+            Slide::Surface { at, face, hint, hinted, .. } if !*hinted => {
                 *hint = geo.face_hint(*face, *at);
                 *hinted = true;
             }
+            Slide::Curve { at, faces: [f, g], hint, hinted, .. } if !*hinted => {
+                *hint = geo.edge_hint(*f, *g, *at);
+                *hinted = true;
+            }
+            _ => {}
         }
     }
 
@@ -344,7 +351,7 @@ fn curved_slide_of(v: u32, faces: &[&Face], pts: &[DVec3]) -> Option<Slide> {
                 return None;
             }
             let dir = (b - a).normalize_or_zero();
-            (dir != DVec3::ZERO && face(0) != face(1)).then_some(Slide::Curve { at: p, dir, faces: [face(0), face(1)] })
+            (dir != DVec3::ZERO && face(0) != face(1)).then_some(Slide::Curve { at: p, dir, faces: [face(0), face(1)], hint: None, hinted: false })
         }
         _ => None,
     }
@@ -630,6 +637,26 @@ mod tests {
             // the volume changes by what the chords' sag changes: little
             assert!((out1.volume() - m.volume()).abs() < 1e-3, "{} {}", out1.volume(), m.volume());
         }
+    }
+
+    #[test]
+    fn the_fan_guard_refuses_needles_and_caps_but_not_what_was_there() {
+        // a vertex at the centre of a square fan of four triangles (right angles and 45°)
+        let pts = vec![DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y];
+        let fan = Fan { pairs: vec![[1, 2], [2, 3], [3, 4], [4, 1]] };
+        let bounds = fan.bounds(&pts, pts[0]);
+        assert!(fan.keeps(&pts, DVec3::new(0.1, 0.05, 0.0), bounds));
+        // towards the side (1, 2): a cap, its angle at the vertex over 120°
+        assert!(!fan.keeps(&pts, DVec3::new(0.45, 0.45, 0.0), bounds));
+        // onto a corner's diagonal near it: needles under 20°
+        assert!(!fan.keeps(&pts, DVec3::new(0.9, 0.0, 0.0), bounds));
+        // a fan with a needle and a cap (11° and 174° at the vertex) keeps them, no worse
+        let thin = vec![DVec3::ZERO, DVec3::new(1.0, 0.1, 0.0), DVec3::new(1.0, -0.1, 0.0), DVec3::new(-1.0, 0.0, 0.0)];
+        let fan = Fan { pairs: vec![[1, 2], [2, 3], [3, 1]] };
+        let bounds = fan.bounds(&thin, thin[0]);
+        assert!(fan.keeps(&thin, thin[0], bounds));
+        assert!(fan.keeps(&thin, DVec3::new(0.05, 0.0, 0.0), bounds));
+        assert!(!fan.keeps(&thin, DVec3::new(-0.5, 0.0, 0.0), bounds));
     }
 
     /// Area per tag 1..=6.
