@@ -56,8 +56,7 @@ impl BrepGeometry<'_> {
 
 impl BoundaryGeometry for BrepGeometry<'_> {
     fn on_face(&self, face: FaceId, a: DVec3, _b: DVec3, p: DVec3) -> Option<DVec3> {
-        let f = self.model.faces.get(face.index()?)?;
-        let s = self.model.surfaces.get(f.surface as usize)?;
+        let s = self.surface(face)?;
         let near = s.project(a);
         let uv = s.project_near(p, near);
         let q = s.point(uv.x, uv.y);
@@ -111,13 +110,8 @@ impl BoundaryGeometry for BrepGeometry<'_> {
     }
 
     fn on_edge(&self, f: FaceId, g: FaceId, _a: DVec3, _b: DVec3, p: DVec3) -> Option<DVec3> {
-        let (ef, eg) = (self.edges_of.get(&f)?, self.edges_of.get(&g)?);
-        ef.intersection(eg)
-            .filter_map(|&e| {
-                let c = &self.model.curves[self.model.edges[e as usize].curve? as usize];
-                let q = c.point(c.project(p));
-                q.is_finite().then_some(q)
-            })
-            .min_by(|x, y| (*x - p).length().total_cmp(&(*y - p).length()))
+        // the nearest point of the shared edge nearest p
+        let h = self.edge_hint(f, g, p)?;
+        Some(self.curve(h.item)?.point(h.param.x))
     }
 }

@@ -28,6 +28,7 @@
 use crate::core::Sign;
 use crate::core::predicates::orient3d;
 use crate::mesh3d::optimize::measure::Judged;
+use crate::mesh3d::optimize::slide::{self, Mover};
 use crate::mesh3d::optimize::star::Star;
 use crate::mesh3d::optimize::work::Work;
 use glam::DVec3;
@@ -138,12 +139,8 @@ impl Searcher {
         // no largest angle past the star's, or past the one a merit of `below` allows
         let hi0 = self.star.tets.iter().map(|&t| w.judged[t as usize].hi).fold(0.0, f64::max);
         let max_hi = hi0.max(180.0 - below / HI_WEIGHT);
-        let geo = w.geo;
-        if let Some(s) = w.slide[v as usize].as_mut() {
-            s.prepare(geo);
-        }
-        let slide = w.slide[v as usize];
-        let fan = w.fans.get(&v).map(|fan| (fan, fan.bounds(&w.pts, x0)));
+        slide::prepare(w, v);
+        let mover = Mover::of(w, v, x0);
         let scale = self.star.scale(w, x0);
         let mut rng = Rng(u64::from(v).wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x5EED);
         let (mut x, mut f) = (x0, f0);
@@ -153,11 +150,7 @@ impl Searcher {
             for _ in 0..ROUNDS {
                 for _ in 0..SAMPLES {
                     let d = DVec3::new(rng.normal(), rng.normal(), rng.normal()) * step;
-                    let y = match slide {
-                        None => Some(x + d),
-                        Some(s) => s.snap(x, x + d, w.geo),
-                    };
-                    let y = y.filter(|&y| fan.is_none_or(|(fan, bounds)| fan.keeps(&w.pts, y, bounds)));
+                    let y = mover.place(w, x, x + d);
                     if let Some((y, fy)) = y.and_then(|y| Some((y, self.evaluate(w, y, f, bound, max_hi, below, under0)?))) {
                         if fy > f {
                             (x, f) = (y, fy);

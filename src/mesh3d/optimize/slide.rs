@@ -163,6 +163,53 @@ impl Fan {
     }
 }
 
+/// Where a vertex that smoothing or the search moves may go: along its slide, if it has one,
+/// and, on a curved face or edge, only where its boundary triangles keep their shape
+/// ([`Fan::keeps`]).
+#[derive(Copy, Clone)]
+pub(crate) struct Mover<'a> {
+    slide: Option<Slide>,
+    fan: Option<(&'a Fan, (f64, f64))>,
+}
+
+impl<'a> Mover<'a> {
+    /// A vertex that moves freely.
+    pub(crate) fn free() -> Mover<'static> {
+        Mover { slide: None, fan: None }
+    }
+
+    /// Vertex `v` of `w`, now at `x0` (its slide prepared by [`prepare`]).
+    pub(crate) fn of(w: &'a Work, v: u32, x0: DVec3) -> Self {
+        Mover { slide: w.slide[v as usize], fan: w.fans.get(&v).map(|fan| (fan, fan.bounds(&w.pts, x0))) }
+    }
+
+    /// The part of direction `g` along which the vertex may move.
+    #[inline]
+    pub(crate) fn project(&self, g: DVec3) -> DVec3 {
+        self.slide.map_or(g, |s| s.project(g))
+    }
+
+    /// Where the vertex, now at `from`, goes when moved to `x` ([`Slide::snap`]), if its
+    /// boundary triangles allow it there.
+    #[inline]
+    pub(crate) fn place(&self, w: &Work, from: DVec3, x: DVec3) -> Option<DVec3> {
+        let y = match self.slide {
+            None => x,
+            Some(s) => s.snap(from, x, w.geo)?,
+        };
+        self.fan.is_none_or(|(fan, bounds)| fan.keeps(&w.pts, y, bounds)).then_some(y)
+    }
+}
+
+/// Asks the geometry once where the slide of vertex `v` starts its searches
+/// ([`Slide::prepare`]).
+pub(crate) fn prepare(w: &mut Work, v: u32) {
+    let geo = w.geo;
+    if let Some(s) = w.slide[v as usize].as_mut() {
+        s.prepare(geo);
+    }
+}
+
 /// A constrained face: its vertices (outward from the tet it was read from), the surface it
 /// belongs to (face tag and the regions on either side) and its unit normal.
 struct Face {

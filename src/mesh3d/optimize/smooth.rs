@@ -23,7 +23,7 @@
 use crate::core::Sign;
 use crate::core::predicates::orient3d;
 use crate::mesh3d::optimize::measure::{LeastScore, Term, terms_below};
-use crate::mesh3d::optimize::slide::{Fan, Slide};
+use crate::mesh3d::optimize::slide::{self, Mover};
 use crate::mesh3d::optimize::star::Star;
 use crate::mesh3d::optimize::work::Work;
 use crate::quality::tetrahedron::tet_radius_edge;
@@ -141,13 +141,8 @@ impl Smoother {
         }
         let x0 = w.pts[v as usize];
         let f0 = self.star.tets.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
-        let geo = w.geo;
-        if let Some(s) = w.slide[v as usize].as_mut() {
-            s.prepare(geo);
-        }
-        let slide = w.slide[v as usize];
-        let fan = w.fans.get(&v).map(|fan| (fan, fan.bounds(&w.pts, x0)));
-        let Some((x, f)) = self.optimise(w, x0, f0, slide, fan) else {
+        slide::prepare(w, v);
+        let Some((x, f)) = self.optimise(w, x0, f0, Mover::of(w, v, x0)) else {
             return false;
         };
         if f <= f0 + MIN_GAIN {
@@ -169,7 +164,7 @@ impl Smoother {
 
     /// Optimises the position of the star's vertex from `x0` (least score `f0`): the best
     /// position found and its least score, every star tet positive there.
-    fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64, slide: Option<Slide>, fan: Option<(&Fan, (f64, f64))>) -> Option<(DVec3, f64)> {
+    fn optimise(&mut self, w: &Work, x0: DVec3, f0: f64, mover: Mover) -> Option<(DVec3, f64)> {
         // a length scale: the mean distance to the star's other vertices
         let scale = self.star.scale(w, x0);
         self.order.clear();
@@ -186,7 +181,7 @@ impl Smoother {
             self.grads.clear();
             for t in &self.terms {
                 if t.value <= f + ACTIVE {
-                    self.grads.push(slide.map_or(t.grad, |s| s.project(t.grad)));
+                    self.grads.push(mover.project(t.grad));
                 }
             }
             let d = min_norm(&self.grads);
@@ -204,11 +199,7 @@ impl Smoother {
             let mut moved = false;
             let fail = w.tg.failing_cosines(f + MIN_GAIN);
             for _ in 0..HALVINGS {
-                let y = match slide {
-                    None => Some(x + d * alpha),
-                    Some(s) => s.snap(x, x + d * alpha, w.geo),
-                };
-                let y = y.filter(|&y| fan.is_none_or(|(fan, bounds)| fan.keeps(&w.pts, y, bounds)));
+                let y = mover.place(w, x, x + d * alpha);
                 if let Some((y, fy)) = y.and_then(|y| Some((y, self.evaluate(w, y, f + MIN_GAIN, fail)?))) {
                     if fy > f + MIN_GAIN {
                         x = y;
@@ -235,7 +226,7 @@ impl Smoother {
         }
         let x0 = w.pts[v as usize];
         let f0 = self.star.tets.iter().map(|&t| w.q[t as usize]).fold(f64::INFINITY, f64::min);
-        let Some((x, f)) = self.optimise(w, x0, f0, None, None) else {
+        let Some((x, f)) = self.optimise(w, x0, f0, Mover::free()) else {
             return false;
         };
         if f <= f0 + MIN_GAIN {
