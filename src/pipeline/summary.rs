@@ -13,8 +13,8 @@ use crate::core::FaceId;
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{MeshReport, RefinementStop};
 use crate::quality::explained::{Explained, explained};
+use crate::quality::extremes::{TetExtremes, tet_mesh_extremes};
 use crate::quality::input_angles::{InputAngle, small_input_angles};
-use crate::quality::mesh_quality::{TetQualityReport, tet_mesh_quality_against};
 use crate::quality::tetrahedron::tet_radius_edge;
 use crate::quality::worst_tet::{BoundaryIndex, TetPlace, fmt_num};
 use serde::Serialize;
@@ -118,7 +118,7 @@ pub struct MeshSummary {
 pub(crate) struct Summarised {
     /// The summary.
     pub summary: MeshSummary,
-    quality: TetQualityReport,
+    quality: TetExtremes,
     boundary: BoundaryIndex,
     angles: Vec<InputAngle>,
     /// The bound `angles` are under.
@@ -135,19 +135,19 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let prepared = surface.and_then(|s| crate::mesh3d::mesher::prepared_surface(s, report));
     let surface = prepared.as_ref().or(surface);
     let r_bound = plan.mesh.max_radius_edge;
-    let ((q, against), angles) = rayon::join(|| tet_mesh_quality_against(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
+    let (q, angles) = rayon::join(|| tet_mesh_extremes(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
     let boundary = BoundaryIndex::new(mesh);
     let name = namer(mesh, face_table);
-    let worst_tet = q.min_dihedral.argmin.map(|t| boundary.locate(mesh, t, &angles, bound, &name));
+    let worst_tet = q.min_dihedral.1.map(|t| boundary.locate(mesh, t, &angles, bound, &name));
     // a second pass over the tets, with the input angles under 10° as well where the bound is
     // lower
     let mut angles_10 = None;
-    let counts = if !(q.min_dihedral_deg < bound.max(10.0)) {
+    let counts = if !(q.min_dihedral.0 < bound.max(10.0)) {
         Explained::default()
     } else if bound >= 10.0 && angles.is_empty() {
         // no input angle under the bound: no tet touches one, the quality pass counted them
-        let under = [q.tets_min_dihedral_below_1, q.tets_min_dihedral_below_5, q.tets_min_dihedral_below_10, against.under_dihedral].map(|n| (n, n));
-        let worst = [1.0, 5.0, 10.0, bound].map(|limit| q.min_dihedral.argmin.filter(|_| q.min_dihedral_deg < limit).map(|t| (q.min_dihedral_deg, t)));
+        let under = [q.under[0], q.under[1], q.under[2], q.under_dihedral].map(|n| (n, n));
+        let worst = [1.0, 5.0, 10.0, bound].map(|limit| q.min_dihedral.1.filter(|_| q.min_dihedral.0 < limit).map(|t| (q.min_dihedral.0, t)));
         Explained { under, between: [0, 0], worst }
     } else if bound >= 10.0 {
         explained(mesh, boundary.sides(), &angles, bound)
@@ -165,7 +165,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let worst_unexplained_tet = place(counts.worst[0], &angles, bound);
     let worst_unexplained_tet_under_10_deg = place(counts.worst[2], angles_10.as_deref().unwrap_or(&angles), 10.0);
     let worst_unexplained_tet_under_bound = place(counts.worst[3], &angles, bound);
-    let above = against.above_radius_edge;
+    let above = q.above_radius_edge;
     let opt = report.optimize.as_ref();
     let summary = MeshSummary {
         nodes: mesh.vertices.len(),
@@ -174,11 +174,11 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         volume: mesh.volume(),
         cad_volume,
         volume_error: cad_volume.filter(|v| *v > 0.0).map(|v| mesh.volume() / v - 1.0),
-        min_dihedral_deg: q.min_dihedral_deg,
-        max_dihedral_deg: q.max_dihedral_deg,
-        max_radius_edge: q.max_radius_edge,
-        tets_under_5_deg: q.tets_min_dihedral_below_5,
-        tets_under_1_deg: q.tets_min_dihedral_below_1,
+        min_dihedral_deg: q.min_dihedral.0,
+        max_dihedral_deg: q.max_dihedral.0,
+        max_radius_edge: q.max_radius_edge.0,
+        tets_under_5_deg: q.under[1],
+        tets_under_1_deg: q.under[0],
         tets_under_5_deg_unexplained: counts.under[1].1,
         tets_under_1_deg_unexplained: counts.under[0].1,
         tets_under_10_deg: counts.under[2].0,
@@ -266,11 +266,11 @@ impl Summarised {
             }
         }
         if let Some(r) = plan.require_max_radius_edge {
-            if !(self.quality.max_radius_edge <= r) {
+            if !(self.quality.max_radius_edge.0 <= r) {
                 let name = namer(mesh, face_table);
-                let place = self.quality.radius_edge.argmax.map(|t| self.boundary.locate(mesh, t, &self.angles, self.bound, &name));
+                let place = self.quality.max_radius_edge.1.map(|t| self.boundary.locate(mesh, t, &self.angles, self.bound, &name));
                 let over = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r)).count();
-                let head = format!("the largest radius-edge ratio is {}, above the {r} required ({over} tets above it); nothing written", fmt_num(self.quality.max_radius_edge));
+                let head = format!("the largest radius-edge ratio is {}, above the {r} required ({over} tets above it); nothing written", fmt_num(self.quality.max_radius_edge.0));
                 return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, place.as_ref()) });
             }
         }

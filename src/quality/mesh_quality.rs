@@ -166,20 +166,8 @@ struct TetAcc {
     near_degenerate: usize,
     below: [usize; 4],
     over: [usize; 2],
-    against: Against,
     stats: [StatsAccumulator; 9],
     hist: Histogram,
-}
-
-/// Tets under a dihedral angle and above a radius-edge ratio, counted in the pass of
-/// [`tet_mesh_quality_against`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Against {
-    /// Tets whose smallest dihedral angle is under the angle given.
-    pub under_dihedral: usize,
-    /// Tets whose radius-edge ratio is not at most the ratio given (a degenerate tet's is
-    /// infinite).
-    pub above_radius_edge: usize,
 }
 
 impl TetAcc {
@@ -192,13 +180,12 @@ impl TetAcc {
             near_degenerate: 0,
             below: [0; 4],
             over: [0; 2],
-            against: Against::default(),
             stats: std::array::from_fn(|_| StatsAccumulator::new()),
             hist: Histogram::with_edges(DIHEDRAL_EDGES.to_vec()),
         }
     }
 
-    fn push(&mut self, t: usize, p: &[DVec3; 4], bins: &CosineBins, bounds: (f64, f64)) {
+    fn push(&mut self, t: usize, p: &[DVec3; 4], bins: &CosineBins) {
         let (m, cosines): (TetMeasures, _) = tet_measures_and_cosines(p);
         if orient3d(p[0], p[1], p[2], p[3]) != Sign::Positive {
             self.inverted += 1;
@@ -215,8 +202,6 @@ impl TetAcc {
         self.near_degenerate += usize::from(!(m.volume_length >= NEAR_DEGENERATE_VOLUME_LENGTH));
         self.over[0] += usize::from(m.radius_edge > RADIUS_EDGE_SQRT2);
         self.over[1] += usize::from(m.radius_edge > 2.0);
-        self.against.under_dihedral += usize::from(m.min_dihedral < bounds.0);
-        self.against.above_radius_edge += usize::from(!(m.radius_edge <= bounds.1));
         let v = [
             m.min_dihedral,
             m.max_dihedral,
@@ -245,8 +230,6 @@ impl TetAcc {
         for k in 0..2 {
             self.over[k] += o.over[k];
         }
-        self.against.under_dihedral += o.against.under_dihedral;
-        self.against.above_radius_edge += o.against.above_radius_edge;
         for (a, b) in self.stats.iter_mut().zip(&o.stats) {
             a.merge(b);
         }
@@ -268,13 +251,9 @@ impl TetAcc {
 /// assert_eq!((r.tets, r.inverted), (1, 0));
 /// assert!((r.max_dihedral_deg - 90.0).abs() < 1e-12);
 /// ```
+/// A mesh summary that needs only the extremes and a few counts gets them in a leaner pass:
+/// [`crate::quality::extremes::tet_mesh_extremes`].
 pub fn tet_mesh_quality(m: &TetMesh) -> TetQualityReport {
-    tet_mesh_quality_against(m, 0.0, f64::INFINITY).0
-}
-
-/// [`tet_mesh_quality`], and in the same pass the tets under `dihedral` degrees and above
-/// radius-edge `radius_edge` (the bounds a mesher aimed at).
-pub fn tet_mesh_quality_against(m: &TetMesh, dihedral: f64, radius_edge: f64) -> (TetQualityReport, Against) {
     let bins = CosineBins::new(&DIHEDRAL_EDGES);
     let acc = chunked_reduce(
         m.tets.len(),
@@ -283,7 +262,7 @@ pub fn tet_mesh_quality_against(m: &TetMesh, dihedral: f64, radius_edge: f64) ->
             let mut acc = TetAcc::new();
             for t in a..b {
                 let p = m.tets[t].map(|i| m.vertices[i as usize]);
-                acc.push(t, &p, &bins, (dihedral, radius_edge));
+                acc.push(t, &p, &bins);
             }
             acc
         },
@@ -320,7 +299,7 @@ pub fn tet_mesh_quality_against(m: &TetMesh, dihedral: f64, radius_edge: f64) ->
         tet_volume: s[8].clone(),
         dihedral_histogram: acc.hist,
     };
-    (report, acc.against)
+    report
 }
 
 impl TetQualityReport {

@@ -24,6 +24,7 @@
 
 pub mod between_sides;
 pub mod explained;
+pub mod extremes;
 pub mod input_angles;
 pub mod mesh_quality;
 pub mod quad;

@@ -263,6 +263,49 @@ pub fn tet_measures(p: &[DVec3; 4]) -> TetMeasures {
     tet_measures_with(p, &q, None)
 }
 
+/// The smallest and largest dihedral angle of `p` (degrees; `(0, 180)` for a degenerate tet),
+/// with the face normals' lengths (twice the face areas) and the six cosines they come from.
+struct Dihedrals {
+    min: f64,
+    max: f64,
+    len: [f64; 4],
+    cosines: Option<[f64; 6]>,
+}
+
+#[inline]
+fn dihedrals(p: &[DVec3; 4], q: &Parts) -> Dihedrals {
+    let n = outward_normals(p);
+    let len = map4(n, |v| v.length());
+    let cosines = if q.det == 0.0 || !q.det.is_finite() { None } else { dihedral_cosines(&n, &len) };
+    // only two acos: the angle is monotone in the cosine
+    let (min, max) = match &cosines {
+        Some(c) => {
+            let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+            (dihedral_from_cosine(lo), dihedral_from_cosine(hi))
+        }
+        None => (0.0, 180.0),
+    };
+    Dihedrals { min, max, len, cosines }
+}
+
+/// The volume-length ratio (see [`TetMeasures::volume_length`]); 0 for a degenerate tet.
+#[inline]
+fn volume_length(q: &Parts) -> f64 {
+    let degenerate = q.det == 0.0 || q.lmin2 == 0.0;
+    let lrms = (q.lsum2 / 6.0).sqrt();
+    if lrms == 0.0 || degenerate { 0.0 } else { 6.0 * std::f64::consts::SQRT_2 * (q.det / 6.0).abs() / (lrms * lrms * lrms) }
+}
+
+/// What a mesh summary reports of the tet `p`, each bitwise [`tet_measures`]'s: the smallest
+/// and largest dihedral angle, the radius-edge ratio and the volume-length ratio. Skips the
+/// other measures (their square roots and divisions).
+#[inline]
+pub(crate) fn tet_summary_measures(p: &[DVec3; 4]) -> (f64, f64, f64, f64) {
+    let q = parts(p);
+    let d = dihedrals(p, &q);
+    (d.min, d.max, radius_edge(&q), volume_length(&q))
+}
+
 /// The measures and the six dihedral cosines (see [`dihedral_cosines`]; `None` when
 /// degenerate), sharing the intermediate quantities.
 pub(crate) fn tet_measures_and_cosines(p: &[DVec3; 4]) -> (TetMeasures, Option<[f64; 6]>) {
@@ -275,24 +318,13 @@ pub(crate) fn tet_measures_and_cosines(p: &[DVec3; 4]) -> (TetMeasures, Option<[
 fn tet_measures_with(p: &[DVec3; 4], q: &Parts, cosines_out: Option<&mut Option<[f64; 6]>>) -> TetMeasures {
     let volume = q.det / 6.0;
     let degenerate = q.det == 0.0 || q.lmin2 == 0.0;
-    let n = outward_normals(p);
-    let len = map4(n, |v| v.length());
-    let cosines = if q.det == 0.0 || !q.det.is_finite() { None } else { dihedral_cosines(&n, &len) };
-    // only two acos: the angle is monotone in the cosine
-    let (min_dihedral, max_dihedral) = match &cosines {
-        Some(c) => {
-            let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-            (dihedral_from_cosine(lo), dihedral_from_cosine(hi))
-        }
-        None => (0.0, 180.0),
-    };
+    let d = dihedrals(p, q);
+    let (min_dihedral, max_dihedral, len) = (d.min, d.max, d.len);
     if let Some(o) = cosines_out {
-        *o = cosines;
+        *o = d.cosines;
     }
     let radius_edge = radius_edge(q);
-    let lrms = (q.lsum2 / 6.0).sqrt();
-    let volume_length =
-        if lrms == 0.0 || degenerate { 0.0 } else { 6.0 * std::f64::consts::SQRT_2 * volume.abs() / (lrms * lrms * lrms) };
+    let volume_length = volume_length(q);
     // the outward normals are twice the face areas
     let area_sum = 0.5 * (len[0] + len[1] + len[2] + len[3]);
     let (radius_ratio, aspect_ratio) = if degenerate || area_sum == 0.0 {
