@@ -19,6 +19,7 @@
 //! figures for reports, no decision of the mesher depends on them.
 
 use crate::core::FaceId;
+use crate::core::bucket_sort::collect_sorted_by_lead;
 use crate::core::union_find::UnionFind;
 use crate::mesh::topology::flat_pieces;
 use crate::mesh::TriSurface;
@@ -78,24 +79,24 @@ pub fn small_input_angles(surface: &TriSurface, bound_deg: f64, merge_flat: bool
 
 /// Every edge `(a, b)`, `a < b`, with the triangles on it, sorted by edge then triangle.
 fn edge_triangles(s: &TriSurface) -> Vec<((u32, u32), Vec<u32>)> {
-    let mut list: Vec<((u32, u32), u32)> = Vec::with_capacity(3 * s.triangles.len());
-    for (i, t) in s.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if a != b {
-                list.push(((a.min(b), a.max(b)), i as u32));
-            }
-        }
-    }
-    list.sort_unstable();
-    let mut out: Vec<((u32, u32), Vec<u32>)> = Vec::new();
-    for (e, t) in list {
-        match out.last_mut() {
-            Some((last, ts)) if *last == e => ts.push(t),
-            _ => out.push((e, vec![t])),
-        }
-    }
-    out
+    let records = || {
+        s.triangles.iter().enumerate().flat_map(|(i, t)| {
+            (0..3).filter_map(move |k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                (a != b).then_some(((a.min(b), a.max(b)), i as u32))
+            })
+        })
+    };
+    // sorted in vertex buckets where every index is in range (linear), else in full
+    let n = s.vertices.len();
+    let list: Vec<((u32, u32), u32)> = if s.triangles.iter().flatten().all(|&v| (v as usize) < n) {
+        collect_sorted_by_lead(n, records, |r| r.0.0)
+    } else {
+        let mut all: Vec<_> = records().collect();
+        all.sort_unstable();
+        all
+    };
+    list.chunk_by(|x, y| x.0 == y.0).map(|run| (run[0].0, run.iter().map(|r| r.1).collect())).collect()
 }
 
 fn normal(s: &TriSurface, t: u32) -> DVec3 {

@@ -15,6 +15,7 @@
 //! A piece holds at most [`MAX_PIECE`] triangles.
 
 use crate::core::FaceId;
+use crate::core::bucket_sort::collect_sorted_by_lead;
 use glam::DVec3;
 
 /// The flatness tolerance: the sine of 0.1 degrees.
@@ -28,22 +29,10 @@ pub const MAX_PIECE: usize = 1024;
 /// Triangles whose corners repeat or lie on a line stay alone.
 pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) -> Vec<u32> {
     // the triangles on every edge, sorted by edge then triangle
-    let mut on_edge: Vec<((u32, u32), u32)> = Vec::with_capacity(3 * triangles.len());
-    for (i, t) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            on_edge.push(((a.min(b), a.max(b)), i as u32));
-        }
-    }
-    on_edge.sort_unstable();
-    // the other triangle on edge `e` of `x`, when `e` has exactly two
-    let neighbour = |x: u32, e: (u32, u32)| -> Option<u32> {
-        let i = on_edge.partition_point(|r| r.0 < e);
-        let j = i + on_edge[i..].partition_point(|r| r.0 == e);
-        match &on_edge[i..j] {
-            [p, q] => Some(if p.1 == x { q.1 } else { p.1 }),
-            _ => None,
-        }
+    let neighbours = neighbours_across(points.len(), triangles);
+    let neighbour = |x: u32, k: usize| -> Option<u32> {
+        let y = neighbours[3 * x as usize + k];
+        (y != u32::MAX).then_some(y)
     };
     let tag = |t: u32| tags.get(t as usize).copied().unwrap_or_default();
     let mut piece = vec![u32::MAX; triangles.len()];
@@ -65,7 +54,7 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
             let t = triangles[x as usize];
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
-                let Some(y) = neighbour(x, (a.min(b), a.max(b))) else { continue };
+                let Some(y) = neighbour(x, k) else { continue };
                 if piece[y as usize] != u32::MAX || tag(y) != tag(x) || members >= MAX_PIECE {
                     continue;
                 }
@@ -88,6 +77,37 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
 /// thickness, its smallest altitude, when that is more). For well-shaped
 /// triangles the two agree; a cap or a needle, whose own normal means little, is judged by
 /// where its corners lie (TetGen loosens its rule at small angles for the same reason).
+/// Per triangle side `3 t + k` (from corner `k` to corner `k + 1`), the triangle across it
+/// where exactly two triangle sides lie on that edge (`u32::MAX` elsewhere): the other one, or
+/// the triangle itself where both sides are its own. The side records are sorted by edge in
+/// vertex buckets ([`collect_sorted_by_lead`]; a full sort where an index is out of range).
+fn neighbours_across(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
+    let records = || {
+        triangles.iter().enumerate().flat_map(|(i, t)| {
+            (0..3).map(move |k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), 3 * i as u32 + k as u32)
+            })
+        })
+    };
+    let on_edge: Vec<(u64, u32)> = if triangles.iter().flatten().all(|&v| (v as usize) < n) {
+        collect_sorted_by_lead(n, records, |r| (r.0 >> 32) as u32)
+    } else {
+        let mut all: Vec<(u64, u32)> = records().collect();
+        all.sort_unstable();
+        all
+    };
+    let mut across = vec![u32::MAX; 3 * triangles.len()];
+    for run in on_edge.chunk_by(|x, y| x.0 == y.0) {
+        if let [p, q] = run {
+            let (tp, tq) = (p.1 / 3, q.1 / 3);
+            across[p.1 as usize] = tq;
+            across[q.1 as usize] = if tp == tq { tq } else { tp };
+        }
+    }
+    across
+}
+
 fn flat_across(points: &[DVec3], x: [u32; 3], y: [u32; 3], e: (u32, u32)) -> bool {
     let p = |i: u32| points.get(i as usize).copied().unwrap_or(DVec3::NAN);
     let apex = |t: [u32; 3]| t.into_iter().find(|&v| v != e.0 && v != e.1);
