@@ -135,8 +135,12 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let prepared = surface.and_then(|s| crate::mesh3d::mesher::prepared_surface(s, report));
     let surface = prepared.as_ref().or(surface);
     let r_bound = plan.mesh.max_radius_edge;
-    let (q, angles) = rayon::join(|| tet_mesh_extremes(mesh, bound, r_bound), || surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default());
-    let boundary = BoundaryIndex::new(mesh);
+    // the tets' pass (in parallel) beside the input's angles and the boundary's index, each
+    // on one thread
+    let (q, (angles, boundary)) = rayon::join(
+        || tet_mesh_extremes(mesh, bound, r_bound),
+        || rayon::join(|| surface.map(|s| small_input_angles(s, bound, !plan.mesh.keep_surface)).unwrap_or_default(), || BoundaryIndex::new(mesh)),
+    );
     let name = namer(mesh, face_table);
     let worst_tet = q.min_dihedral.1.map(|t| boundary.locate(mesh, t, &angles, bound, &name));
     // a second pass over the tets, with the input angles under 10° as well where the bound is
