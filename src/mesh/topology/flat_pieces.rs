@@ -28,7 +28,7 @@ pub const MAX_PIECE: usize = 1024;
 /// The piece of every triangle, numbered in order of the smallest triangle of each piece.
 /// Triangles whose corners repeat or lie on a line stay alone.
 pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) -> Vec<u32> {
-    // the triangles on every edge, sorted by edge then triangle
+    // the other triangle on each side's edge, when that edge has exactly two
     let neighbours = neighbours_across(points.len(), triangles);
     let neighbour = |x: u32, k: usize| -> Option<u32> {
         let y = neighbours[3 * x as usize + k];
@@ -71,12 +71,6 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
     piece
 }
 
-/// True if triangles `x` and `y`, sharing edge `e`, lie flat together and do not fold: their
-/// normals agree within the tolerance, or one's far corner lies off the other's plane by at
-/// most the tolerance's sine times its distance from the shared edge (or the other's
-/// thickness, its smallest altitude, when that is more). For well-shaped
-/// triangles the two agree; a cap or a needle, whose own normal means little, is judged by
-/// where its corners lie (TetGen loosens its rule at small angles for the same reason).
 /// Per triangle side `3 t + k` (from corner `k` to corner `k + 1`), the triangle across it
 /// where exactly two triangle sides lie on that edge (`u32::MAX` elsewhere): the other one, or
 /// the triangle itself where both sides are its own. The side records are sorted by edge in
@@ -102,12 +96,18 @@ fn neighbours_across(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
         if let [p, q] = run {
             let (tp, tq) = (p.1 / 3, q.1 / 3);
             across[p.1 as usize] = tq;
-            across[q.1 as usize] = if tp == tq { tq } else { tp };
+            across[q.1 as usize] = tp;
         }
     }
     across
 }
 
+/// True if triangles `x` and `y`, sharing edge `e`, lie flat together and do not fold: their
+/// normals agree within the tolerance, or one's far corner lies off the other's plane by at
+/// most the tolerance's sine times its distance from the shared edge (or the other's
+/// thickness, its smallest altitude, when that is more). For well-shaped
+/// triangles the two agree; a cap or a needle, whose own normal means little, is judged by
+/// where its corners lie (TetGen loosens its rule at small angles for the same reason).
 fn flat_across(points: &[DVec3], x: [u32; 3], y: [u32; 3], e: (u32, u32)) -> bool {
     let p = |i: u32| points.get(i as usize).copied().unwrap_or(DVec3::NAN);
     let apex = |t: [u32; 3]| t.into_iter().find(|&v| v != e.0 && v != e.1);
