@@ -8,7 +8,9 @@
 //!
 //! Every figure is bitwise the full report's ([`tet_mesh_quality`]): the same measures
 //! ([`tet_summary_measures`]), the same rule for ties (the lowest tet index), and the same
-//! handling of degenerate tets (`0°`/`180°`, an infinite radius-edge ratio). The full report
+//! handling of degenerate tets (`0°`/`180°`, an infinite radius-edge ratio). The angles come
+//! from the extreme cosines, with an arc cosine only where a tet could change an extreme or
+//! its cosine lies within 1e-9 of a count's limit: the angle is non-decreasing in the cosine. The full report
 //! also computes five more measures, their means and deviations, an exact orientation and a
 //! histogram bin per tet, which a summary does not print: on plc's 72,627 octree tets its pass
 //! took 14 ms of the summary's 24 ms.
@@ -21,7 +23,7 @@
 use crate::mesh::TetMesh;
 use crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH;
 use crate::quality::summary::chunked_reduce;
-use crate::quality::tetrahedron::tet_summary_measures;
+use crate::quality::tetrahedron::{dihedral_from_cosine, tet_summary_measures};
 
 /// What [`tet_mesh_extremes`] measures.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,8 +72,94 @@ impl Extreme {
     }
 }
 
-fn less(a: f64, b: f64) -> bool {
-    a < b
+/// A running extreme dihedral angle, fed cosines in tet order: the angle of a cosine is taken
+/// only where it could beat the extreme. The angle is non-decreasing in the cosine, so a
+/// cosine on the far side of `cosine` (the cosine of the extreme so far, or one with the same
+/// angle) cannot beat it; `NaN` there (a degenerate tet holds the extreme) makes every cosine
+/// be measured.
+#[derive(Clone, Copy)]
+struct AngleExtreme {
+    best: Extreme,
+    cosine: f64,
+    /// Whether this is the largest angle (else the smallest).
+    largest: bool,
+}
+
+impl AngleExtreme {
+    fn new(largest: bool) -> AngleExtreme {
+        AngleExtreme { best: Extreme::NONE, cosine: f64::NAN, largest }
+    }
+
+    fn better(&self, a: f64, b: f64) -> bool {
+        if self.largest { a > b } else { a < b }
+    }
+
+    /// Tet `i`, its extreme cosine `c` (`None`: degenerate, the angle `degenerate`).
+    #[inline]
+    fn offer(&mut self, c: Option<f64>, degenerate: f64, i: usize) {
+        let Some(c) = c else {
+            if self.best.at.is_none() || self.better(degenerate, self.best.value) {
+                self.best = Extreme { value: degenerate, at: Some(i) };
+                self.cosine = f64::NAN;
+            }
+            return;
+        };
+        let beyond = if self.largest { c <= self.cosine } else { c >= self.cosine };
+        if self.best.at.is_some() && beyond {
+            return;
+        }
+        let a = dihedral_from_cosine(c);
+        if self.best.at.is_none() || self.better(a, self.best.value) {
+            self.best = Extreme { value: a, at: Some(i) };
+            self.cosine = c;
+        } else if a == self.best.value {
+            // the same angle: the lower tet keeps it, this cosine bounds the later ones
+            self.cosine = c;
+        }
+    }
+
+    /// Merges the extreme of the chunk that follows (a tie keeps this one's tet).
+    fn merge(&mut self, o: AngleExtreme) {
+        if let Some(i) = o.best.at {
+            if self.best.at.is_none() || self.better(o.best.value, self.best.value) {
+                self.best = Extreme { value: o.best.value, at: Some(i) };
+            }
+        }
+    }
+}
+
+/// Decides `dihedral_from_cosine(c) < limit` mostly from the cosine: surely under below
+/// `under`, surely not above `not_under`, measured between them (a margin of 1e-9 in the
+/// cosine covers the rounding of the angle, under 1e-13 degrees, many times over).
+#[derive(Clone, Copy)]
+struct UnderLimit {
+    limit: f64,
+    under: f64,
+    not_under: f64,
+}
+
+impl UnderLimit {
+    fn new(limit: f64) -> UnderLimit {
+        if limit > 0.0 && limit < 180.0 {
+            let c = (180.0 - limit).to_radians().cos();
+            UnderLimit { limit, under: c - 1e-9, not_under: c + 1e-9 }
+        } else {
+            // every cosine is measured
+            UnderLimit { limit, under: f64::NEG_INFINITY, not_under: f64::INFINITY }
+        }
+    }
+
+    /// Whether the smallest angle, of least cosine `c` (`None`: degenerate, 0°), is under
+    /// the limit.
+    #[inline]
+    fn holds(&self, c: Option<f64>) -> bool {
+        match c {
+            None => 0.0 < self.limit,
+            Some(c) if c < self.under => true,
+            Some(c) if c > self.not_under => false,
+            Some(c) => dihedral_from_cosine(c) < self.limit,
+        }
+    }
 }
 
 fn greater(a: f64, b: f64) -> bool {
@@ -80,8 +168,8 @@ fn greater(a: f64, b: f64) -> bool {
 
 /// One chunk's figures; chunks are merged in index order.
 struct Acc {
-    min: Extreme,
-    max: Extreme,
+    min: AngleExtreme,
+    max: AngleExtreme,
     re: Extreme,
     under: [usize; 3],
     under_dihedral: usize,
@@ -91,15 +179,15 @@ struct Acc {
 
 impl Acc {
     fn new() -> Acc {
-        Acc { min: Extreme::NONE, max: Extreme::NONE, re: Extreme::NONE, under: [0; 3], under_dihedral: 0, above_radius_edge: 0, near_degenerate: 0 }
+        Acc { min: AngleExtreme::new(false), max: AngleExtreme::new(true), re: Extreme::NONE, under: [0; 3], under_dihedral: 0, above_radius_edge: 0, near_degenerate: 0 }
     }
 
     /// Merges the chunk `o` that follows this one.
     fn merge(&mut self, o: Acc) {
-        for (mine, theirs, better) in [(&mut self.min, o.min, less as fn(f64, f64) -> bool), (&mut self.max, o.max, greater), (&mut self.re, o.re, greater)] {
-            if let Some(i) = theirs.at {
-                mine.offer(theirs.value, i, better);
-            }
+        self.min.merge(o.min);
+        self.max.merge(o.max);
+        if let Some(i) = o.re.at {
+            self.re.offer(o.re.value, i, greater);
         }
         for k in 0..3 {
             self.under[k] += o.under[k];
@@ -126,6 +214,7 @@ impl Acc {
 /// assert_eq!((e.under_dihedral, e.above_radius_edge), (1, 0));
 /// ```
 pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExtremes {
+    let limits = [1.0, 5.0, 10.0, dihedral].map(UnderLimit::new);
     let acc = chunked_reduce(
         m.tets.len(),
         Acc::new(),
@@ -133,14 +222,15 @@ pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExt
             let mut acc = Acc::new();
             for t in a..b {
                 let p = m.tets[t].map(|i| m.vertices[i as usize]);
-                let (lo, hi, re, volume_length) = tet_summary_measures(&p);
-                acc.min.offer(lo, t, less);
-                acc.max.offer(hi, t, greater);
+                let (cosines, re, volume_length) = tet_summary_measures(&p);
+                let (lo, hi) = (cosines.map(|c| c.0), cosines.map(|c| c.1));
+                acc.min.offer(lo, 0.0, t);
+                acc.max.offer(hi, 180.0, t);
                 acc.re.offer(re, t, greater);
-                for (k, limit) in [1.0, 5.0, 10.0].into_iter().enumerate() {
-                    acc.under[k] += usize::from(lo < limit);
+                for k in 0..3 {
+                    acc.under[k] += usize::from(limits[k].holds(lo));
                 }
-                acc.under_dihedral += usize::from(lo < dihedral);
+                acc.under_dihedral += usize::from(limits[3].holds(lo));
                 acc.above_radius_edge += usize::from(!(re <= radius_edge));
                 acc.near_degenerate += usize::from(!(volume_length >= NEAR_DEGENERATE_VOLUME_LENGTH));
             }
@@ -150,8 +240,8 @@ pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExt
     );
     TetExtremes {
         tets: m.tets.len(),
-        min_dihedral: acc.min.pair(),
-        max_dihedral: acc.max.pair(),
+        min_dihedral: acc.min.best.pair(),
+        max_dihedral: acc.max.best.pair(),
         max_radius_edge: acc.re.pair(),
         under: acc.under,
         under_dihedral: acc.under_dihedral,
@@ -218,6 +308,21 @@ mod tests {
                 // the soup's flat tets and repeated vertices
                 assert!(e.near_degenerate > 0 && e.max_radius_edge.0 == f64::INFINITY && e.min_dihedral.0 == 0.0, "{n}: {e:?}");
             }
+        }
+    }
+
+    #[test]
+    fn the_cosine_tests_decide_as_the_angles() {
+        let mut rng = XorShift::new(5);
+        for limit in [1.0, 5.0, 10.0, 18.0, 0.0, -3.0, 180.0, 200.0] {
+            let u = UnderLimit::new(limit);
+            let at = (180.0f64 - limit).to_radians().cos();
+            let near = (-4000..4000).map(|k| at + k as f64 * 1e-12);
+            let spread = (0..4000).map(|_| (rng.next_u64() % 2_000_001) as f64 / 1e6 - 1.0);
+            for c in near.chain(spread).chain([-1.0, 1.0]).filter(|c| (-1.0..=1.0).contains(c)) {
+                assert_eq!(u.holds(Some(c)), dihedral_from_cosine(c) < limit, "{limit}° at {c}");
+            }
+            assert_eq!(u.holds(None), 0.0 < limit);
         }
     }
 

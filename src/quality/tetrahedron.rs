@@ -296,14 +296,22 @@ fn volume_length(q: &Parts) -> f64 {
     if lrms == 0.0 || degenerate { 0.0 } else { 6.0 * std::f64::consts::SQRT_2 * (q.det / 6.0).abs() / (lrms * lrms * lrms) }
 }
 
-/// What a mesh summary reports of the tet `p`, each bitwise [`tet_measures`]'s: the smallest
-/// and largest dihedral angle, the radius-edge ratio and the volume-length ratio. Skips the
-/// other measures (their square roots and divisions).
+/// What a mesh summary reports of the tet `p`: the least and the largest of the six cosines
+/// its smallest and largest dihedral angles come from (`None` for a degenerate tet, whose
+/// angles are `(0, 180)`), the radius-edge ratio and the volume-length ratio. The angles of
+/// the cosines by [`dihedral_from_cosine`], and the ratios, are bitwise [`tet_measures`]'s;
+/// no arc cosine is taken here, nor the other measures.
 #[inline]
-pub(crate) fn tet_summary_measures(p: &[DVec3; 4]) -> (f64, f64, f64, f64) {
+pub(crate) fn tet_summary_measures(p: &[DVec3; 4]) -> (Option<(f64, f64)>, f64, f64) {
     let q = parts(p);
-    let d = dihedrals(p, &q);
-    (d.min, d.max, radius_edge(&q), volume_length(&q))
+    let cosines = if q.det == 0.0 || !q.det.is_finite() {
+        None
+    } else {
+        let n = outward_normals(p);
+        dihedral_cosines(&n, &map4(n, |v| v.length()))
+    };
+    let extremes = cosines.map(|c| c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x))));
+    (extremes, radius_edge(&q), volume_length(&q))
 }
 
 /// The measures and the six dihedral cosines (see [`dihedral_cosines`]; `None` when

@@ -74,7 +74,7 @@ pub use winding_volume::{WindingVolume, winding_volume};
 use crate::core::predicates::orient3d;
 use crate::core::{Aabb, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::quality::tetrahedron::tet_min_max_dihedral;
+use crate::quality::tetrahedron::{dihedrals_of_extreme_cosines, tet_extreme_dihedral_cosines, tet_min_max_dihedral};
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -369,19 +369,32 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     mesh.face_names = surface.face_names.clone();
     mesh.validate_face_tags()?;
     stage("deviation_tags_validate", &mut t);
-    // fixed chunks summed in order: the volume's last bits do not depend on the threads
-    let (lo, hi, volume) = crate::quality::summary::chunked_reduce(
+    // fixed chunks summed in order: the volume's last bits do not depend on the threads; the
+    // extreme cosines folded and their angles taken once (the same bits as the tets' angles:
+    // the angle is non-decreasing in the cosine), a degenerate tet counting as 0° and 180°
+    let (lo_c, hi_c, flat, volume) = crate::quality::summary::chunked_reduce(
         mesh.tets.len(),
-        (180.0f64, 0.0f64, 0.0f64),
+        (f64::INFINITY, f64::NEG_INFINITY, false, 0.0f64),
         |a, b| {
-            mesh.tets[a..b].iter().fold((180.0f64, 0.0f64, 0.0f64), |acc, t| {
+            mesh.tets[a..b].iter().fold((f64::INFINITY, f64::NEG_INFINITY, false, 0.0f64), |acc, t| {
                 let p = t.map(|v| mesh.vertices[v as usize]);
-                let (lo, hi) = tet_min_max_dihedral(&p);
-                (acc.0.min(lo), acc.1.max(hi), acc.2 + crate::quality::tetrahedron::tet_volume(&p))
+                let volume = acc.3 + crate::quality::tetrahedron::tet_volume(&p);
+                match tet_extreme_dihedral_cosines(&p) {
+                    Some((lo, hi)) => (acc.0.min(lo), acc.1.max(hi), acc.2, volume),
+                    None => (acc.0, acc.1, true, volume),
+                }
             })
         },
-        |acc, x| *acc = (acc.0.min(x.0), acc.1.max(x.1), acc.2 + x.2),
+        |acc, x| *acc = (acc.0.min(x.0), acc.1.max(x.1), acc.2 || x.2, acc.3 + x.3),
     );
+    let (mut lo, mut hi) = (180.0f64, 0.0f64);
+    if lo_c <= hi_c {
+        let (a, b) = dihedrals_of_extreme_cosines(lo_c, hi_c);
+        (lo, hi) = (lo.min(a), hi.max(b));
+    }
+    if flat {
+        (lo, hi) = (lo.min(0.0), hi.max(180.0));
+    }
     let input_volume = surface.signed_volume();
     stages.push(("total".to_string(), prepared + t_all.elapsed().as_secs_f64()));
     let report = OctreeReport {
