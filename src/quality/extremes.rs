@@ -227,8 +227,8 @@ pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExt
                 acc.min.offer(lo, 0.0, t);
                 acc.max.offer(hi, 180.0, t);
                 acc.re.offer(re, t, greater);
-                for k in 0..3 {
-                    acc.under[k] += usize::from(limits[k].holds(lo));
+                for (n, limit) in acc.under.iter_mut().zip(&limits) {
+                    *n += usize::from(limit.holds(lo));
                 }
                 acc.under_dihedral += usize::from(limits[3].holds(lo));
                 acc.above_radius_edge += usize::from(!(re <= radius_edge));
