@@ -109,51 +109,69 @@ impl TetMesh {
         for (t, tri) in self.boundary.iter().enumerate() {
             check_simplex(Element::BoundaryTriangle(t), tri, n)?;
         }
-        let faces = self.sorted_face_records();
-        let mut i = 0;
-        while i < faces.len() {
-            let mut j = i + 1;
-            while j < faces.len() && faces[j].0 == faces[i].0 {
-                j += 1;
+        let (start, faces) = self.face_records_by_lead();
+        // in the order of the sorted faces: the first bad face is the one reported
+        for a in 0..n {
+            let bucket = &faces[start[a]..start[a + 1]];
+            let key = |r: &FaceRecord| [a as u32, (r.0 >> 32) as u32, r.0 as u32];
+            for run in bucket.chunk_by(|x, y| x.0 == y.0) {
+                if run.len() > 2 {
+                    return Err(MeshError::NonManifold { entity: key(&run[0]).to_vec(), elements: run.iter().map(|f| Element::Tet(f.1 as usize)).collect() });
+                }
+                if let [x, y] = run {
+                    if x.2 == y.2 {
+                        return Err(MeshError::Overlap { entity: key(x).to_vec(), first: Element::Tet(x.1 as usize), second: Element::Tet(y.1 as usize) });
+                    }
+                }
             }
-            if j - i > 2 {
-                return Err(MeshError::NonManifold {
-                    entity: faces[i].0.to_vec(),
-                    elements: faces[i..j].iter().map(|f| Element::Tet(f.1 as usize)).collect(),
-                });
-            }
-            if j - i == 2 && faces[i].2 == faces[i + 1].2 {
-                return Err(MeshError::Overlap {
-                    entity: faces[i].0.to_vec(),
-                    first: Element::Tet(faces[i].1 as usize),
-                    second: Element::Tet(faces[i + 1].1 as usize),
-                });
-            }
-            i = j;
         }
         for (t, tri) in self.boundary.iter().enumerate() {
-            let key = sorted3(*tri);
-            if faces.binary_search_by(|f| f.0.cmp(&key.0)).is_err() {
+            let ([a, b, c], _) = sorted3(*tri);
+            let bc = (u64::from(b) << 32) | u64::from(c);
+            if faces[start[a as usize]..start[a as usize + 1]].binary_search_by(|f| f.0.cmp(&bc)).is_err() {
                 return Err(MeshError::BoundaryNotAFace { triangle: t, vertices: *tri });
             }
         }
         Ok(())
     }
 
-    /// (sorted face, tet, parity of the outward orientation relative to the sorted order),
-    /// sorted by face.
-    fn sorted_face_records(&self) -> Vec<([u32; 3], u32, bool)> {
-        let records = || {
-            self.tets.iter().enumerate().flat_map(|(t, tet)| {
-                TET_FACES.iter().map(move |f| {
-                    let (key, parity) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
-                    (key, t as u32, parity)
-                })
-            })
-        };
-        // the records are distinct (tet indices differ), so any sort gives the same order;
-        // every index is in range (checked before)
-        crate::core::bucket_sort::collect_sorted_by_lead(self.vertices.len(), records, |f| f.0[0])
+    /// Every tet face's record, bucketed by the face's smallest vertex `a` (bucket `a` is
+    /// `records[start[a]..start[a + 1]]`) and sorted within its bucket, so that the whole is
+    /// in the order of the sorted faces: the face's other two vertices in one key, the tet, the
+    /// parity of its outward orientation relative to the sorted order. Every index must be in
+    /// range (checked before).
+    fn face_records_by_lead(&self) -> (Vec<usize>, Vec<FaceRecord>) {
+        let n = self.vertices.len();
+        let mut start = vec![0usize; n + 1];
+        for tet in &self.tets {
+            for f in TET_FACES {
+                start[tet[f[0]].min(tet[f[1]]).min(tet[f[2]]) as usize + 1] += 1;
+            }
+        }
+        for a in 0..n {
+            start[a + 1] += start[a];
+        }
+        let mut at = start.clone();
+        let mut records = vec![(0u64, 0u32, false); start[n]];
+        for (t, tet) in self.tets.iter().enumerate() {
+            for f in TET_FACES {
+                let ([a, b, c], parity) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+                records[at[a as usize]] = ((u64::from(b) << 32) | u64::from(c), t as u32, parity);
+                at[a as usize] += 1;
+            }
+        }
+        // the records are distinct (tet indices differ), so any sort gives the same order
+        let mut buckets: Vec<&mut [FaceRecord]> = Vec::with_capacity(n);
+        let mut rest: &mut [FaceRecord] = &mut records;
+        for a in 0..n {
+            let (head, tail) = rest.split_at_mut(start[a + 1] - start[a]);
+            if head.len() > 1 {
+                buckets.push(head);
+            }
+            rest = tail;
+        }
+        buckets.par_iter_mut().with_min_len(256).for_each(|b| b.sort_unstable());
+        (start, records)
     }
 
     /// Every distinct face once, oriented outward from `tet`, with the neighbouring tet.
@@ -263,6 +281,11 @@ impl TetMesh {
     }
 }
 
+/// A tet face's record in [`TetMesh::validate_cells`]: its two larger vertices (the larger in
+/// the low half), the tet, and the parity of the tet's outward orientation relative to the
+/// sorted order.
+type FaceRecord = (u64, u32, bool);
+
 /// The sorted triple and whether the permutation from `v` to it is even.
 #[inline]
 pub(crate) fn sorted3(v: [u32; 3]) -> ([u32; 3], bool) {
@@ -351,5 +374,11 @@ mod tests {
         let mut m = two_tets();
         m.vertices[4] = DVec3::new(0.5, 0.5, 0.0);
         assert!(matches!(m.validate(), Err(MeshError::BadOrientation { orientation: Sign::Zero, .. })));
+        // a third tet on the shared face: the face and its three tets, in order
+        let mut m = two_tets();
+        m.vertices.push(DVec3::splat(0.9));
+        m.tets.push([1, 5, 2, 3]);
+        m.region_tags.push(RegionId(1));
+        assert_eq!(m.validate(), Err(MeshError::NonManifold { entity: vec![1, 2, 3], elements: vec![Element::Tet(0), Element::Tet(1), Element::Tet(2)] }));
     }
 }
