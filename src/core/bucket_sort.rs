@@ -35,17 +35,24 @@ pub fn collect_sorted_by_lead<T: Ord + Copy + Send, I: Iterator<Item = T>>(n: us
         out[at[b]] = x;
         at[b] += 1;
     }
-    let mut buckets: Vec<&mut [T]> = Vec::with_capacity(n);
-    let mut rest: &mut [T] = &mut out;
-    for i in 0..n {
-        let (head, tail) = rest.split_at_mut(start[i + 1] - start[i]);
+    sort_buckets_by(&mut out, &start, T::cmp);
+    out
+}
+
+/// Sorts each bucket `out[start[b]..start[b + 1]]` on its own by `cmp`, the buckets in
+/// parallel (`start` non-decreasing, its last entry `out.len()`). The result is the same for
+/// any thread count where `cmp` is a total order on distinct records.
+pub fn sort_buckets_by<T: Send>(out: &mut [T], start: &[usize], cmp: impl Fn(&T, &T) -> std::cmp::Ordering + Sync) {
+    let mut buckets: Vec<&mut [T]> = Vec::with_capacity(start.len());
+    let mut rest: &mut [T] = out;
+    for w in start.windows(2) {
+        let (head, tail) = rest.split_at_mut(w[1] - w[0]);
         if head.len() > 1 {
             buckets.push(head);
         }
         rest = tail;
     }
-    buckets.par_iter_mut().with_min_len(256).for_each(|b| b.sort_unstable());
-    out
+    buckets.par_iter_mut().with_min_len(256).for_each(|b| b.sort_unstable_by(&cmp));
 }
 
 #[cfg(test)]

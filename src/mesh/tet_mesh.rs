@@ -141,6 +141,26 @@ impl TetMesh {
     /// parity of its outward orientation relative to the sorted order. Every index must be in
     /// range (checked before).
     fn face_records_by_lead(&self) -> (Vec<usize>, Vec<FaceRecord>) {
+        let start = self.face_bucket_starts();
+        let mut at = start.clone();
+        let mut records = vec![(0u64, 0u32, false); start[start.len() - 1]];
+        for (t, tet) in self.tets.iter().enumerate() {
+            for f in TET_FACES {
+                let ([a, b, c], parity) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
+                records[at[a as usize]] = ((u64::from(b) << 32) | u64::from(c), t as u32, parity);
+                at[a as usize] += 1;
+            }
+        }
+        // the records are distinct (tet indices differ), so any sort gives the same order
+        crate::core::bucket_sort::sort_buckets_by(&mut records, &start, FaceRecord::cmp);
+        (start, records)
+    }
+
+    /// Where each bucket of the tets' faces by their smallest vertex starts (`n + 1` entries,
+    /// the last the number of faces counted, four per tet): the counting pass of the face
+    /// records that [`TetMesh::validate_cells`] and the optimiser's adjacency sort. Every
+    /// index must be in range.
+    pub(crate) fn face_bucket_starts(&self) -> Vec<usize> {
         let n = self.vertices.len();
         let mut start = vec![0usize; n + 1];
         for tet in &self.tets {
@@ -151,27 +171,7 @@ impl TetMesh {
         for a in 0..n {
             start[a + 1] += start[a];
         }
-        let mut at = start.clone();
-        let mut records = vec![(0u64, 0u32, false); start[n]];
-        for (t, tet) in self.tets.iter().enumerate() {
-            for f in TET_FACES {
-                let ([a, b, c], parity) = sorted3([tet[f[0]], tet[f[1]], tet[f[2]]]);
-                records[at[a as usize]] = ((u64::from(b) << 32) | u64::from(c), t as u32, parity);
-                at[a as usize] += 1;
-            }
-        }
-        // the records are distinct (tet indices differ), so any sort gives the same order
-        let mut buckets: Vec<&mut [FaceRecord]> = Vec::with_capacity(n);
-        let mut rest: &mut [FaceRecord] = &mut records;
-        for a in 0..n {
-            let (head, tail) = rest.split_at_mut(start[a + 1] - start[a]);
-            if head.len() > 1 {
-                buckets.push(head);
-            }
-            rest = tail;
-        }
-        buckets.par_iter_mut().with_min_len(256).for_each(|b| b.sort_unstable());
-        (start, records)
+        start
     }
 
     /// Every distinct face once, oriented outward from `tet`, with the neighbouring tet.

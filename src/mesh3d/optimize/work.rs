@@ -115,15 +115,7 @@ struct Rec {
 /// tets on the same side of a face, [`MeshError::BoundaryNotAFace`].
 fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
     let (nt, nv) = (mesh.tets.len(), mesh.vertices.len());
-    let mut start = vec![0usize; nv + 1];
-    for tet in &mesh.tets {
-        for f in TET_FACES {
-            start[tet[f[0]].min(tet[f[1]]).min(tet[f[2]]) as usize + 1] += 1;
-        }
-    }
-    for v in 0..nv {
-        start[v + 1] += start[v];
-    }
+    let start = mesh.face_bucket_starts();
     let mut rec = vec![Rec::default(); 4 * nt];
     let mut fill = start.clone();
     for (t, tet) in mesh.tets.iter().enumerate() {
@@ -135,15 +127,7 @@ fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
         }
     }
     drop(fill);
-    let mut buckets = Vec::with_capacity(nv);
-    let mut rest = rec.as_mut_slice();
-    for v in 0..nv {
-        let (b, r) = rest.split_at_mut(start[v + 1] - start[v]);
-        buckets.push(b);
-        rest = r;
-    }
-    buckets.par_iter_mut().with_min_len(512).for_each(|b| b.sort_unstable_by_key(|r| (r.bc, r.code)));
-    drop(buckets);
+    crate::core::bucket_sort::sort_buckets_by(&mut rec, &start, |x, y| (x.bc, x.code).cmp(&(y.bc, y.code)));
     let key_of = |a: usize, r: &Rec| [a as u32, (r.bc >> 32) as u32, r.bc as u32];
     // the first record of each listed face
     let mut listed = vec![false; rec.len()];
