@@ -207,6 +207,13 @@ impl Converter<'_> {
 
 /// The increasing curve interval from the point `a` to the point `b` (in the curve's
 /// direction); for a closed edge one whole period or the whole bounded domain.
+///
+/// On a curve closed in space but not periodic (a closed B-spline, its first and last control
+/// points one), the joint has two parameters, the domain's ends: an edge that starts there
+/// starts at the first, one that ends there ends at the last. (Two edges that split such a
+/// curve at a vertex, one of them running from the other vertex to the joint: nearest-point
+/// projection gives the joint the first parameter for both, and the two edges took the same
+/// half of the curve.)
 pub(super) fn edge_range(curve: &Curve, a: DVec3, b: DVec3, closed: bool) -> Interval {
     let dom = curve.domain();
     let ta = curve.project(a);
@@ -221,5 +228,58 @@ pub(super) fn edge_range(curve: &Curve, a: DVec3, b: DVec3, closed: bool) -> Int
         return dom.range;
     }
     let tb = curve.project(b);
+    if dom.closed && dom.range.is_bounded() {
+        let (lo, hi) = (dom.range.min, dom.range.max);
+        let joint = curve.point(lo);
+        let size = (1..8).map(|k| curve.point(lo + (hi - lo) * k as f64 / 8.0).distance(joint)).fold(0.0, f64::max);
+        let at_joint = |p: DVec3| p.distance(joint) <= JOINT_RELATIVE * size;
+        let ta = if at_joint(a) { lo } else { ta };
+        let tb = if at_joint(b) { hi } else { tb };
+        if ta < tb {
+            return Interval::new(ta, tb);
+        }
+    }
     Interval::new(ta.min(tb), ta.max(tb))
+}
+
+/// A vertex lies at the joint of a closed, non-periodic curve when it is within this share of
+/// the curve's size (its farthest sample from the joint) of it: STEP vertices sit on their
+/// curves to about 1e-7 mm.
+const JOINT_RELATIVE: f64 = 1e-6;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cad::geom::BSplineCurve;
+
+    /// A closed, clamped quadratic B-spline about the origin: its first and last control points
+    /// are one (the joint, at (1, 0, 0)), its domain [0, 4], not periodic.
+    fn closed_spline() -> Curve {
+        let p = [(1.0, 0.0), (1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (1.0, 0.0)].map(|(x, y)| DVec3::new(x, y, 0.0));
+        let knots = vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 4.0];
+        Curve::BSpline(BSplineCurve::new(2, knots, p.to_vec(), None).unwrap())
+    }
+
+    #[test]
+    fn edges_that_split_a_closed_spline_at_a_vertex_take_its_two_parts() {
+        let c = closed_spline();
+        let dom = c.domain();
+        assert!(dom.closed && dom.period.is_none());
+        let (joint, mid) = (c.point(0.0), c.point(2.0));
+        assert!(joint.distance(DVec3::new(1.0, 0.0, 0.0)) < 1e-12);
+        // from the joint to the vertex: the first part; from the vertex to the joint: the rest
+        let first = edge_range(&c, joint, mid, false);
+        let rest = edge_range(&c, mid, joint, false);
+        assert!(first.min.abs() < 1e-9 && (first.max - 2.0).abs() < 1e-6, "{first:?}");
+        assert!((rest.min - 2.0).abs() < 1e-6 && (rest.max - 4.0).abs() < 1e-9, "{rest:?}");
+        // the whole curve as one closed edge, and an edge between two inner points
+        let whole = edge_range(&c, joint, joint, true);
+        assert_eq!((whole.min, whole.max), (0.0, 4.0));
+        let inner = edge_range(&c, c.point(1.0), c.point(3.0), false);
+        assert!((inner.min - 1.0).abs() < 1e-6 && (inner.max - 3.0).abs() < 1e-6, "{inner:?}");
+        // a joint vertex written a hair along the curve (1e-8 of its size) is still the joint
+        let near = c.point(1e-8);
+        let rest = edge_range(&c, mid, near, false);
+        assert!((rest.min - 2.0).abs() < 1e-6 && (rest.max - 4.0).abs() < 1e-9, "{rest:?}");
+    }
 }
