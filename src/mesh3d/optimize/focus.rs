@@ -48,7 +48,11 @@ pub struct Focus {
 /// they make progress. On the three batches of real parts in docs/benchmarks.md (parts whose
 /// every tet under 10° touches an input angle as small): once 116 of 126, twice 118, three
 /// times 119, four 119, six 120; no largest angle rose past 162.52° where it was under it.
-pub const FOCUS_SEARCH_ROUNDS: usize = 6;
+/// On the later batches (94 parts): six 85, twelve 86, twenty 88, thirty-two 88 (a sliver
+/// face's corner on `chrismorley498_Part2` took sixteen rounds to lift its last tet over 10°,
+/// `T-Lind_Part1` eight); the rule stops most runs long before the cap, and at TetGen's tet
+/// counts no corpus part reaches six.
+pub const FOCUS_SEARCH_ROUNDS: usize = 32;
 
 /// The least rise of the worst tet under [`Focus::below_deg`] (degrees) for which a round of
 /// [`Focus`] and its search count as progress where they left as many tets under it and

@@ -347,8 +347,10 @@ fn the_focus_repeats_only_while_its_rounds_make_progress() {
     let mut plain = m.clone();
     let r = optimize(&mut plain, &opts).unwrap();
     check_kept(&m, &plain, &r);
-    // the slivers at the hull, unexplained, keep getting better: every round runs
-    assert_eq!(r.focus_rounds, FOCUS_SEARCH_ROUNDS, "{r:?}");
+    // the slivers at the hull, unexplained, keep getting better: the rounds go on until none
+    // is left under the bound (14 rounds here) or the cap stops them
+    assert!(r.focus_rounds > 1 && r.focus_rounds <= FOCUS_SEARCH_ROUNDS, "{r:?}");
+    assert!(r.focus_rounds == FOCUS_SEARCH_ROUNDS || r.min_dihedral_after >= focus.below_deg, "{r:?}");
     // an input angle at every hull vertex (they do not move) explains them: the same work
     // up to the end of the first search, and a mesh as sound
     let mut out = m.clone();
