@@ -90,15 +90,16 @@ impl AngleExtreme {
         AngleExtreme { best: Extreme::NONE, cosine: f64::NAN, largest }
     }
 
-    fn better(&self, a: f64, b: f64) -> bool {
-        if self.largest { a > b } else { a < b }
+    /// Whether `a` beats `b` for the largest angle (`largest`) or the smallest.
+    fn better(largest: bool, a: f64, b: f64) -> bool {
+        if largest { a > b } else { a < b }
     }
 
     /// Tet `i`, its extreme cosine `c` (`None`: degenerate, the angle `degenerate`).
     #[inline]
     fn offer(&mut self, c: Option<f64>, degenerate: f64, i: usize) {
         let Some(c) = c else {
-            if self.best.at.is_none() || self.better(degenerate, self.best.value) {
+            if self.best.at.is_none() || Self::better(self.largest, degenerate, self.best.value) {
                 self.best = Extreme { value: degenerate, at: Some(i) };
                 self.cosine = f64::NAN;
             }
@@ -109,7 +110,7 @@ impl AngleExtreme {
             return;
         }
         let a = dihedral_from_cosine(c);
-        if self.best.at.is_none() || self.better(a, self.best.value) {
+        if self.best.at.is_none() || Self::better(self.largest, a, self.best.value) {
             self.best = Extreme { value: a, at: Some(i) };
             self.cosine = c;
         } else if a == self.best.value {
@@ -121,9 +122,8 @@ impl AngleExtreme {
     /// Merges the extreme of the chunk that follows (a tie keeps this one's tet).
     fn merge(&mut self, o: AngleExtreme) {
         if let Some(i) = o.best.at {
-            if self.best.at.is_none() || self.better(o.best.value, self.best.value) {
-                self.best = Extreme { value: o.best.value, at: Some(i) };
-            }
+            let largest = self.largest;
+            self.best.offer(o.best.value, i, |a, b| Self::better(largest, a, b));
         }
     }
 }

@@ -166,7 +166,13 @@ pub fn tet_min_max_dihedral(p: &[DVec3; 4]) -> (f64, f64) {
 /// cosine.
 #[inline]
 pub fn tet_extreme_dihedral_cosines(p: &[DVec3; 4]) -> Option<(f64, f64)> {
-    let det = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]));
+    extreme_cosines(p, (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])))
+}
+
+/// [`tet_extreme_dihedral_cosines`] of the tet `p` whose determinant (six times its signed
+/// volume, as [`parts`] computes it) is `det`.
+#[inline]
+fn extreme_cosines(p: &[DVec3; 4], det: f64) -> Option<(f64, f64)> {
     if det == 0.0 || !det.is_finite() {
         return None;
     }
@@ -304,14 +310,7 @@ fn volume_length(q: &Parts) -> f64 {
 #[inline]
 pub(crate) fn tet_summary_measures(p: &[DVec3; 4]) -> (Option<(f64, f64)>, f64, f64) {
     let q = parts(p);
-    let cosines = if q.det == 0.0 || !q.det.is_finite() {
-        None
-    } else {
-        let n = outward_normals(p);
-        dihedral_cosines(&n, &map4(n, |v| v.length()))
-    };
-    let extremes = cosines.map(|c| c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x))));
-    (extremes, radius_edge(&q), volume_length(&q))
+    (extreme_cosines(p, q.det), radius_edge(&q), volume_length(&q))
 }
 
 /// The measures and the six dihedral cosines (see [`dihedral_cosines`]; `None` when
