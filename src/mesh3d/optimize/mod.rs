@@ -67,8 +67,7 @@
 //! The result is deterministic for a given input and options, bit for bit, whatever the thread
 //! count and the machine's load: the work is serial, only the adjacency, the initial scores
 //! and, on large meshes, the scan for bad tets use threads and they do not depend on the thread
-//! count, and every budget is a count. Clocks
-//! are read for [`OptimizeReport::seconds`] only.
+//! count, and every budget is a count. Clocks are read for [`OptimizeReport::seconds`] only.
 //!
 //! Adjacency (face neighbours, from face records bucketed by their smallest vertex) is built on
 //! entry and dropped on exit; scratch buffers are reused, so the hot loops do not allocate per
