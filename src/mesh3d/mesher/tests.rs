@@ -209,8 +209,9 @@ fn tets_on_a_thin_boundary_triangle_trade_radius_edge_for_dihedral_angles() {
     // a unit cube whose top is a fan from a point near its side y = 1: the fan's triangle to
     // that side has a corner of 168°, and with the surface kept every tet on it has a
     // radius-edge ratio far above the bound. Two tets stayed at 6.4° without the focus
-    // phase's second round (dihedral angles alone, radius-edge ratios up to three times the
-    // bound) and with it at the usual radius-edge rule; with it they reach 11.4°
+    // phase's second round (dihedral angles alone, radius-edge ratios up to FOCUS_RADIUS_EDGE
+    // times the bound) and with it at the usual radius-edge rule; with it they reached 11.4°
+    // (at three times the bound)
     let mut s = TriSurface::default();
     for k in 0..8 {
         s.vertices.push(DVec3::new((k & 1) as f64, ((k >> 1) & 1) as f64, (k >> 2) as f64));
