@@ -127,28 +127,26 @@ pub const POLISH_MARGIN: f64 = 0.01;
 /// Attempts the polish may spend, per tet under the raised target when it starts.
 const POLISH_TRIES: usize = 4;
 
-/// Tets in a chunk of the bad-tet scan ([`Optimizer::bad_tets`]).
-const GATHER_CHUNK: usize = 1 << 16;
-
-/// Up to this many chunks the bad-tet scan is serial. It runs before every pass and is bound
-/// by memory: on two cores the parallel scan (waking the pool, joining the pieces) took twice
-/// the serial one's time on `part.step` at 97,000 tets (18 ms against 8 ms over 27 calls) and
-/// half as much again on `t20_data.step` at 250,000 (82 ms against 50 ms over 51 calls).
-const GATHER_SERIAL: usize = 4;
+/// Up to this many tets the bad-tet scan is serial; beyond, it runs in chunks in parallel
+/// ([`chunked_reduce`](crate::quality::summary::chunked_reduce)). It runs before every pass
+/// and is bound by memory: on two cores the parallel scan (waking the pool, joining the
+/// pieces) took twice the serial one's time on `part.step` at 97,000 tets (18 ms against 8 ms
+/// over 27 calls) and half as much again on `t20_data.step` at 250,000 (82 ms against 50 ms
+/// over 51 calls).
+const GATHER_SERIAL: usize = 1 << 18;
 
 /// The slots whose score in `q` is under 1 and that `keep`, with their scores, worst first
-/// (ties by slot): serial up to `serial` chunks of `chunk` slots, the chunks in parallel
-/// beyond. The order is total, so the list is the same either way and for any thread count.
-fn gather_bad(q: &[f64], keep: impl Fn(usize) -> bool + Sync, chunk: usize, serial: usize) -> Vec<(f64, u32)> {
-    use rayon::prelude::*;
-    let bad_in = |start: usize, q: &[f64]| -> Vec<(f64, u32)> {
-        let slots = q.iter().enumerate().map(|(i, &q)| (start + i, q));
+/// (ties by slot): serial up to `serial` slots, in chunks in parallel beyond. The order is
+/// total, so the list is the same either way and for any thread count.
+fn gather_bad(q: &[f64], keep: impl Fn(usize) -> bool + Sync, serial: usize) -> Vec<(f64, u32)> {
+    let bad_in = |start: usize, end: usize| -> Vec<(f64, u32)> {
+        let slots = q[start..end].iter().enumerate().map(|(i, &q)| (start + i, q));
         slots.filter(|&(t, q)| q < 1.0 && keep(t)).map(|(t, q)| (q, t as u32)).collect()
     };
-    let mut bad: Vec<(f64, u32)> = if q.len() <= serial.saturating_mul(chunk) {
-        bad_in(0, q)
+    let mut bad = if q.len() <= serial {
+        bad_in(0, q.len())
     } else {
-        q.par_chunks(chunk.max(1)).enumerate().flat_map_iter(|(c, part)| bad_in(c * chunk.max(1), part)).collect()
+        crate::quality::summary::chunked_reduce(q.len(), Vec::new(), bad_in, |all, part| all.extend(part))
     };
     bad.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     bad
@@ -465,15 +463,13 @@ impl Optimizer<'_> {
         changed
     }
 
-    /// The live tets below target, worst first (ties by slot). The scan is bound by memory:
-    /// up to [`GATHER_SERIAL`] chunks of [`GATHER_CHUNK`] tets it is serial, beyond that the
-    /// chunks are scanned in parallel. The order is total, so the list is the same for any
-    /// thread count and either way.
+    /// The live tets below target, worst first (ties by slot): serial up to [`GATHER_SERIAL`]
+    /// tets, in chunks in parallel beyond ([`gather_bad`]).
     fn bad_tets(&self) -> Vec<(f64, u32)> {
         let (w, region) = (&self.w, self.region.as_deref());
         // in the region being worked on (everywhere but during `Optimizer::focus`)
         let in_region = |t: usize| region.is_none_or(|r| w.tets[t].iter().any(|&v| r.get(v as usize).copied().unwrap_or(true)));
-        gather_bad(&w.q, |t| w.alive(t as u32) && in_region(t), GATHER_CHUNK, GATHER_SERIAL)
+        gather_bad(&w.q, |t| w.alive(t as u32) && in_region(t), GATHER_SERIAL)
     }
 
     /// One pass over the bad tets `bad` (worst first), up to `limit` attempts in all; true if

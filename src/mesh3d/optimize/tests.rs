@@ -383,14 +383,16 @@ fn the_focus_repeats_only_while_its_rounds_make_progress() {
 
 #[test]
 fn the_bad_tets_are_gathered_the_same_serially_and_in_parallel_chunks() {
-    // scores under and over 1 in a scrambled order, with ties, and slots left out
-    let q: Vec<f64> = (0..1000u64).map(|i| ((i * 7919) % 37) as f64 / 20.0).collect();
+    // scores under and over 1 in a scrambled order, with ties, and slots left out; more than
+    // three chunks of the parallel scan, the last one short
+    let n = 3 * crate::quality::summary::CHUNK as u64 + 17;
+    let q: Vec<f64> = (0..n).map(|i| ((i * 7919) % 37) as f64 / 20.0).collect();
     let keep = |t: usize| t % 5 != 3;
     let mut want: Vec<(f64, u32)> = q.iter().enumerate().filter(|&(t, &x)| x < 1.0 && keep(t)).map(|(t, &x)| (x, t as u32)).collect();
     want.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     assert!(want.len() > 300 && want.windows(2).any(|w| w[0].0 == w[1].0), "ties are tested");
-    assert_eq!(gather_bad(&q, keep, 64, usize::MAX), want, "serial");
-    assert_eq!(gather_bad(&q, keep, 64, 0), want, "chunks in parallel");
-    assert_eq!(gather_bad(&q, keep, 7, 3), want, "chunks in parallel, uneven");
-    assert_eq!(gather_bad(&[], keep, 64, 0), Vec::new());
+    assert_eq!(gather_bad(&q, keep, usize::MAX), want, "serial");
+    assert_eq!(gather_bad(&q, keep, 0), want, "chunks in parallel");
+    assert_eq!(gather_bad(&q, keep, q.len() - 1), want, "chunks in parallel, one slot over the serial bound");
+    assert_eq!(gather_bad(&[], keep, 0), Vec::new());
 }
