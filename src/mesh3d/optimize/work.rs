@@ -215,14 +215,29 @@ impl<'g> Work<'g> {
             let [a, b, c, d] = t.map(|i| pts[i as usize]);
             orient3d(a, b, c, d)
         };
-        if let Some(t) = mesh.tets.par_iter().position_first(|t| orient(t) != Sign::Positive) {
+        // the adjacency (serial: a bucket sort and a scan) beside the orientation check and the
+        // tets' measures (in parallel); an orientation error is reported first, as the checks
+        // are listed
+        let (adjacent, (inverted, judged)) = rayon::join(
+            || adjacency(mesh),
+            || {
+                let inverted = mesh.tets.par_iter().position_first(|t| orient(t) != Sign::Positive);
+                let judged: Vec<Judged> = if inverted.is_some() {
+                    Vec::new()
+                } else {
+                    mesh.tets.par_iter().with_min_len(1024).map(|t| Judged::of(&t.map(|i| pts[i as usize]))).collect()
+                };
+                (inverted, judged)
+            },
+        );
+        if let Some(t) = inverted {
             return Err(MeshError::BadOrientation {
                 element: Element::Tet(t),
                 vertices: mesh.tets[t].to_vec(),
                 orientation: orient(&mesh.tets[t]),
             });
         }
-        let (nbr, cons) = adjacency(mesh)?;
+        let (nbr, cons) = adjacent?;
         let mut fixed = vec![false; nv];
         let mut v2t = vec![NONE; nv];
         for (t, tet) in mesh.tets.iter().enumerate() {
@@ -239,8 +254,6 @@ impl<'g> Work<'g> {
                 v2t[v as usize] = t as u32;
             }
         }
-        let judged: Vec<Judged> =
-            mesh.tets.par_iter().with_min_len(1024).map(|t| Judged::of(&t.map(|i| pts[i as usize]))).collect();
         let q = judged.par_iter().with_min_len(4096).map(|j| j.score(&tg)).collect();
         Ok(Work {
             pts,
