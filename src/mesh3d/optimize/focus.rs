@@ -120,6 +120,7 @@ impl Optimizer<'_> {
         let dihedral = Targets::new(f.target_deg, self.opts.max_dihedral_deg).with_hi_cap(cap);
         self.w.retarget(dihedral.with_radius_edge(self.opts.max_radius_edge));
         self.region = Some(region);
+        self.ins.wedges = true;
         let share = (FOCUS_SHARE * self.report.attempts as f64) as usize;
         let out_of_attempts = self.report.out_of_attempts;
         self.report.focus_attempts = self.focus_round(share);
@@ -156,6 +157,7 @@ impl Optimizer<'_> {
         self.max_re = self.opts.max_radius_edge;
         self.report.out_of_attempts = out_of_attempts;
         self.region = None;
+        self.ins.wedges = false;
         self.w.retarget(tg);
     }
 
