@@ -49,13 +49,25 @@ pub(crate) struct Refined {
     pub stopped: bool,
 }
 
-/// A queued bad tet: its priority (the radius-edge ratio, ordered by bits), slot and vertices.
-/// The queue is a 4-ary heap: most of what it holds goes stale (a later insertion took the
-/// tet), and on a large part the binary heap's pops, a level deeper per doubling, cost a
-/// twentieth of the run (`t20_data.step`). The order is `Bad`'s total order either way, so the
-/// tets are refined in the same sequence and the mesh is the same.
+/// A queued bad tet: its priority (the radius-edge ratio, ordered by bits), slot and a
+/// fingerprint of its vertices ([`fingerprint`]), sixteen bytes. The queue is a 4-ary heap:
+/// most of what it holds goes stale (a later insertion took the tet), and on a large part the
+/// binary heap's pops, a level deeper per doubling, cost a twentieth of the run
+/// (`t20_data.step`); with the four vertices themselves in each entry (32 bytes) the pops were
+/// still a twentieth of `part.step`'s run at TetGen's tet count. An entry is stale when its
+/// slot's tet has another fingerprint. Two entries of one priority and slot are the same tet
+/// pushed twice (or, as rarely as two fingerprints agree, a stale one beside it), so ordering
+/// them by fingerprint instead of by vertices refines the tets in the same sequence.
 #[derive(PartialEq, Eq, PartialOrd, Ord)]
-struct Bad(u64, u32, [u32; 4]);
+struct Bad(u64, u32, u32);
+
+/// A 32-bit fingerprint of a tet's vertices (a multiplicative hash of the four indices).
+fn fingerprint(v: [u32; 4]) -> u32 {
+    let lo = u64::from(v[0]) | u64::from(v[1]) << 32;
+    let hi = u64::from(v[2]) | u64::from(v[3]) << 32;
+    let h = (lo.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ hi.wrapping_mul(0xC2B2_AE3D_27D4_EB4F).rotate_left(31)).wrapping_mul(0x1656_67B1_9E37_79F9);
+    (h >> 32) as u32
+}
 
 /// Circumcentre, circumradius and shortest edge of tet `t`.
 pub(crate) fn tet_sphere(tr: &Tetra, t: u32) -> (DVec3, f64, f64) {
@@ -297,7 +309,7 @@ pub(crate) fn refine(
             let l = labels.get(s);
             if l != 0 && tr.finite(s) {
                 if let Some(q) = badness(tr, s, size, opts, l) {
-                    heap.push(Bad(q, s, tr.tets[s as usize].v));
+                    heap.push(Bad(q, s, fingerprint(tr.tets[s as usize].v)));
                 }
             }
         }
@@ -305,15 +317,16 @@ pub(crate) fn refine(
     for t in tr.live().collect::<Vec<_>>() {
         if labels.get(t) != 0 {
             if let Some(q) = badness(tr, t, size, opts, labels.get(t)) {
-                heap.push(Bad(q, t, tr.tets[t as usize].v));
+                heap.push(Bad(q, t, fingerprint(tr.tets[t as usize].v)));
             }
         }
     }
     // a generous bound on the work, against cascades near tiny input angles
     let budget = 50 * tr.num_points() + 1_000_000;
     let mut steps = 0usize;
-    while let Some(Bad(_, t, v)) = heap.pop() {
-        if tr.tets[t as usize].v != v || labels.get(t) == 0 {
+    while let Some(Bad(_, t, f)) = heap.pop() {
+        let v = tr.tets[t as usize].v;
+        if fingerprint(v) != f || labels.get(t) == 0 {
             continue;
         }
         steps += 1;
@@ -373,7 +386,7 @@ pub(crate) fn refine(
                         queue_created(tr, labels, &mut heap);
                         if tr.tets[t as usize].v == v {
                             if let Some(q) = badness(tr, t, size, opts, labels.get(t)) {
-                                heap.push(Bad(q, t, v));
+                                heap.push(Bad(q, t, fingerprint(v)));
                             }
                         }
                         continue;
