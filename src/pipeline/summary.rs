@@ -12,7 +12,7 @@ use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{MeshReport, RefinementStop};
-use crate::quality::explained::{Explained, explained};
+use crate::quality::explained::{Explained, explained_among};
 use crate::quality::extremes::{TetExtremes, tet_mesh_extremes};
 use crate::quality::input_angles::{InputAngle, small_input_angles};
 use crate::quality::tetrahedron::tet_radius_edge;
@@ -154,10 +154,10 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         let worst = [1.0, 5.0, 10.0, bound].map(|limit| q.min_dihedral.1.filter(|_| q.min_dihedral.0 < limit).map(|t| (q.min_dihedral.0, t)));
         Explained { under, between: [0, 0], worst }
     } else if bound >= 10.0 {
-        explained(mesh, boundary.sides(), &angles, bound)
+        explained_among(mesh, Some(&q.low), boundary.sides(), &angles, bound)
     } else {
         let a10 = angles_10.insert(surface.map(|s| small_input_angles(s, 10.0, !plan.mesh.keep_surface)).unwrap_or_default());
-        explained(mesh, boundary.sides(), a10, bound)
+        explained_among(mesh, Some(&q.low), boundary.sides(), a10, bound)
     };
     // most often the worst tet itself, already located
     let place = |found: Option<(f64, usize)>, angles: &[InputAngle], limit: f64| {

@@ -29,26 +29,36 @@ pub struct Explained {
 /// angle under 10° and under `bound` among them. In parallel; the same result for any thread
 /// count.
 pub fn explained(mesh: &TetMesh, sides: &SideTags, angles: &[InputAngle], bound: f64) -> Explained {
+    explained_among(mesh, None, sides, angles, bound)
+}
+
+/// [`explained`] over the tets `among` only (indices, ascending), or all where `None`: the
+/// tets under 10° and under `bound`, where an earlier pass listed them
+/// ([`TetExtremes::low`](crate::quality::extremes::TetExtremes::low)), give the same counts.
+pub fn explained_among(mesh: &TetMesh, among: Option<&[usize]>, sides: &SideTags, angles: &[InputAngle], bound: f64) -> Explained {
     let limits = [1.0, 5.0, 10.0, bound];
+    let n = among.map_or(mesh.tets.len(), <[usize]>::len);
+    let index = |i: usize| among.map_or(i, |a| a[i]);
     // counts, summed over chunks in parallel
     crate::quality::summary::chunked_reduce(
-        mesh.tets.len(),
+        n,
         Explained::default(),
         |a, b| {
             let mut out = Explained::default();
-            for (i, t) in mesh.tets[a..b].iter().enumerate() {
-                let p = t.map(|v| mesh.vertices[v as usize]);
+            for t in (a..b).map(index) {
+                let tet = mesh.tets[t];
+                let p = tet.map(|v| mesh.vertices[v as usize]);
                 let lo = tet_min_max_dihedral(&p).0;
                 for (k, &limit) in limits.iter().enumerate() {
                     if lo < limit {
                         out.under[k].0 += 1;
                         if !touches_angle_below(&p, angles, limit) {
                             out.under[k].1 += 1;
-                            if k >= 2 && sides.between_sides(mesh, *t, angles, limit).is_some() {
+                            if k >= 2 && sides.between_sides(mesh, tet, angles, limit).is_some() {
                                 out.between[k - 2] += 1;
                             }
                             if out.worst[k].is_none_or(|(w, _)| lo < w) {
-                                out.worst[k] = Some((lo, a + i));
+                                out.worst[k] = Some((lo, t));
                             }
                         }
                     }

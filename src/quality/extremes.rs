@@ -26,7 +26,7 @@ use crate::quality::summary::chunked_reduce;
 use crate::quality::tetrahedron::{dihedral_from_cosine, tet_summary_measures};
 
 /// What [`tet_mesh_extremes`] measures.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TetExtremes {
     /// Tets measured.
     pub tets: usize,
@@ -46,6 +46,10 @@ pub struct TetExtremes {
     pub above_radius_edge: usize,
     /// Tets whose volume-length ratio is under [`NEAR_DEGENERATE_VOLUME_LENGTH`].
     pub near_degenerate: usize,
+    /// The tets whose smallest dihedral angle is under the angle given or under 10°, whichever
+    /// is larger (ascending): those [`explained_among`](crate::quality::explained::explained_among)
+    /// needs to look at.
+    pub low: Vec<usize>,
 }
 
 /// A running extreme: the value and the lowest index that has it (`None` until one is given).
@@ -175,11 +179,12 @@ struct Acc {
     under_dihedral: usize,
     above_radius_edge: usize,
     near_degenerate: usize,
+    low: Vec<usize>,
 }
 
 impl Acc {
     fn new() -> Acc {
-        Acc { min: AngleExtreme::new(false), max: AngleExtreme::new(true), re: Extreme::NONE, under: [0; 3], under_dihedral: 0, above_radius_edge: 0, near_degenerate: 0 }
+        Acc { min: AngleExtreme::new(false), max: AngleExtreme::new(true), re: Extreme::NONE, under: [0; 3], under_dihedral: 0, above_radius_edge: 0, near_degenerate: 0, low: Vec::new() }
     }
 
     /// Merges the chunk `o` that follows this one.
@@ -195,6 +200,7 @@ impl Acc {
         self.under_dihedral += o.under_dihedral;
         self.above_radius_edge += o.above_radius_edge;
         self.near_degenerate += o.near_degenerate;
+        self.low.extend(o.low);
     }
 }
 
@@ -215,6 +221,7 @@ impl Acc {
 /// ```
 pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExtremes {
     let limits = [1.0, 5.0, 10.0, dihedral].map(UnderLimit::new);
+    let low = UnderLimit::new(dihedral.max(10.0));
     let acc = chunked_reduce(
         m.tets.len(),
         Acc::new(),
@@ -233,6 +240,9 @@ pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExt
                 acc.under_dihedral += usize::from(limits[3].holds(lo));
                 acc.above_radius_edge += usize::from(!(re <= radius_edge));
                 acc.near_degenerate += usize::from(!(volume_length >= NEAR_DEGENERATE_VOLUME_LENGTH));
+                if low.holds(lo) {
+                    acc.low.push(t);
+                }
             }
             acc
         },
@@ -247,6 +257,7 @@ pub fn tet_mesh_extremes(m: &TetMesh, dihedral: f64, radius_edge: f64) -> TetExt
         under_dihedral: acc.under_dihedral,
         above_radius_edge: acc.above_radius_edge,
         near_degenerate: acc.near_degenerate,
+        low: acc.low,
     }
 }
 
@@ -304,6 +315,11 @@ mod tests {
             let measures: Vec<_> = m.tets.iter().map(|t| tet_measures(&t.map(|v| m.vertices[v as usize]))).collect();
             assert_eq!(e.under_dihedral, measures.iter().filter(|x| x.min_dihedral < 18.0).count());
             assert_eq!(e.above_radius_edge, measures.iter().filter(|x| !(x.radius_edge <= 1.5)).count());
+            // the tets under the larger of the bound and 10°, ascending, for the explained counts
+            let low: Vec<usize> = (0..m.tets.len()).filter(|&t| measures[t].min_dihedral < 18.0).collect();
+            assert_eq!(e.low, low, "{n}");
+            let e5 = tet_mesh_extremes(&m, 5.0, 1.5);
+            assert_eq!(e5.low, (0..m.tets.len()).filter(|&t| measures[t].min_dihedral < 10.0).collect::<Vec<_>>(), "{n}");
             if n > 97 {
                 // the soup's flat tets and repeated vertices
                 assert!(e.near_degenerate > 0 && e.max_radius_edge.0 == f64::INFINITY && e.min_dihedral.0 == 0.0, "{n}: {e:?}");
