@@ -19,7 +19,8 @@
 //! outline already rules that out (a tet's radius-edge ratio is at least its faces', and
 //! smoothing `p` leaves the outline as it is), nothing is inserted: on `part.step` at TetGen's
 //! tet count 351 of the 1,168 cavities tried were such, each an insertion, a smoothing and an
-//! undo for nothing.
+//! undo for nothing. In the focus phase's rounds the wedges of the outline rule out more
+//! ([`Inserter::wedge_bound`]): half of those left there.
 
 use crate::core::Sign;
 use crate::core::ids::NONE;
@@ -322,11 +323,6 @@ impl Inserter {
         let mut star = std::mem::take(&mut self.star);
         let ok = w.star(v, &mut star) && {
             let new_min = star.iter().map(|&s| w.q[s as usize]).fold(f64::INFINITY, f64::min);
-            // far under target (a sliver of 1-9°), a new star a little over the radius-edge
-            // bound is better than the sliver: allow twice the bound there
-            // a tet that fails the usual acceptance figures (under LAST_PASSES_BELOW) may give
-            // way to a star whose every tet is nearly good by the score, which has a
-            // radius-edge term of its own (at least NEARLY_GOOD: radius-edge 2.22 for 2)
             let bound = radius_edge_bound(old_min, new_min, old_re, max_re);
             new_min > old_min + MIN_GAIN && star.iter().all(|&s| tet_radius_edge(&w.corners(&w.tets[s as usize])) <= bound)
         };
