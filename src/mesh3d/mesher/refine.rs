@@ -35,6 +35,7 @@ use crate::mesh3d::mesher::{MeshOptions, MeshingError};
 use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use glam::DVec3;
 use dary_heap::QuaternaryHeap;
+use std::hash::BuildHasher;
 
 /// What refinement did.
 #[derive(Clone, Debug, Default)]
@@ -61,12 +62,9 @@ pub(crate) struct Refined {
 #[derive(PartialEq, Eq, PartialOrd, Ord)]
 struct Bad(u64, u32, u32);
 
-/// A 32-bit fingerprint of a tet's vertices (a multiplicative hash of the four indices).
+/// A 32-bit fingerprint of a tet's vertices: the high half of their Fx hash.
 fn fingerprint(v: [u32; 4]) -> u32 {
-    let lo = u64::from(v[0]) | u64::from(v[1]) << 32;
-    let hi = u64::from(v[2]) | u64::from(v[3]) << 32;
-    let h = (lo.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ hi.wrapping_mul(0xC2B2_AE3D_27D4_EB4F).rotate_left(31)).wrapping_mul(0x1656_67B1_9E37_79F9);
-    (h >> 32) as u32
+    (rustc_hash::FxBuildHasher.hash_one(v) >> 32) as u32
 }
 
 /// Circumcentre, circumradius and shortest edge of tet `t`.

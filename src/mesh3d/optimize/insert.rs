@@ -30,7 +30,7 @@ use crate::mesh3d::optimize::{LAST_PASSES_BELOW, RESCUE_BELOW};
 use crate::mesh3d::optimize::smooth::{MIN_GAIN, Smoother};
 use crate::mesh3d::optimize::measure::{EDGE_FACES, angle, cosines, normals};
 use crate::mesh3d::optimize::work::Work;
-use crate::quality::tetrahedron::{TET_EDGES, tet_circumradius, tet_radius_edge};
+use crate::quality::tetrahedron::{TET_EDGES, tet_circumradius};
 use glam::DVec3;
 
 /// The least score of a new star that may exceed the radius-edge bound a little when it
@@ -285,7 +285,7 @@ impl Inserter {
         self.old.clear();
         for &s in &self.cavity {
             let tet = w.tets[s as usize];
-            old_re = old_re.max(tet_radius_edge(&w.corners(&tet)));
+            old_re = old_re.max(w.judged[s as usize].re);
             self.old.push(tet);
         }
         // the index the new vertex gets once pushed
@@ -324,7 +324,7 @@ impl Inserter {
         let ok = w.star(v, &mut star) && {
             let new_min = star.iter().map(|&s| w.q[s as usize]).fold(f64::INFINITY, f64::min);
             let bound = radius_edge_bound(old_min, new_min, old_re, max_re);
-            new_min > old_min + MIN_GAIN && star.iter().all(|&s| tet_radius_edge(&w.corners(&w.tets[s as usize])) <= bound)
+            new_min > old_min + MIN_GAIN && star.iter().all(|&s| w.judged[s as usize].re <= bound)
         };
         if ok {
             self.star = star;
@@ -389,6 +389,7 @@ mod tests {
     use super::*;
     use crate::mesh::shapes::kuhn_cube;
     use crate::mesh3d::optimize::measure::Targets;
+    use crate::quality::tetrahedron::tet_radius_edge;
 
     #[test]
     fn a_tet_has_at_least_the_radius_edge_ratio_of_each_face() {

@@ -148,10 +148,7 @@ impl Smoother {
         if f <= f0 + MIN_GAIN {
             return false;
         }
-        let mut old_re = 0.0f64;
-        for s in 0..self.star.len() {
-            old_re = old_re.max(tet_radius_edge(&self.star.corners_at(w, s, x0)));
-        }
+        let old_re = self.star.tets.iter().map(|&t| w.judged[t as usize].re).fold(0.0f64, f64::max);
         let bound = max_re.max(old_re);
         for s in 0..self.star.len() {
             if tet_radius_edge(&self.star.corners_at(w, s, x)) > bound {
