@@ -11,7 +11,7 @@ use crate::fe::BrepGeometry;
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
 use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids_on, mesh_surface_on};
-use super::assembly::{ContactReport, contact_reports, gap_of, solids_of, step_id};
+use super::assembly::{ContactReport, GAP_CHORDS, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
 use crate::tessellate::orient::turn_inside_out_shells;
@@ -261,7 +261,19 @@ impl Part {
         };
         // the boundary of a volume mesh: its volume against the CAD solids' is the mesh
         // summary's to report (and `--require-volume-error`'s to demand)
-        let (c, [tessellate_s, certify_s]) = certified_tessellation(model, opts, Some(size), &CertifyOptions::default().with_volume_cap(false));
+        let (c, seconds) = certified_tessellation(model, opts, Some(size), &mesh_checks());
+        self.accept(c, seconds)
+    }
+
+    /// Takes a CAD part's tessellation and its certificate (and their seconds): a certified
+    /// surface becomes the surface to mesh.
+    ///
+    /// # Errors
+    /// [`PipelineError::Certificate`] when a check failed.
+    fn accept(&mut self, c: Certified, [tessellate_s, certify_s]: [f64; 2]) -> Result<&Certificate, PipelineError> {
+        let Some(model) = &self.model else {
+            return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
+        };
         if !c.certificate.reoriented.is_empty() {
             // faces turned: what the catalogue says of their normals is built again on use
             self.catalogue = OnceLock::new();
@@ -281,6 +293,44 @@ impl Part {
         }
     }
 
+    /// [`Part::tessellate`], and beside the certificate the tessellation meshed as
+    /// [`Part::mesh`] meshes a certified one: the mesher does not wait for the checks, and the
+    /// certificate decides whether its mesh stands. `None` where the checks turned shells
+    /// inside out (the surface to mesh is not the one meshed): the caller meshes again.
+    ///
+    /// # Errors
+    /// As [`Part::tessellate`]: a failed certificate, whatever the mesher made of it.
+    fn tessellate_meshing(&mut self, size: &dyn SizeField, tess: &TessellateOptions, field: &dyn SizeField, opts: &MeshOptions) -> Result<Option<(Meshed, f64)>, PipelineError> {
+        let Some(model) = &mut self.model else {
+            return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
+        };
+        let t0 = Instant::now();
+        let mut tessellation = tessellate_sized(model, tess, size);
+        let tessellate_s = t0.elapsed().as_secs_f64();
+        let surface = solids_only(model, &tessellation.surface).0;
+        let gap = GAP_CHORDS * tessellation.chord;
+        let this = &*self;
+        let (certificate, meshed) = rayon::join(
+            || {
+                let t = Instant::now();
+                this.model.as_ref().map(|m| (certify(m, &tessellation, &mesh_checks()), t.elapsed().as_secs_f64()))
+            },
+            || {
+                let t = Instant::now();
+                (this.mesh_once(&surface, field, opts, gap), t.elapsed().as_secs_f64())
+            },
+        );
+        let (Some(model), Some((certificate, mut certify_s))) = (&mut self.model, certificate) else {
+            return Ok(None);
+        };
+        let t = Instant::now();
+        let certificate = turned_certified(model, &mut tessellation, certificate, &mesh_checks());
+        certify_s += t.elapsed().as_secs_f64();
+        let turned = !certificate.reoriented.is_empty();
+        self.accept(Certified { tessellation, certificate }, [tessellate_s, certify_s])?;
+        Ok((!turned).then_some(meshed))
+    }
+
     /// Meshes the part's surface into tets of `size` (a CAD part is tessellated to the same
     /// size first, at the deviation `opts` gives). A part of several solids (an assembly)
     /// gets one region per solid, named after it, each solid meshed on its own and the
@@ -291,15 +341,8 @@ impl Part {
     /// A failed certificate, or a surface the mesher refuses (open, self-intersecting, solids
     /// that overlap, ...).
     pub fn mesh(&mut self, size: &dyn SizeField, tess: &TessellateOptions, opts: &MeshOptions) -> Result<&TetMesh, PipelineError> {
-        if self.is_cad() && self.certified.is_none() {
-            self.tessellate(size, tess)?;
-        }
-        let Some(surface) = &self.surface else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
-        };
         // a sized tessellation is meshed as it is; a surface mesh is cut to the size first
         let opts = opts.clone().with_presize(opts.presize && !self.is_cad());
-        let t0 = Instant::now();
         let sized;
         let field: &dyn SizeField = if self.region_sizes.is_empty() {
             size
@@ -307,16 +350,25 @@ impl Part {
             sized = RegionSizes::new(size, self.region_sizes.clone());
             &sized
         };
-        let mut result = self.mesh_once(surface, field, &opts);
+        // a CAD part is tessellated, and meshed while its tessellation is certified
+        let speculative = if self.is_cad() && self.certified.is_none() { self.tessellate_meshing(size, tess, field, &opts)? } else { None };
+        let Some(surface) = &self.surface else {
+            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
+        };
+        let t0 = Instant::now();
+        let (mut result, before) = match speculative {
+            Some((meshed, seconds)) => (meshed, seconds),
+            None => (self.mesh_once(surface, field, &opts, gap_of(self)), 0.0),
+        };
         if self.is_cad() && matches!(&result, Err(e) if is_recovery(e)) {
             // a sized tessellation whose edges recovery cannot take (pieces of faces nearer
             // each other than their triangles are long): the chords-only tessellation, cut to
             // the size by the mesher, as a surface mesh is
             if let Some(model) = &self.model {
                 // the model's shells are turned already (by the first tessellation)
-                let (chords, _) = certified_tessellation(&mut model.clone(), tess, None, &CertifyOptions::default().with_volume_cap(false));
+                let (chords, _) = certified_tessellation(&mut model.clone(), tess, None, &mesh_checks());
                 if chords.certificate.passed {
-                    let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true));
+                    let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true), gap_of(self));
                     if retry.is_ok() {
                         self.surface = Some(solids_only(model, &chords.tessellation.surface).0);
                         self.certified = Some(chords);
@@ -337,19 +389,20 @@ impl Part {
                 }
             }
         }
-        self.seconds.mesh = t0.elapsed().as_secs_f64();
+        self.seconds.mesh = before + t0.elapsed().as_secs_f64();
         self.mesh_report = Some(report);
         Ok(self.mesh.insert(mesh))
     }
 
-    /// Meshes `surface` (the part's solids in it, each on its own when there are several).
-    fn mesh_once(&self, surface: &TriSurface, field: &dyn SizeField, opts: &MeshOptions) -> Result<(TetMesh, MeshReport, Solids, Option<Vec<Contact>>), MeshingError> {
+    /// Meshes `surface` (the part's solids in it, each on its own when there are several,
+    /// touching within `gap`).
+    fn mesh_once(&self, surface: &TriSurface, field: &dyn SizeField, opts: &MeshOptions, gap: f64) -> Meshed {
         let solids = solids_of(self, surface);
         // a CAD part's boundary vertices slide on its curved faces and edges, back onto them
         let brep = self.model.as_ref().map(BrepGeometry::new);
         let geometry = brep.as_ref().map(|g| g as &dyn BoundaryGeometry);
         if solids.solids.len() > 1 {
-            let (mesh, report, contacts) = mesh_solids_on(surface, &solids, gap_of(self), field, opts, geometry)?;
+            let (mesh, report, contacts) = mesh_solids_on(surface, &solids, gap, field, opts, geometry)?;
             Ok((mesh, report, solids, Some(contacts)))
         } else {
             let (mesh, report) = mesh_surface_on(surface, &self.seeds, field, opts, geometry)?;
@@ -426,6 +479,17 @@ pub fn tessellate_model(mut model: Model, read: f64, opts: &TessellateOptions, s
     (model, c, StageSeconds { read, tessellate, certify, mesh: 0.0 })
 }
 
+/// What [`Part::mesh`] certifies a tessellation to mesh by (the checks): the boundary of a volume mesh,
+/// whose volume against the CAD solids' is the mesh summary's to report (and
+/// `--require-volume-error`'s to demand), not a check of its own.
+fn mesh_checks() -> CertifyOptions {
+    CertifyOptions::default().with_volume_cap(false)
+}
+
+/// What [`Part::mesh_once`] gives: the mesh, the mesher's report, the solids and the contacts
+/// between them (several solids).
+type Meshed = Result<(TetMesh, MeshReport, Solids, Option<Vec<Contact>>), MeshingError>;
+
 /// Tessellates `model` (to `size` where given) and certifies the result; with the seconds of
 /// each.
 /// Shells the file wrote inside out are turned in `model` first ([`turn_inside_out_shells`]),
@@ -437,15 +501,25 @@ fn certified_tessellation(model: &mut Model, opts: &TessellateOptions, size: Opt
         None => tessellate(model, opts),
     };
     let t1 = Instant::now();
-    let mut certificate = certify(model, &tessellation, checks);
-    if !certificate.outward {
-        let turned = turn_inside_out_shells(model, &mut tessellation, &certificate);
-        if !turned.is_empty() {
-            certificate = certify(model, &tessellation, checks);
-            certificate.reoriented = turned;
-        }
-    }
+    let certificate = certify(model, &tessellation, checks);
+    let certificate = turned_certified(model, &mut tessellation, certificate, checks);
     (Certified { tessellation, certificate }, [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()])
+}
+
+/// The certificate of `tessellation` once the shells `certificate` finds inside out are
+/// turned (in `model` and `tessellation`, listed in [`Certificate::reoriented`]); `certificate`
+/// itself where none is.
+fn turned_certified(model: &mut Model, tessellation: &mut Tessellation, certificate: Certificate, checks: &CertifyOptions) -> Certificate {
+    if certificate.outward {
+        return certificate;
+    }
+    let turned = turn_inside_out_shells(model, tessellation, &certificate);
+    if turned.is_empty() {
+        return certificate;
+    }
+    let mut certificate = certify(model, tessellation, checks);
+    certificate.reoriented = turned;
+    certificate
 }
 
 /// The surface to mesh of a model with solids: without the triangles of surface-model shells

@@ -387,34 +387,59 @@ pub(crate) fn mesh_surface_pinned(
 ) -> Result<(TetMesh, MeshReport), MeshingError> {
     let start = Instant::now();
     let mut report = MeshReport::default();
-    let mut stage = |name: &str, t: &mut Instant| {
+    let stage = |report: &mut MeshReport, name: &str, t: &mut Instant| {
         report.stage_seconds.push((name.to_string(), t.elapsed().as_secs_f64()));
         *t = Instant::now();
     };
+    // the Delaunay tetrahedralization of a surface's vertices
+    let delaunay = |s: &TriSurface| {
+        let t = Instant::now();
+        let ranks = ties::ranks(&s.vertices, &s.triangles);
+        (tetra::Tetra::new(s.vertices.clone(), ranks, options.seed), t.elapsed().as_secs_f64())
+    };
+    // the input's checks, and beside them the tetrahedralization of its vertices where the
+    // boundary is meshed as it is (not cut to the size first): the checks decide whether it
+    // stands, and a surface they change is tetrahedralized again
+    let early = options.keep_surface || !options.presize;
+    let ((prepared, check_s), early_tr) = rayon::join(
+        || {
+            let t = Instant::now();
+            (input::prepare(surface, options, pinned), t.elapsed().as_secs_f64())
+        },
+        || (early && surface.validate().is_ok()).then(|| delaunay(surface)),
+    );
+    let prepared = prepared?;
+    report.stage_seconds.push(("check".to_string(), check_s));
     let mut clock = Instant::now();
-    let prepared = input::prepare(surface, options, pinned)?;
+    let early_tr = early_tr.filter(|_| prepared.surface.is_none());
     let surface = prepared.surface.as_ref().unwrap_or(surface);
     let caps = prepared.caps;
-    stage("check", &mut clock);
     let mut points = surface.vertices.clone();
     let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
-    if !options.keep_surface && options.presize {
-        // the boundary may change: cut it to the size, and its thin triangles into better ones
-        let h = |p: DVec3| size.size_at(p);
-        let scale = feature_scale(surface, options.seed);
-        sm.presize(&mut points, &h, &scale);
-        stage("presize", &mut clock);
-    }
-    let mut ranks = ties::ranks(&surface.vertices, &surface.triangles);
-    ranks.extend(surface.vertices.len() as u32..points.len() as u32);
-    let mut tr = tetra::Tetra::new(points, ranks, options.seed).map_err(MeshingError::Degenerate)?;
-    stage("delaunay", &mut clock);
+    let (tr, delaunay_s) = match early_tr {
+        Some((tr, seconds)) => (tr, seconds + clock.elapsed().as_secs_f64()),
+        None => {
+            if !options.keep_surface && options.presize {
+                // the boundary may change: cut it to the size, and its thin triangles into better ones
+                let h = |p: DVec3| size.size_at(p);
+                let scale = feature_scale(surface, options.seed);
+                sm.presize(&mut points, &h, &scale);
+                stage(&mut report, "presize", &mut clock);
+            }
+            let mut ranks = ties::ranks(&surface.vertices, &surface.triangles);
+            ranks.extend(surface.vertices.len() as u32..points.len() as u32);
+            (tetra::Tetra::new(points, ranks, options.seed), clock.elapsed().as_secs_f64())
+        }
+    };
+    let mut tr = tr.map_err(MeshingError::Degenerate)?;
+    report.stage_seconds.push(("delaunay".to_string(), delaunay_s));
+    clock = Instant::now();
     let budget = 50 * surface.triangles.len() + 10_000;
     let rec = recover::recover(&mut tr, &mut sm, budget)?;
-    stage("recovery", &mut clock);
+    stage(&mut report, "recovery", &mut clock);
     let mut labels = carve::carve(&mut tr, &sm, seeds)?;
     recover::unfold_flat_tets(&mut tr, &mut sm, &mut labels);
-    stage("carve", &mut clock);
+    stage(&mut report, "carve", &mut clock);
     // a tenth of the shortest boundary edge: the smallest tet refinement splits
     let r_min = 0.1 * sm.all_subsegments().map(|(_, [a, b])| tr.point(a).distance(tr.point(b))).fold(f64::INFINITY, f64::min);
     // a budget of points: four times the boundary's for quality, plus what the size asks for
@@ -447,7 +472,7 @@ pub(crate) fn mesh_surface_pinned(
     }
     let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points, splits.then_some(&mut sm))?;
     let mut stop = refinement_stop(refined.stopped, tr.num_points(), max_points);
-    stage("refine", &mut clock);
+    stage(&mut report, "refine", &mut clock);
     if !splits {
         keep::drop_exterior(&mut tr, &labels);
     }
@@ -457,11 +482,11 @@ pub(crate) fn mesh_surface_pinned(
         if left > 0 {
             return Err(MeshingError::KeepSurface { left, recovered: rec.segment_points + rec.facet_points });
         }
-        stage("keep", &mut clock);
+        stage(&mut report, "keep", &mut clock);
     } else if !options.presize {
         // a surface sized already: recovery's points go back where they can
         keep::keep_surface(&mut tr, &mut sm, true);
-        stage("keep", &mut clock);
+        stage(&mut report, "keep", &mut clock);
     }
     {
         let again = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points, None)?;
@@ -469,11 +494,11 @@ pub(crate) fn mesh_surface_pinned(
         refined.stopped |= again.stopped;
         stop = stop.or(refinement_stop(again.stopped, tr.num_points(), max_points));
     }
-    stage("refine", &mut clock);
+    stage(&mut report, "refine", &mut clock);
     // validated here, or by the optimiser: it builds its working mesh with the same checks
     // (orientation, faces, boundary triangles), and the mesh is checked once, not twice
     let mut mesh = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
-    stage("extract", &mut clock);
+    stage(&mut report, "extract", &mut clock);
     if options.optimize {
         let opts = crate::mesh3d::optimize::OptimizeOptions::default()
             .with_min_dihedral(options.min_dihedral)
@@ -493,7 +518,7 @@ pub(crate) fn mesh_surface_pinned(
             e => MeshingError::Internal(e.to_string()),
         })?;
         report.optimize = Some(r);
-        stage("optimize", &mut clock);
+        stage(&mut report, "optimize", &mut clock);
     }
     report.nodes = mesh.vertices.len();
     report.tets = mesh.tets.len();
