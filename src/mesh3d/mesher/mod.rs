@@ -22,6 +22,7 @@
 //!    result as a [`TetMesh`].
 
 mod assembly;
+mod bad_queue;
 mod carve;
 mod extract;
 mod input;

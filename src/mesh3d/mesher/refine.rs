@@ -34,7 +34,7 @@ use crate::mesh3d::mesher::tetra::{Inserted, Tetra};
 use crate::mesh3d::mesher::{MeshOptions, MeshingError};
 use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use glam::DVec3;
-use dary_heap::QuaternaryHeap;
+use crate::mesh3d::mesher::bad_queue::BadQueue;
 use std::hash::BuildHasher;
 
 /// What refinement did.
@@ -50,18 +50,12 @@ pub(crate) struct Refined {
     pub stopped: bool,
 }
 
-/// A queued bad tet: its priority (the radius-edge ratio, ordered by bits), slot and a
-/// fingerprint of its vertices ([`fingerprint`]), sixteen bytes. The queue is a 4-ary heap:
-/// most of what it holds goes stale (a later insertion took the tet), and on a large part the
-/// binary heap's pops, a level deeper per doubling, cost a twentieth of the run
-/// (`t20_data.step`); with the four vertices themselves in each entry (32 bytes) the pops were
-/// still a twentieth of `part.step`'s run at TetGen's tet count. An entry is stale when its
-/// slot's tet has another fingerprint. Two entries of one priority and slot are the same tet
-/// pushed twice (or, as rarely as two fingerprints agree, a stale one beside it), so ordering
-/// them by fingerprint instead of by vertices refines the tets in the same sequence.
-#[derive(PartialEq, Eq, PartialOrd, Ord)]
-struct Bad(u64, u32, u32);
-
+/// A queued bad tet is its priority (the radius-edge ratio, ordered by bits), slot and a
+/// fingerprint of its vertices ([`fingerprint`]), in a [`BadQueue`]. Most of what the queue
+/// holds goes stale (a later insertion took the tet); an entry is stale when its slot's tet
+/// has another fingerprint. Two entries of one priority and slot are the same tet pushed twice
+/// (or, as rarely as two fingerprints agree, a stale one beside it), so ordering them by
+/// fingerprint instead of by vertices refines the tets in the same sequence.
 /// A 32-bit fingerprint of a tet's vertices: the high half of their Fx hash.
 fn fingerprint(v: [u32; 4]) -> u32 {
     (rustc_hash::FxBuildHasher.hash_one(v) >> 32) as u32
@@ -295,19 +289,19 @@ pub(crate) fn refine(
         let region = label.checked_sub(1).and_then(|k| tags.get(k as usize)).copied().unwrap_or_default();
         badness(tr, t, size, opts, r_min, region)
     };
-    let mut heap = QuaternaryHeap::new();
+    let mut heap = BadQueue::default();
     let mut lfs = local_feature_sizes(tr);
     let mut edges = boundary.as_deref().map(FacetEdges::new);
     if let Some(sm) = boundary.as_deref_mut() {
         sm.refined_from = tr.num_points() as u32;
     }
     // the new tets of an insertion: those in the material that are bad go on the heap
-    let queue_created = |tr: &mut Tetra, labels: &Labels, heap: &mut QuaternaryHeap<Bad>| {
+    let queue_created = |tr: &mut Tetra, labels: &Labels, heap: &mut BadQueue| {
         for s in std::mem::take(&mut tr.created) {
             let l = labels.get(s);
             if l != 0 && tr.finite(s) {
                 if let Some(q) = badness(tr, s, size, opts, l) {
-                    heap.push(Bad(q, s, fingerprint(tr.tets[s as usize].v)));
+                    heap.push(q, s, fingerprint(tr.tets[s as usize].v));
                 }
             }
         }
@@ -315,14 +309,14 @@ pub(crate) fn refine(
     for t in tr.live().collect::<Vec<_>>() {
         if labels.get(t) != 0 {
             if let Some(q) = badness(tr, t, size, opts, labels.get(t)) {
-                heap.push(Bad(q, t, fingerprint(tr.tets[t as usize].v)));
+                heap.push(q, t, fingerprint(tr.tets[t as usize].v));
             }
         }
     }
     // a generous bound on the work, against cascades near tiny input angles
     let budget = 50 * tr.num_points() + 1_000_000;
     let mut steps = 0usize;
-    while let Some(Bad(_, t, f)) = heap.pop() {
+    while let Some((_, t, f)) = heap.pop() {
         let v = tr.tets[t as usize].v;
         if fingerprint(v) != f || labels.get(t) == 0 {
             continue;
@@ -384,7 +378,7 @@ pub(crate) fn refine(
                         queue_created(tr, labels, &mut heap);
                         if tr.tets[t as usize].v == v {
                             if let Some(q) = badness(tr, t, size, opts, labels.get(t)) {
-                                heap.push(Bad(q, t, fingerprint(v)));
+                                heap.push(q, t, fingerprint(v));
                             }
                         }
                         continue;
