@@ -184,7 +184,7 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     let r = Report {
         input: args.surface.display().to_string(),
         output: args.output.display().to_string(),
-        seconds: part.seconds.read + part.seconds.tessellate + part.seconds.certify + part.seconds.mesh,
+        seconds: part.seconds.total(),
         read_seconds: part.seconds.read,
         summary: &m,
         boundary_steiner_points: mesher.boundary_steiner_points,
@@ -244,7 +244,8 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     };
     outln!("boundary Steiner {}{by_refinement}", r.boundary_steiner_points);
     outln!("size             {:.4} (global)", r.global_size);
-    outln!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
+    let beside = if part.seconds.certify_beside_mesh { " beside meshing" } else { "" };
+    outln!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}{beside}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
     for (stage, s) in &mesher.stage_seconds {
         outln!("  {stage:<10} {s:.3}");
     }

@@ -10,7 +10,7 @@ use crate::core::{BoundaryGeometry, RegionId, SizeField};
 use crate::fe::BrepGeometry;
 use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids_on, mesh_surface_on};
+use crate::mesh3d::mesher::{Abandon, Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids_on, mesh_surface_on};
 use super::assembly::{ContactReport, GAP_CHORDS, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
@@ -55,6 +55,15 @@ pub struct StageSeconds {
     pub certify: f64,
     /// Volume meshing.
     pub mesh: f64,
+    /// The certificate was made beside the volume mesh (its seconds are within the mesh's).
+    pub certify_beside_mesh: bool,
+}
+
+impl StageSeconds {
+    /// The seconds of all the stages, once each where they ran beside each other.
+    pub fn total(&self) -> f64 {
+        self.read + self.tessellate + self.mesh + if self.certify_beside_mesh { 0.0 } else { self.certify }
+    }
 }
 
 /// A tessellation of a B-rep and its certificate.
@@ -280,6 +289,7 @@ impl Part {
         }
         self.seconds.tessellate = tessellate_s;
         self.seconds.certify = certify_s;
+        self.seconds.certify_beside_mesh = false;
         let message = (!c.certificate.passed).then(|| failure_message(&self.path, &c.certificate, &model.dropped));
         if message.is_none() {
             let (surface, left_out) = solids_only(model, &c.tessellation.surface);
@@ -310,14 +320,21 @@ impl Part {
         let surface = solids_only(model, &tessellation.surface).0;
         let gap = GAP_CHORDS * tessellation.chord;
         let this = &*self;
+        // a failed certificate, or shells to turn, stop the mesher at its next stage
+        let abandon = Abandon::default();
+        let meshing = opts.clone().with_abandon(abandon.clone());
         let (certificate, meshed) = rayon::join(
             || {
                 let t = Instant::now();
-                this.model.as_ref().map(|m| (certify(m, &tessellation, &mesh_checks()), t.elapsed().as_secs_f64()))
+                let c = this.model.as_ref().map(|m| certify(m, &tessellation, &mesh_checks()));
+                if c.as_ref().is_none_or(|c| !c.passed || !c.outward) {
+                    abandon.set();
+                }
+                c.map(|c| (c, t.elapsed().as_secs_f64()))
             },
             || {
                 let t = Instant::now();
-                (this.mesh_once(&surface, field, opts, gap), t.elapsed().as_secs_f64())
+                (this.mesh_once(&surface, field, &meshing, gap), t.elapsed().as_secs_f64())
             },
         );
         let (Some(model), Some((certificate, mut certify_s))) = (&mut self.model, certificate) else {
@@ -328,6 +345,7 @@ impl Part {
         certify_s += t.elapsed().as_secs_f64();
         let turned = !certificate.reoriented.is_empty();
         self.accept(Certified { tessellation, certificate }, [tessellate_s, certify_s])?;
+        self.seconds.certify_beside_mesh = !turned;
         Ok((!turned).then_some(meshed))
     }
 
@@ -476,7 +494,7 @@ pub fn tessellate_file(path: &Path, opts: &TessellateOptions, size: Option<&dyn 
 /// [`tessellate_file`] of a model already read (`read` its seconds).
 pub fn tessellate_model(mut model: Model, read: f64, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Model, Certified, StageSeconds) {
     let (c, [tessellate, certify]) = certified_tessellation(&mut model, opts, size, checks);
-    (model, c, StageSeconds { read, tessellate, certify, mesh: 0.0 })
+    (model, c, StageSeconds { read, tessellate, certify, mesh: 0.0, certify_beside_mesh: false })
 }
 
 /// What [`Part::mesh`] certifies a tessellation to mesh by (the checks): the boundary of a volume mesh,

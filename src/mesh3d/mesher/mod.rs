@@ -86,6 +86,33 @@ pub struct MeshOptions {
     /// that almost meet). `None`: [`NARROW_SHARE`] of the input's diagonal; `Some(0.0)`: off
     /// (as with `keep_surface`, which keeps the input as it is).
     pub narrow_tolerance: Option<f64>,
+    /// Set from outside: the run stops at its next stage ([`MeshingError::Abandoned`]).
+    pub(crate) abandon: Abandon,
+}
+
+/// A flag that stops a mesher run at its next stage, set by work beside it that finds the
+/// run useless: a CAD part is meshed while its tessellation is certified, and a failed
+/// certificate abandons the mesh.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Abandon(std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl Abandon {
+    /// Stops the runs that hold this flag at their next stage.
+    pub(crate) fn set(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// [`MeshingError::Abandoned`] once the flag is set.
+    fn check(&self) -> Result<(), MeshingError> {
+        if self.0.load(std::sync::atomic::Ordering::Relaxed) { Err(MeshingError::Abandoned) } else { Ok(()) }
+    }
+}
+
+impl PartialEq for Abandon {
+    /// Options do not differ by their flags: the flag says nothing of the mesh asked for.
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 /// The default narrow-strip tolerance as a share of the input's bounding-box diagonal: a
@@ -96,7 +123,17 @@ pub const NARROW_SHARE: f64 = 1e-4;
 
 impl Default for MeshOptions {
     fn default() -> Self {
-        MeshOptions { max_radius_edge: 1.5, min_dihedral: 18.0, keep_surface: false, seed: 0x5eed, optimize: true, presize: true, slide_boundary: true, narrow_tolerance: None }
+        MeshOptions {
+            max_radius_edge: 1.5,
+            min_dihedral: 18.0,
+            keep_surface: false,
+            seed: 0x5eed,
+            optimize: true,
+            presize: true,
+            slide_boundary: true,
+            narrow_tolerance: None,
+            abandon: Abandon::default(),
+        }
     }
 }
 
@@ -129,6 +166,11 @@ impl MeshOptions {
     /// Sets [`MeshOptions::presize`].
     pub fn with_presize(mut self, presize: bool) -> Self {
         self.presize = presize;
+        self
+    }
+    /// Sets the flag that abandons the run ([`Abandon`]).
+    pub(crate) fn with_abandon(mut self, abandon: Abandon) -> Self {
+        self.abandon = abandon;
         self
     }
     /// Sets [`MeshOptions::narrow_tolerance`].
@@ -283,6 +325,10 @@ pub enum MeshingError {
     /// A bug of fepre (an invariant broke); please report it with the input.
     #[error("internal error: {0}")]
     Internal(String),
+    /// The run was stopped from outside ([`MeshOptions`]' abandon flag): its surface will not
+    /// be meshed (its certificate failed).
+    #[error("meshing was abandoned: the surface failed its checks")]
+    Abandoned,
     /// Two solids of an assembly overlap: a point of one lies deeper than the gap inside the
     /// other (on its surface or inside both).
     #[error("{a} and {b} overlap: the point ({}, {}, {}) lies {depth:.4} deep inside both (touching within {gap:.3e} is contact, deeper is overlap); move the solids apart or cut one out of the other", point[0], point[1], point[2])]
@@ -410,6 +456,7 @@ pub(crate) fn mesh_surface_pinned(
         || (early && surface.validate().is_ok()).then(|| delaunay(surface)),
     );
     let prepared = prepared?;
+    options.abandon.check()?;
     report.stage_seconds.push(("check".to_string(), check_s));
     let mut clock = Instant::now();
     let early_tr = early_tr.filter(|_| prepared.surface.is_none());
@@ -438,9 +485,11 @@ pub(crate) fn mesh_surface_pinned(
     let budget = 50 * surface.triangles.len() + 10_000;
     let rec = recover::recover(&mut tr, &mut sm, budget)?;
     stage(&mut report, "recovery", &mut clock);
+    options.abandon.check()?;
     let mut labels = carve::carve(&mut tr, &sm, seeds)?;
     recover::unfold_flat_tets(&mut tr, &mut sm, &mut labels);
     stage(&mut report, "carve", &mut clock);
+    options.abandon.check()?;
     // a tenth of the shortest boundary edge: the smallest tet refinement splits
     let r_min = 0.1 * sm.all_subsegments().map(|(_, [a, b])| tr.point(a).distance(tr.point(b))).fold(f64::INFINITY, f64::min);
     // a budget of points: four times the boundary's for quality, plus what the size asks for
@@ -474,6 +523,7 @@ pub(crate) fn mesh_surface_pinned(
     let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points, splits.then_some(&mut sm))?;
     let mut stop = refinement_stop(refined.stopped, tr.num_points(), max_points);
     stage(&mut report, "refine", &mut clock);
+    options.abandon.check()?;
     if !splits {
         keep::drop_exterior(&mut tr, &labels);
     }
@@ -500,6 +550,7 @@ pub(crate) fn mesh_surface_pinned(
     // (orientation, faces, boundary triangles), and the mesh is checked once, not twice
     let mut mesh = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
     stage(&mut report, "extract", &mut clock);
+    options.abandon.check()?;
     if options.optimize {
         let opts = crate::mesh3d::optimize::OptimizeOptions::default()
             .with_min_dihedral(options.min_dihedral)

@@ -62,6 +62,28 @@ fn cube_keeps_volume_and_tags() {
 }
 
 #[test]
+fn an_abandoned_run_stops_and_a_copy_of_its_options_meshes_alike() {
+    let s = cube(3);
+    let size = UniformSize(0.3);
+    let (m, _) = mesh_surface(&s, &Seeds::default(), &size, &MeshOptions::default()).unwrap();
+    // the flag is no part of what the options ask for: unset, the same mesh
+    let abandon = Abandon::default();
+    let opts = MeshOptions::default().with_abandon(abandon.clone());
+    assert_eq!(opts, MeshOptions::default());
+    let (again, _) = mesh_surface(&s, &Seeds::default(), &size, &opts).unwrap();
+    assert_eq!(again.tets, m.tets);
+    assert_eq!(again.vertices, m.vertices);
+    // set, the run stops at its first stage
+    abandon.set();
+    assert_eq!(mesh_surface(&s, &Seeds::default(), &size, &opts).map(|_| ()), Err(MeshingError::Abandoned));
+    // a bad input's own error comes first
+    let mut open = s.clone();
+    open.triangles.pop();
+    open.face_tags.pop();
+    assert!(matches!(mesh_surface(&open, &Seeds::default(), &size, &opts), Err(MeshingError::Open { .. })));
+}
+
+#[test]
 fn plate_with_hole_and_torus_mesh() {
     let p = plate_with_hole(16, 40.0, 8.0, 8.0);
     let (m, _) = mesh_surface(&p, &Seeds::default(), &UniformSize(6.0), &MeshOptions::default()).unwrap();
