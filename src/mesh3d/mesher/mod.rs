@@ -520,7 +520,13 @@ pub(crate) fn mesh_surface_pinned(
     if splits {
         keep::drop_exterior(&mut tr, &labels);
     }
-    let mut refined = refine::refine(&mut tr, &mut labels, size, options, r_min, max_points, splits.then_some(&mut sm))?;
+    // the input's small angles, which the optimiser's focus phase asks for, found beside
+    // refinement
+    let (refined, focus_angles) = rayon::join(
+        || refine::refine(&mut tr, &mut labels, size, options, r_min, max_points, splits.then_some(&mut sm)),
+        || options.optimize.then(|| crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface)),
+    );
+    let mut refined = refined?;
     let mut stop = refinement_stop(refined.stopped, tr.num_points(), max_points);
     stage(&mut report, "refine", &mut clock);
     options.abandon.check()?;
@@ -564,7 +570,7 @@ pub(crate) fn mesh_surface_pinned(
             .with_pinned_faces(pinned.to_vec())
             .with_focus(Some(FOCUS));
         // tets at the input's small angles do not keep the focus phase's repeats going
-        let angles = || crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface);
+        let angles = || focus_angles.clone().unwrap_or_else(|| crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface));
         let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles, geometry).map_err(|e| match e {
             crate::mesh3d::optimize::OptimizeError::InvalidMesh(m) => MeshingError::Internal(format!("the mesh does not validate: {m}")),
             e => MeshingError::Internal(e.to_string()),
