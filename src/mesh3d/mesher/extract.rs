@@ -10,6 +10,15 @@ use crate::mesh3d::mesher::MeshingError;
 use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::Tetra;
+use crate::mesh3d::optimize::Adjacency;
+
+/// The output mesh and its adjacency, as the optimiser keeps it
+/// ([`crate::mesh3d::optimize::Adjacency`]): read off the tetrahedralization's own links
+/// instead of found again by sorting the faces.
+pub(crate) struct Extracted {
+    pub mesh: TetMesh,
+    pub adjacency: Adjacency,
+}
 
 /// Builds the output mesh; with `check`, validated ([`TetMesh::validate`]). Without it the
 /// caller checks it: the optimiser's working mesh is built with the same checks.
@@ -17,7 +26,7 @@ use crate::mesh3d::mesher::tetra::Tetra;
 /// # Errors
 /// [`MeshingError::Internal`] if a subface is missing or, with `check`, the result fails
 /// [`TetMesh::validate`] (both would be bugs).
-pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &TriSurface, check: bool) -> Result<TetMesh, MeshingError> {
+pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &TriSurface, check: bool) -> Result<Extracted, MeshingError> {
     let n_in = input.vertices.len();
     let mut index = vec![NONE; tr.num_points()];
     let mut vertices = input.vertices.clone();
@@ -26,11 +35,16 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
     }
     let mut tets = Vec::new();
     let mut region_tags = Vec::new();
+    // per slot, the mesh's index of its tet (material tets only)
+    let mut tet_index = vec![NONE; tr.tets.len()];
+    let mut slots = Vec::new();
     for t in tr.live() {
         let l = labels.get(t);
         if l == 0 {
             continue;
         }
+        tet_index[t as usize] = tets.len() as u32;
+        slots.push(t);
         let v = tr.tets[t as usize].v.map(|p| {
             if index[p as usize] == NONE {
                 index[p as usize] = vertices.len() as u32;
@@ -44,6 +58,8 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
     let mut boundary = Vec::new();
     let mut face_tags = Vec::new();
     let mut buf = Vec::new();
+    // the faces (slot, face) of the boundary triangles
+    let mut listed = Vec::new();
     for (f, s) in sm.subfaces() {
         let (t, k) = tr
             .face_tet(s[0], s[1], s[2], &mut buf)
@@ -53,6 +69,7 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
         if lt == 0 && lo == 0 {
             continue; // between two voids: not a boundary of the mesh
         }
+        listed.push((t, k));
         // orientation: outward from the material tet when only one side is material
         let mut tri = s;
         let inner = if lt != 0 && lo == 0 { Some(t) } else if lo != 0 && lt == 0 { Some(other) } else { None };
@@ -72,6 +89,34 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
         boundary.push(mapped);
         face_tags.push(sm.facets[f as usize].tag);
     }
+    // the neighbours across each face (the mesh's index and face) and the constrained faces:
+    // on the boundary of the material, between two regions, or listed as a boundary triangle
+    let index_of = |t: u32| tet_index.get(t as usize).copied().unwrap_or(NONE);
+    let mut nbr = vec![[NONE; 4]; tets.len()];
+    let mut cons = vec![0u8; tets.len()];
+    for (i, &t) in slots.iter().enumerate() {
+        for k in 0..4 {
+            let n = tr.tets[t as usize].n[k];
+            let j = index_of(n >> 2);
+            if j == NONE {
+                cons[i] |= 1 << k;
+            } else {
+                nbr[i][k] = j << 2 | (n & 3);
+                if region_tags[i] != region_tags[j as usize] {
+                    cons[i] |= 1 << k;
+                }
+            }
+        }
+    }
+    for (t, k) in listed {
+        let n = tr.tets[t as usize].n[k];
+        for (s, f) in [(t, k), (n >> 2, (n & 3) as usize)] {
+            let i = index_of(s);
+            if i != NONE {
+                cons[i as usize] |= 1 << f;
+            }
+        }
+    }
     let mesh = TetMesh {
         vertices,
         tets,
@@ -84,5 +129,5 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
     if check {
         mesh.validate().map_err(|e| MeshingError::Internal(format!("the mesh does not validate: {e}")))?;
     }
-    Ok(mesh)
+    Ok(Extracted { mesh, adjacency: Adjacency { nbr, cons } })
 }

@@ -554,7 +554,10 @@ pub(crate) fn mesh_surface_pinned(
     stage(&mut report, "refine", &mut clock);
     // validated here, or by the optimiser: it builds its working mesh with the same checks
     // (orientation, faces, boundary triangles), and the mesh is checked once, not twice
-    let mut mesh = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
+    let extract::Extracted { mut mesh, adjacency } = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
+    // every mesher test checks the links' adjacency against the faces' sorted
+    #[cfg(test)]
+    assert_eq!(Ok((adjacency.nbr.clone(), adjacency.cons.clone())), crate::mesh3d::optimize::adjacency(&mesh), "the tetrahedralization's adjacency is the mesh's");
     stage(&mut report, "extract", &mut clock);
     options.abandon.check()?;
     if options.optimize {
@@ -571,7 +574,7 @@ pub(crate) fn mesh_surface_pinned(
             .with_focus(Some(FOCUS));
         // tets at the input's small angles do not keep the focus phase's repeats going
         let angles = || focus_angles.clone().unwrap_or_else(|| crate::quality::input_angles::small_input_angles(surface, FOCUS.below_deg, !options.keep_surface));
-        let r = crate::mesh3d::optimize::optimize_explained(&mut mesh, &opts, &angles, geometry).map_err(|e| match e {
+        let r = crate::mesh3d::optimize::optimize_explained_with(&mut mesh, &opts, &angles, geometry, Some(adjacency)).map_err(|e| match e {
             crate::mesh3d::optimize::OptimizeError::InvalidMesh(m) => MeshingError::Internal(format!("the mesh does not validate: {m}")),
             e => MeshingError::Internal(e.to_string()),
         })?;

@@ -101,6 +101,9 @@ use serde::Serialize;
 use smooth::Smoother;
 use std::time::Instant;
 use work::Work;
+pub(crate) use work::Adjacency;
+#[cfg(test)]
+pub(crate) use work::adjacency;
 
 /// Vertex insertion joins the other operations once a pass changes nothing, or from this pass
 /// on (counted from 0). Measured on the corpus STEP solids with boundary sliding: insertion
@@ -631,12 +634,24 @@ pub fn optimize_explained(
     angles: &dyn Fn() -> Vec<InputAngle>,
     geometry: Option<&dyn BoundaryGeometry>,
 ) -> Result<OptimizeReport, OptimizeError> {
+    optimize_explained_with(mesh, opts, angles, geometry, None)
+}
+
+/// [`optimize_explained`], given the mesh's adjacency where the caller has it
+/// ([`Work::build_with`]).
+pub(crate) fn optimize_explained_with(
+    mesh: &mut TetMesh,
+    opts: &OptimizeOptions,
+    angles: &dyn Fn() -> Vec<InputAngle>,
+    geometry: Option<&dyn BoundaryGeometry>,
+    adjacency: Option<Adjacency>,
+) -> Result<OptimizeReport, OptimizeError> {
     let start = Instant::now();
     if mesh.tets.len() > work::MAX_TETS {
         return Err(OptimizeError::TooLarge { tets: mesh.tets.len(), max: work::MAX_TETS });
     }
     let tg = Targets::new(opts.min_dihedral_deg, opts.max_dihedral_deg).with_radius_edge(opts.max_radius_edge);
-    let mut w = Work::build(mesh, tg)?;
+    let mut w = Work::build_with(mesh, tg, adjacency)?;
     if opts.slide_boundary && opts.smooth {
         (w.slide, w.fans) = slide::slides(mesh, &w, &opts.pinned_faces, geometry);
         w.geo = geometry;

@@ -113,7 +113,19 @@ struct Rec {
 /// # Errors
 /// [`MeshError::NonManifold`] for a face of more than two tets, [`MeshError::Overlap`] for two
 /// tets on the same side of a face, [`MeshError::BoundaryNotAFace`].
-fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
+/// A tet mesh's adjacency as the optimiser keeps it: per tet and face (face `k` opposite
+/// vertex `k`, [`TET_FACES`]), the neighbour's index and face (`j << 2 | k'`, [`NONE`] where
+/// there is none), and a bit per constrained face (on the boundary of the mesh, between two
+/// regions, or a listed boundary triangle).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Adjacency {
+    pub nbr: Vec<[u32; 4]>,
+    pub cons: Vec<u8>,
+}
+
+/// The adjacency of `mesh` by sorting its faces, checking that each face has at most two tets,
+/// on opposite sides, and that each boundary triangle is a face.
+pub(crate) fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
     let (nt, nv) = (mesh.tets.len(), mesh.vertices.len());
     let start = mesh.face_bucket_starts();
     let mut rec = vec![Rec::default(); 4 * nt];
@@ -184,13 +196,21 @@ fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
 }
 
 impl<'g> Work<'g> {
+    /// [`Work::build_with`], the adjacency found by sorting the faces.
+    #[cfg(test)]
+    pub(crate) fn build(mesh: &TetMesh, tg: Targets) -> Result<Work<'g>, MeshError> {
+        Work::build_with(mesh, tg, None)
+    }
+
     /// Builds the working mesh, checking what the optimiser relies on: array lengths, finite
     /// coordinates, indices, exact positive orientation of every tet, at most two tets per face
-    /// and from opposite sides, and every boundary triangle a face.
+    /// and from opposite sides, and every boundary triangle a face. Where the caller gives the
+    /// adjacency (the mesher, from its tetrahedralization's links, [`Adjacency`]), it is taken
+    /// as it is: the last two checks are the caller's.
     ///
     /// # Errors
     /// The first violation, as [`MeshError`] (the same variants as [`TetMesh::validate`]).
-    pub(crate) fn build(mesh: &TetMesh, tg: Targets) -> Result<Work<'g>, MeshError> {
+    pub(crate) fn build_with(mesh: &TetMesh, tg: Targets, given: Option<Adjacency>) -> Result<Work<'g>, MeshError> {
         let nt = mesh.tets.len();
         if mesh.region_tags.len() != nt {
             return Err(MeshError::LengthMismatch { what: "region_tags", found: mesh.region_tags.len(), expected: nt });
@@ -219,7 +239,10 @@ impl<'g> Work<'g> {
         // tets' measures (in parallel); an orientation error is reported first, as the checks
         // are listed
         let (adjacent, (inverted, judged)) = rayon::join(
-            || adjacency(mesh),
+            || match given {
+                Some(a) if a.nbr.len() == mesh.tets.len() && a.cons.len() == mesh.tets.len() => Ok((a.nbr, a.cons)),
+                _ => adjacency(mesh),
+            },
             || {
                 let inverted = mesh.tets.par_iter().position_first(|t| orient(t) != Sign::Positive);
                 let judged: Vec<Judged> = if inverted.is_some() {
