@@ -25,7 +25,8 @@
 //! tets smaller still, a cascade that spent the whole point budget in one spot (4,000 points
 //! in a ball of radius 0.03 on `featuretype.STL`) and left the rest of the part unrefined.
 
-use crate::core::{RegionId, SizeField};
+use crate::core::predicates::orient3d;
+use crate::core::{RegionId, Sign, SizeField};
 use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::recover::circumcenter;
 use crate::mesh3d::mesher::split_boundary::{FacetEdges, split_wall};
@@ -121,6 +122,20 @@ fn inside_candidates(tr: &Tetra, t: u32, wall: Option<(u32, usize)>) -> Vec<DVec
     out.push((centroid + c) * 0.5);
     out.retain(|q| q.is_finite() && q.distance(c) < r && p.iter().all(|x| x.distance(*q) > 0.4 * lmin));
     out
+}
+
+/// Whether a point `q` offered to split a tet of vertices `v` would surely come nearer than
+/// `floor` to a vertex it joins: nearer to one of `v`, strictly inside the tet (exact). The
+/// tet holding `q` is then in `q`'s cavity, its vertices on the cavity's outline, and the
+/// insertion would be rejected; it is not tried ([`Tetra::turned_down_inside`]; on
+/// `part.step` at TetGen's tet count, 8,739 of the 16,078 points offered inside bad tets,
+/// each a cavity dug and undone).
+fn surely_too_near(tr: &Tetra, v: &[u32; 4], q: DVec3, floor: f64) -> bool {
+    if v.contains(&GHOST) || v.contains(&DEAD) || !v.iter().any(|&x| tr.point(x).distance(q) < floor) {
+        return false;
+    }
+    let [a, b, c, d] = v.map(|i| tr.point(i));
+    [orient3d(q, b, c, d), orient3d(a, q, c, d), orient3d(a, b, q, d), orient3d(a, b, c, q)].iter().all(|&s| s == Sign::Positive)
 }
 
 /// The priority of tet `t` if it is bad.
@@ -397,6 +412,10 @@ pub(crate) fn refine(
                     // centre do not cascade into ever shorter edges beside a wall
                     let q_lfs = inherited_lfs(&lfs, tr, &v, q);
                     let floor = (0.5 * lmin).max(LFS_FLOOR * q_lfs);
+                    if surely_too_near(tr, &v, q, floor) {
+                        tr.turned_down_inside();
+                        continue;
+                    }
                     let p = tr.add_point(q);
                     tr.created.clear();
                     let res = tr.insert_checked(p, t, |tr, faces| {

@@ -183,6 +183,16 @@ impl Tetra {
         self.insert_checked(p, start, |_, _| None)
     }
 
+    /// Stands for an [`Tetra::insert_checked`] of a point strictly inside live tet `start`
+    /// that the caller knows its check turns down: leaves the state as that call would (its
+    /// walk, which stops in `start`, draws one number), so that what follows is the same
+    /// whether the call is made or not.
+    pub fn turned_down_inside(&mut self) {
+        if self.vanish.is_empty() {
+            self.sc.rng.next_u64();
+        }
+    }
+
     /// [`Tetra::insert_at`] with a check before anything is written: `check` sees the faces
     /// on the cavity's boundary (as (outside tet, face) references, the face vertices oriented
     /// towards `p`) and may turn the insertion down by naming one of them.
