@@ -551,6 +551,38 @@ fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
 mod tests {
     use super::*;
 
+    /// An insertion strictly inside a tet that its check turns down leaves the walk's
+    /// generator where [`Tetra::turned_down_inside`] leaves it, and nothing else changed.
+    #[test]
+    fn standing_in_for_a_turned_down_insertion_keeps_the_walk() {
+        let points: Vec<DVec3> = (0..40u32).map(|i| DVec3::new((i * 7 % 11) as f64, (i * 5 % 13) as f64 * 0.9, (i * 3 % 17) as f64 * 0.7 + 0.01 * i as f64)).collect();
+        let n = points.len() as u32;
+        let build = || Tetra::new(points.clone(), (0..n).collect(), 11).unwrap();
+        let (mut a, mut b) = (build(), build());
+        let tets: Vec<u32> = a.live().filter(|&t| a.finite(t)).collect();
+        let mut checked = 0;
+        for t in tets {
+            let v = a.tets[t as usize].v;
+            let p = v.map(|i| a.point(i));
+            let q = p[0] * 0.7 + (p[1] + p[2] + p[3]) * 0.1;
+            let [w, x, y, z] = p;
+            use crate::core::predicates::orient3d;
+            if ![orient3d(q, x, y, z), orient3d(w, q, y, z), orient3d(w, x, q, z), orient3d(w, x, y, q)].iter().all(|&s| s == Sign::Positive) {
+                continue; // a flat tet (the points have coplanar fours)
+            }
+            checked += 1;
+            let before = a.tets.clone();
+            let id = a.add_point(q);
+            let r = a.insert_checked(id, t, |_, _| Some((0, 0)));
+            assert_eq!(r, Inserted::Rejected(0, 0));
+            a.remove_last_point();
+            b.turned_down_inside();
+            assert_eq!(a.tets, before);
+            assert_eq!(a.sc.rng.clone().next_u64(), b.sc.rng.clone().next_u64(), "tet {t}");
+        }
+        assert!(checked >= 20, "{checked} tets");
+    }
+
     /// `has_face` and `face_tet` answer as `face_of` does for every triple of points of a
     /// tetrahedralization with hull edges and cospherical points (a grid), both present faces
     /// and absent ones.
