@@ -306,7 +306,8 @@ impl Part {
     /// [`Part::tessellate`], and beside the certificate the tessellation meshed as
     /// [`Part::mesh`] meshes a certified one: the mesher does not wait for the checks, and the
     /// certificate decides whether its mesh stands. `None` where the checks turned shells
-    /// inside out (the surface to mesh is not the one meshed): the caller meshes again.
+    /// inside out (the surface to mesh is not the one meshed), or found them inside out and
+    /// passed: the caller meshes again.
     ///
     /// # Errors
     /// As [`Part::tessellate`]: a failed certificate, whatever the mesher made of it.
@@ -327,26 +328,27 @@ impl Part {
             || {
                 let t = Instant::now();
                 let c = this.model.as_ref().map(|m| certify(m, &tessellation, &mesh_checks()));
-                if c.as_ref().is_none_or(|c| !c.passed || !c.outward) {
+                let abandoned = c.as_ref().is_none_or(|c| !c.passed || !c.outward);
+                if abandoned {
                     abandon.set();
                 }
-                c.map(|c| (c, t.elapsed().as_secs_f64()))
+                c.map(|c| (c, t.elapsed().as_secs_f64(), abandoned))
             },
             || {
                 let t = Instant::now();
                 (this.mesh_once(&surface, field, &meshing, gap), t.elapsed().as_secs_f64())
             },
         );
-        let (Some(model), Some((certificate, mut certify_s))) = (&mut self.model, certificate) else {
+        let (Some(model), Some((certificate, mut certify_s, abandoned))) = (&mut self.model, certificate) else {
             return Ok(None);
         };
         let t = Instant::now();
         let certificate = turned_certified(model, &mut tessellation, certificate, &mesh_checks());
         certify_s += t.elapsed().as_secs_f64();
-        let turned = !certificate.reoriented.is_empty();
         self.accept(Certified { tessellation, certificate }, [tessellate_s, certify_s])?;
-        self.seconds.certify_beside_mesh = !turned;
-        Ok((!turned).then_some(meshed))
+        // the mesh stands where the mesher was let run on the surface that passed as it is
+        self.seconds.certify_beside_mesh = !abandoned;
+        Ok((!abandoned).then_some(meshed))
     }
 
     /// Meshes the part's surface into tets of `size` (a CAD part is tessellated to the same
@@ -497,7 +499,7 @@ pub fn tessellate_model(mut model: Model, read: f64, opts: &TessellateOptions, s
     (model, c, StageSeconds { read, tessellate, certify, mesh: 0.0, certify_beside_mesh: false })
 }
 
-/// What [`Part::mesh`] certifies a tessellation to mesh by (the checks): the boundary of a volume mesh,
+/// The checks [`Part::mesh`] certifies a tessellation by: the boundary of a volume mesh,
 /// whose volume against the CAD solids' is the mesh summary's to report (and
 /// `--require-volume-error`'s to demand), not a check of its own.
 fn mesh_checks() -> CertifyOptions {

@@ -92,7 +92,7 @@ pub struct MeshOptions {
 
 /// A flag that stops a mesher run at its next stage, set by work beside it that finds the
 /// run useless: a CAD part is meshed while its tessellation is certified, and a failed
-/// certificate abandons the mesh.
+/// certificate (or shells to turn) abandons the mesh.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Abandon(std::sync::Arc<std::sync::atomic::AtomicBool>);
 
@@ -325,9 +325,9 @@ pub enum MeshingError {
     /// A bug of fepre (an invariant broke); please report it with the input.
     #[error("internal error: {0}")]
     Internal(String),
-    /// The run was stopped from outside ([`MeshOptions`]' abandon flag): its surface will not
-    /// be meshed (its certificate failed).
-    #[error("meshing was abandoned: the surface failed its checks")]
+    /// The run was stopped from outside ([`MeshOptions`]' abandon flag): its surface is not
+    /// the one to mesh (its certificate failed, or its shells are to be turned).
+    #[error("meshing was abandoned: the surface is not the one to mesh (its certificate failed, or its shells are to be turned)")]
     Abandoned,
     /// Two solids of an assembly overlap: a point of one lies deeper than the gap inside the
     /// other (on its surface or inside both).
@@ -468,7 +468,8 @@ pub(crate) fn mesh_surface_pinned(
         Some((tr, seconds)) => (tr, seconds + clock.elapsed().as_secs_f64()),
         None => {
             if !options.keep_surface && options.presize {
-                // the boundary may change: cut it to the size, and its thin triangles into better ones
+                // the boundary may change: cut it to the size, and its thin triangles into
+                // better ones
                 let h = |p: DVec3| size.size_at(p);
                 let scale = feature_scale(surface, options.seed);
                 sm.presize(&mut points, &h, &scale);
@@ -552,8 +553,9 @@ pub(crate) fn mesh_surface_pinned(
         stop = stop.or(refinement_stop(again.stopped, tr.num_points(), max_points));
     }
     stage(&mut report, "refine", &mut clock);
-    // validated here, or by the optimiser: it builds its working mesh with the same checks
-    // (orientation, faces, boundary triangles), and the mesh is checked once, not twice
+    // validated here, or by the optimiser: it builds its working mesh checking orientation
+    // and coordinates, and takes the adjacency (faces, boundary triangles) from the
+    // tetrahedralization's links, which every mesher test checks against the sorted faces
     let extract::Extracted { mut mesh, adjacency } = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
     // every mesher test checks the links' adjacency against the faces' sorted
     #[cfg(test)]
