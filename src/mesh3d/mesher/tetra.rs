@@ -9,6 +9,7 @@
 //! tets closing the convex hull, as in the Delaunay module. Wall flags are one bit per tet face.
 
 use crate::core::Sign;
+use crate::core::predicates::orient3d;
 use crate::core::ids::NONE;
 use crate::core::spatial_order::brio_order;
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
@@ -125,6 +126,19 @@ impl Tetra {
         Ok(tr)
     }
 
+    /// Whether point `p` lies strictly inside finite tet `t` (exact) and nearer than `floor`
+    /// to one of its vertices.
+    fn near_inside(&self, t: u32, p: u32, floor: f64) -> bool {
+        let v = self.tets[t as usize].v;
+        if v.contains(&GHOST) || v.contains(&DEAD) {
+            return false;
+        }
+        let q = self.point(p);
+        let [a, b, c, d] = v.map(|i| self.point(i));
+        [a, b, c, d].iter().any(|x| x.distance(q) < floor)
+            && [orient3d(q, b, c, d), orient3d(a, q, c, d), orient3d(a, b, q, d), orient3d(a, b, c, q)].iter().all(|&s| s == Sign::Positive)
+    }
+
     fn push(&mut self, v: [u32; 4]) -> u32 {
         let t = self.tets.len() as u32;
         self.tets.push(Tet { v, n: [0; 4] });
@@ -183,20 +197,24 @@ impl Tetra {
         self.insert_checked(p, start, |_, _| None)
     }
 
-    /// Stands for an [`Tetra::insert_checked`] of a point strictly inside live tet `start`
-    /// that the caller knows its check turns down: leaves the state as that call would (its
-    /// walk, which stops in `start`, draws one number), so that what follows is the same
-    /// whether the call is made or not.
-    pub fn turned_down_inside(&mut self) {
-        if self.vanish.is_empty() {
-            self.sc.rng.next_u64();
-        }
-    }
-
     /// [`Tetra::insert_at`] with a check before anything is written: `check` sees the faces
     /// on the cavity's boundary (as (outside tet, face) references, the face vertices oriented
     /// towards `p`) and may turn the insertion down by naming one of them.
     pub fn insert_checked<F>(&mut self, p: u32, start: u32, check: F) -> Inserted
+    where
+        F: FnOnce(&Tetra, &[([u32; 3], u32)]) -> Option<(u32, usize)>,
+    {
+        self.insert_checked_near(p, start, None, check)
+    }
+
+    /// [`Tetra::insert_checked`] for a check that turns the point down, as `verdict`, where a
+    /// vertex of the cavity's outline lies nearer than `floor` (`near: Some((floor,
+    /// verdict))`): where the point lies strictly inside the tet the walk finds and nearer than
+    /// `floor` to one of that tet's vertices, it is turned down so without digging the cavity.
+    /// That tet holds the point, so it stays in the cavity and its vertices are on the
+    /// outline: the check would turn it down (or the correction refuse it). The walk is the
+    /// same either way, so what follows is the same.
+    pub fn insert_checked_near<F>(&mut self, p: u32, start: u32, near: Option<(f64, (u32, usize))>, check: F) -> Inserted
     where
         F: FnOnce(&Tetra, &[([u32; 3], u32)]) -> Option<(u32, usize)>,
     {
@@ -219,6 +237,11 @@ impl Tetra {
             Located::Wall(t, f) => return Inserted::Blocked(t, f),
             Located::Blocked | Located::Lost => return Inserted::Refused,
         };
+        if let Some((floor, (t, f))) = near {
+            if self.near_inside(t0, p, floor) {
+                return Inserted::Rejected(t, f);
+            }
+        }
         let ok = if self.walled {
             dig_walled(&self.k, &self.tets, &Everything, &walls, &mut self.mark, &mut self.sc, t0, p)
         } else {
@@ -551,36 +574,44 @@ fn first_tet(k: &FloatKernel, order: &[u32]) -> Option<[u32; 4]> {
 mod tests {
     use super::*;
 
-    /// An insertion strictly inside a tet that its check turns down leaves the walk's
-    /// generator where [`Tetra::turned_down_inside`] leaves it, and nothing else changed.
+    /// A point strictly inside a tet and near one of its vertices is turned down as the check
+    /// would turn it down, without a cavity dug, the walk's generator left where the check's
+    /// call leaves it; elsewhere the check decides.
     #[test]
-    fn standing_in_for_a_turned_down_insertion_keeps_the_walk() {
+    fn a_point_near_a_vertex_of_its_tet_is_turned_down_as_the_check_would() {
         let points: Vec<DVec3> = (0..40u32).map(|i| DVec3::new((i * 7 % 11) as f64, (i * 5 % 13) as f64 * 0.9, (i * 3 % 17) as f64 * 0.7 + 0.01 * i as f64)).collect();
         let n = points.len() as u32;
         let build = || Tetra::new(points.clone(), (0..n).collect(), 11).unwrap();
         let (mut a, mut b) = (build(), build());
         let tets: Vec<u32> = a.live().filter(|&t| a.finite(t)).collect();
-        let mut checked = 0;
-        for t in tets {
+        let (mut near, mut far) = (0, 0);
+        for (i, t) in tets.into_iter().enumerate() {
             let v = a.tets[t as usize].v;
             let p = v.map(|i| a.point(i));
             let q = p[0] * 0.7 + (p[1] + p[2] + p[3]) * 0.1;
-            let [w, x, y, z] = p;
-            use crate::core::predicates::orient3d;
-            if ![orient3d(q, x, y, z), orient3d(w, q, y, z), orient3d(w, x, q, z), orient3d(w, x, y, q)].iter().all(|&s| s == Sign::Positive) {
-                continue; // a flat tet (the points have coplanar fours)
-            }
-            checked += 1;
+            let floor = 1.5 * q.distance(p[0]);
+            // start the walk from another tet now and then: the tet it finds decides
+            let start = if i % 3 == 0 { 1 } else { t };
+            let check = |tr: &Tetra, faces: &[([u32; 3], u32)]| faces.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(q) < floor).then_some((7, 2));
             let before = a.tets.clone();
-            let id = a.add_point(q);
-            let r = a.insert_checked(id, t, |_, _| Some((0, 0)));
-            assert_eq!(r, Inserted::Rejected(0, 0));
+            let (ia, ib) = (a.add_point(q), b.add_point(q));
+            let ra = a.insert_checked(ia, start, check);
+            let rb = b.insert_checked_near(ib, start, Some((floor, (7, 2))), check);
+            let inside = b.near_inside(t, ib, floor);
             a.remove_last_point();
-            b.turned_down_inside();
+            b.remove_last_point();
+            assert!(matches!(ra, Inserted::Rejected(7, 2) | Inserted::Refused), "tet {t}: {ra:?}");
+            assert!(matches!(rb, Inserted::Rejected(7, 2) | Inserted::Refused), "tet {t}: {rb:?}");
+            if inside {
+                near += 1;
+            } else {
+                far += 1;
+            }
             assert_eq!(a.tets, before);
+            assert_eq!(b.tets, before);
             assert_eq!(a.sc.rng.clone().next_u64(), b.sc.rng.clone().next_u64(), "tet {t}");
         }
-        assert!(checked >= 20, "{checked} tets");
+        assert!(near >= 20 && far >= 1, "{near} near, {far} not (flat tets)");
     }
 
     /// `has_face` and `face_tet` answer as `face_of` does for every triple of points of a
