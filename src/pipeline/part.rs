@@ -271,15 +271,16 @@ impl Part {
         // the boundary of a volume mesh: its volume against the CAD solids' is the mesh
         // summary's to report (and `--require-volume-error`'s to demand)
         let (c, seconds) = certified_tessellation(model, opts, Some(size), &mesh_checks());
-        self.accept(c, seconds)
+        self.accept(c, seconds, None)
     }
 
     /// Takes a CAD part's tessellation and its certificate (and their seconds): a certified
-    /// surface becomes the surface to mesh.
+    /// surface becomes the surface to mesh (its solids' part, [`solids_only`], where the caller
+    /// has it already).
     ///
     /// # Errors
     /// [`PipelineError::Certificate`] when a check failed.
-    fn accept(&mut self, c: Certified, [tessellate_s, certify_s]: [f64; 2]) -> Result<&Certificate, PipelineError> {
+    fn accept(&mut self, c: Certified, [tessellate_s, certify_s]: [f64; 2], solids: Option<(TriSurface, usize)>) -> Result<&Certificate, PipelineError> {
         let Some(model) = &self.model else {
             return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
         };
@@ -292,7 +293,7 @@ impl Part {
         self.seconds.certify_beside_mesh = false;
         let message = (!c.certificate.passed).then(|| failure_message(&self.path, &c.certificate, &model.dropped));
         if message.is_none() {
-            let (surface, left_out) = solids_only(model, &c.tessellation.surface);
+            let (surface, left_out) = solids.unwrap_or_else(|| solids_only(model, &c.tessellation.surface));
             self.surface = Some(surface);
             self.open_surface_faces = left_out;
         }
@@ -318,7 +319,7 @@ impl Part {
         let t0 = Instant::now();
         let mut tessellation = tessellate_sized(model, tess, size);
         let tessellate_s = t0.elapsed().as_secs_f64();
-        let surface = solids_only(model, &tessellation.surface).0;
+        let (surface, left_out) = solids_only(model, &tessellation.surface);
         let gap = GAP_CHORDS * tessellation.chord;
         let this = &*self;
         // a failed certificate, or shells to turn, stop the mesher at its next stage
@@ -345,7 +346,9 @@ impl Part {
         let t = Instant::now();
         let certificate = turned_certified(model, &mut tessellation, certificate, &mesh_checks());
         certify_s += t.elapsed().as_secs_f64();
-        self.accept(Certified { tessellation, certificate }, [tessellate_s, certify_s])?;
+        // the surface meshed is the surface to mesh where the checks let the mesher run
+        let solids = (!abandoned).then_some((surface, left_out));
+        self.accept(Certified { tessellation, certificate }, [tessellate_s, certify_s], solids)?;
         // the mesh stands where the mesher was let run on the surface that passed as it is
         self.seconds.certify_beside_mesh = !abandoned;
         Ok((!abandoned).then_some(meshed))

@@ -438,12 +438,6 @@ pub(crate) fn mesh_surface_pinned(
         report.stage_seconds.push((name.to_string(), t.elapsed().as_secs_f64()));
         *t = Instant::now();
     };
-    // the Delaunay tetrahedralization of a surface's vertices
-    let delaunay = |s: &TriSurface| {
-        let t = Instant::now();
-        let ranks = ties::ranks(&s.vertices, &s.triangles);
-        (tetra::Tetra::new(s.vertices.clone(), ranks, options.seed), t.elapsed().as_secs_f64())
-    };
     // the input's checks, and beside them the tetrahedralization of its vertices where the
     // boundary is meshed as it is (not cut to the size first): the checks decide whether it
     // stands, and a surface they change is tetrahedralized again
@@ -453,7 +447,13 @@ pub(crate) fn mesh_surface_pinned(
             let t = Instant::now();
             (input::prepare(surface, options, pinned), t.elapsed().as_secs_f64())
         },
-        || (early && surface.validate().is_ok()).then(|| delaunay(surface)),
+        || {
+            (early && surface.validate().is_ok()).then(|| {
+                let t = Instant::now();
+                let ranks = ties::ranks(&surface.vertices, &surface.triangles);
+                (tetra::Tetra::new(surface.vertices.clone(), ranks, options.seed), t.elapsed().as_secs_f64())
+            })
+        },
     );
     let prepared = prepared?;
     options.abandon.check()?;
@@ -462,11 +462,11 @@ pub(crate) fn mesh_surface_pinned(
     let early_tr = early_tr.filter(|_| prepared.surface.is_none());
     let surface = prepared.surface.as_ref().unwrap_or(surface);
     let caps = prepared.caps;
-    let mut points = surface.vertices.clone();
-    let mut sm = surface_model::SurfaceModel::new(&points, &surface.triangles, &surface.face_tags, !options.keep_surface);
+    let mut sm = surface_model::SurfaceModel::new(&surface.vertices, &surface.triangles, &surface.face_tags, !options.keep_surface);
     let (tr, delaunay_s) = match early_tr {
         Some((tr, seconds)) => (tr, seconds + clock.elapsed().as_secs_f64()),
         None => {
+            let mut points = surface.vertices.clone();
             if !options.keep_surface && options.presize {
                 // the boundary may change: cut it to the size, and its thin triangles into
                 // better ones
@@ -559,7 +559,7 @@ pub(crate) fn mesh_surface_pinned(
     let extract::Extracted { mut mesh, adjacency } = extract::extract(&tr, &sm, &labels, surface, !options.optimize)?;
     // every mesher test checks the links' adjacency against the faces' sorted
     #[cfg(test)]
-    assert_eq!(Ok((adjacency.nbr.clone(), adjacency.cons.clone())), crate::mesh3d::optimize::adjacency(&mesh), "the tetrahedralization's adjacency is the mesh's");
+    assert_eq!(Ok(adjacency.clone()), crate::mesh3d::optimize::adjacency(&mesh), "the tetrahedralization's adjacency is the mesh's");
     stage(&mut report, "extract", &mut clock);
     options.abandon.check()?;
     if options.optimize {

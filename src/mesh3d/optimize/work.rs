@@ -125,7 +125,7 @@ pub(crate) struct Adjacency {
 
 /// The adjacency of `mesh` by sorting its faces, checking that each face has at most two tets,
 /// on opposite sides, and that each boundary triangle is a face.
-pub(crate) fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), MeshError> {
+pub(crate) fn adjacency(mesh: &TetMesh) -> Result<Adjacency, MeshError> {
     let (nt, nv) = (mesh.tets.len(), mesh.vertices.len());
     let start = mesh.face_bucket_starts();
     let mut rec = vec![Rec::default(); 4 * nt];
@@ -192,7 +192,7 @@ pub(crate) fn adjacency(mesh: &TetMesh) -> Result<(Vec<[u32; 4]>, Vec<u8>), Mesh
             i = j;
         }
     }
-    Ok((nbr, cons))
+    Ok(Adjacency { nbr, cons })
 }
 
 impl<'g> Work<'g> {
@@ -240,7 +240,7 @@ impl<'g> Work<'g> {
         // are listed
         let (adjacent, (inverted, judged)) = rayon::join(
             || match given {
-                Some(a) if a.nbr.len() == mesh.tets.len() && a.cons.len() == mesh.tets.len() => Ok((a.nbr, a.cons)),
+                Some(a) if a.nbr.len() == mesh.tets.len() && a.cons.len() == mesh.tets.len() => Ok(a),
                 _ => adjacency(mesh),
             },
             || {
@@ -260,7 +260,7 @@ impl<'g> Work<'g> {
                 orientation: orient(&mesh.tets[t]),
             });
         }
-        let (nbr, cons) = adjacent?;
+        let Adjacency { nbr, cons } = adjacent?;
         let mut fixed = vec![false; nv];
         let mut v2t = vec![NONE; nv];
         for (t, tet) in mesh.tets.iter().enumerate() {
