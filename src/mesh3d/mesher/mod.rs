@@ -30,6 +30,7 @@ mod keep;
 mod recover;
 mod refine;
 mod split_boundary;
+mod subface_list;
 mod surface_model;
 mod tetra;
 mod ties;

@@ -346,7 +346,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 // a facet is triangulated again only when its subfaces are read: the facets
                 // across the sides that splits cut wait until their own subfaces come up
                 sm.flush_facet(f, &tr.k.points);
-                if !sm.facets[f as usize].subfaces.contains(&t) {
+                if !sm.has_subface(f, t) {
                     continue;
                 }
                 changed |= split_subface(tr, sm, f, t, &mut stats).map_err(|m| fail(sm, f, &m))?;
@@ -495,7 +495,7 @@ mod tests {
         let ae = seg(&sm, 0, 2);
         assert!(split_subsegment(&mut tr, &mut sm, ae, 0, 2).unwrap());
         let m = sm.segments[ae as usize].points[1];
-        let t = *sm.facets[0].subfaces.iter().find(|t| t.contains(&0) && t.contains(&m) && t.contains(&3)).unwrap();
+        let t = sm.facets[0].subfaces.iter().find(|t| t.contains(&0) && t.contains(&m) && t.contains(&3)).unwrap();
         let [pa, pb, pc] = t.map(|v| tr.point(v));
         let cc = circumcenter(pa, pb, pc);
         assert!(!sm.inside(0, cc, &tr.k.points));

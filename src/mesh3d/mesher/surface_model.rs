@@ -11,6 +11,7 @@
 use crate::core::FaceId;
 use crate::core::cdt;
 use crate::mesh::topology::flat_pieces;
+use super::subface_list::SubfaceList;
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashMap;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
@@ -47,7 +48,7 @@ pub(crate) struct Facet {
     /// Points strictly inside it: input vertices inside a merged facet, and Steiner points.
     pub inner: Vec<u32>,
     /// Current subfaces, oriented like the facet.
-    pub subfaces: Vec<[u32; 3]>,
+    pub subfaces: SubfaceList,
     /// Its plane: an origin and two orthonormal directions (counter-clockwise about the
     /// outward normal of its triangles).
     frame: [DVec3; 3],
@@ -70,8 +71,8 @@ pub(crate) struct SurfaceModel {
     pub segments: Vec<Segment>,
     /// Where every vertex lies (grows with the points).
     pub location: Vec<Location>,
-    /// The facet of every current subface, by its sorted vertices.
-    index: FxHashMap<[u32; 3], u32>,
+    /// The facet of every current subface and its slot there, by its sorted vertices.
+    index: FxHashMap<[u32; 3], (u32, u32)>,
     /// Boundary points from this index on were put there by refinement (boundary splits):
     /// merging recovery's points back leaves them.
     pub refined_from: u32,
@@ -117,7 +118,7 @@ impl SurfaceModel {
                     sides: Vec::new(),
                     loops: Vec::new(),
                     inner: Vec::new(),
-                    subfaces: Vec::new(),
+                    subfaces: SubfaceList::default(),
                     frame: [DVec3::ZERO; 3],
                 });
             }
@@ -163,7 +164,7 @@ impl SurfaceModel {
             inner.sort_unstable();
             inner.dedup();
             fc.inner = inner;
-            fc.subfaces = fc.triangles.clone();
+            fc.subfaces = SubfaceList::new(fc.triangles.clone());
             // the frame: the area-weighted normal, the first edge of the largest triangle
             let sum: DVec3 = fc.triangles.iter().map(normal).sum();
             let big = fc.triangles.iter().max_by(|x, y| normal(x).length_squared().total_cmp(&normal(y).length_squared())).copied();
@@ -181,8 +182,8 @@ impl SurfaceModel {
         }
         let mut index = FxHashMap::default();
         for (f, fc) in facets.iter().enumerate() {
-            for t in &fc.subfaces {
-                index.insert(sorted(*t), f as u32);
+            for (slot, t) in fc.subfaces.slotted() {
+                index.insert(sorted(t), (f as u32, slot));
             }
         }
         let pending = vec![false; facets.len()];
@@ -371,13 +372,28 @@ impl SurfaceModel {
         if subfaces.is_empty() {
             return;
         }
-        for old in std::mem::take(&mut self.facets[f as usize].subfaces) {
+        self.set_subfaces(f, subfaces);
+    }
+
+    /// Puts `subfaces` in place of facet `f`'s.
+    fn set_subfaces(&mut self, f: u32, subfaces: Vec<[u32; 3]>) {
+        for old in self.facets[f as usize].subfaces.take() {
             self.index.remove(&sorted(old));
         }
-        for &t in &subfaces {
-            self.index.insert(sorted(t), f);
+        for (slot, &t) in subfaces.iter().enumerate() {
+            self.index.insert(sorted(t), (f, slot as u32));
         }
-        self.facets[f as usize].subfaces = subfaces;
+        self.facets[f as usize].subfaces = SubfaceList::new(subfaces);
+    }
+
+    /// Squeezes facet `f`'s subface list if holes outnumber its subfaces, keeping the index.
+    fn squeeze(&mut self, f: u32) {
+        let list = &mut self.facets[f as usize].subfaces;
+        if list.worth_squeezing() {
+            for (slot, t) in list.squeeze() {
+                self.index.insert(sorted(t), (f, slot));
+            }
+        }
     }
 
     /// Cuts the surface to the size wanted before meshing (when the boundary may change):
@@ -485,22 +501,19 @@ impl SurfaceModel {
         };
         self.location[v as usize] = Location::Gone;
         for f in facets {
-            let old = std::mem::take(&mut self.facets[f as usize].subfaces);
-            let mut new = Vec::with_capacity(old.len());
-            for t in old {
-                if !t.contains(&v) {
-                    new.push(t);
-                    continue;
-                }
+            let with_v: Vec<(u32, [u32; 3])> = self.facets[f as usize].subfaces.slotted().filter(|(_, t)| t.contains(&v)).collect();
+            for (slot, t) in with_v {
                 self.index.remove(&sorted(t));
+                let list = &mut self.facets[f as usize].subfaces;
                 if t.contains(&w) {
+                    list.remove(slot);
                     continue;
                 }
                 let u = t.map(|x| if x == v { w } else { x });
-                self.index.insert(sorted(u), f);
-                new.push(u);
+                list.replace(slot, u);
+                self.index.insert(sorted(u), (f, slot));
             }
-            self.facets[f as usize].subfaces = new;
+            self.squeeze(f);
         }
     }
 
@@ -515,9 +528,9 @@ impl SurfaceModel {
             }
             Some(Location::Facet(f)) => {
                 let mut out: Vec<u32> = Vec::new();
-                for t in &self.facets[*f as usize].subfaces {
+                for t in self.facets[*f as usize].subfaces.iter() {
                     if t.contains(&v) {
-                        for &x in t {
+                        for x in t {
                             if x != v && !out.contains(&x) {
                                 out.push(x);
                             }
@@ -533,23 +546,47 @@ impl SurfaceModel {
     /// The facet holding subface `t` (its vertices in any order), and the subface as stored
     /// (oriented like the facet).
     pub fn subface(&self, t: [u32; 3]) -> Option<(u32, [u32; 3])> {
-        let f = *self.index.get(&sorted(t))?;
-        let s = self.facets[f as usize].subfaces.iter().copied().find(|s| sorted(*s) == sorted(t))?;
+        let (f, slot) = *self.index.get(&sorted(t))?;
+        let s = self.facets[f as usize].subfaces.get(slot)?;
         Some((f, s))
+    }
+
+    /// Whether `t`, as oriented, is a subface of facet `f`.
+    pub fn has_subface(&self, f: u32, t: [u32; 3]) -> bool {
+        self.subface(t) == Some((f, t))
+    }
+
+    /// Takes the subfaces of facet `f` that are `r` up to a rotation (so oriented like it) out.
+    fn remove_turned(&mut self, f: u32, r: [u32; 3]) {
+        let turned = |t: [u32; 3]| t == r || t == [r[1], r[2], r[0]] || t == [r[2], r[0], r[1]];
+        if let Some((g, slot)) = self.index.remove(&sorted(r)) {
+            let list = &mut self.facets[f as usize].subfaces;
+            if g == f && list.get(slot).is_some_and(turned) {
+                list.remove(slot);
+            }
+        }
+    }
+
+    /// Adds subface `t` to facet `f`.
+    fn add_subface(&mut self, f: u32, t: [u32; 3]) {
+        let slot = self.facets[f as usize].subfaces.push(t);
+        self.index.insert(sorted(t), (f, slot));
     }
 
     /// Replaces the subfaces `old` of facet `f` by `new`, oriented like it (a flip inside the
     /// facet: the caller has checked that both pairs tile the same quad).
     pub fn replace_subfaces(&mut self, f: u32, old: [[u32; 3]; 2], new: [[u32; 3]; 2]) {
-        let fc = &mut self.facets[f as usize];
-        fc.subfaces.retain(|s| !old.iter().any(|o| sorted(*o) == sorted(*s)));
         for o in old {
-            self.index.remove(&sorted(o));
+            if let Some((g, slot)) = self.index.remove(&sorted(o)) {
+                if g == f {
+                    self.facets[f as usize].subfaces.remove(slot);
+                }
+            }
         }
         for t in new {
-            fc.subfaces.push(t);
-            self.index.insert(sorted(t), f);
+            self.add_subface(f, t);
         }
+        self.squeeze(f);
     }
 
     /// Makes a boundary split: vertex `p` goes onto segment `s` between its consecutive points
@@ -569,29 +606,26 @@ impl SurfaceModel {
             self.locate_vertex(p, Location::Facet(f));
         }
         for (f, removed, added) in edits {
-            let fc = &mut self.facets[*f as usize];
             // the removed ones are the stored ones, turned
-            let turned = |t: [u32; 3], r: [u32; 3]| t == r || t == [r[1], r[2], r[0]] || t == [r[2], r[0], r[1]];
-            fc.subfaces.retain(|&t| !removed.iter().any(|&r| turned(t, r)));
-            for t in removed {
-                self.index.remove(&sorted(*t));
+            for &r in removed {
+                self.remove_turned(*f, r);
             }
             for &t in added {
-                fc.subfaces.push(t);
-                self.index.insert(sorted(t), *f);
+                self.add_subface(*f, t);
             }
+            self.squeeze(*f);
         }
         true
     }
 
     /// The facet of subface `t` (its vertices in any order), if it is one.
     pub fn facet_of(&self, t: [u32; 3]) -> Option<u32> {
-        self.index.get(&sorted(t)).copied()
+        self.index.get(&sorted(t)).map(|&(f, _)| f)
     }
 
     /// Every subface with its facet.
     pub fn subfaces(&self) -> impl Iterator<Item = (u32, [u32; 3])> + '_ {
-        self.facets.iter().enumerate().flat_map(|(f, fc)| fc.subfaces.iter().map(move |s| (f as u32, *s)))
+        self.facets.iter().enumerate().flat_map(|(f, fc)| fc.subfaces.iter().map(move |s| (f as u32, s)))
     }
 
     /// Every subsegment with its segment.
@@ -638,11 +672,11 @@ mod tests {
         // stale until flushed: facet 0 still has its one input triangle
         assert_eq!(later.facets[0].subfaces.len(), 1);
         later.flush_facet(1, &points);
-        assert_eq!(later.facets[1].subfaces, now.facets[1].subfaces);
+        assert_eq!(later.facets[1].subfaces.iter().collect::<Vec<_>>(), now.facets[1].subfaces.iter().collect::<Vec<_>>());
         assert_eq!(later.facets[0].subfaces.len(), 1);
         later.flush(&points);
         for f in 0..2 {
-            assert_eq!(later.facets[f].subfaces, now.facets[f].subfaces, "facet {f}");
+            assert_eq!(later.facets[f].subfaces.iter().collect::<Vec<_>>(), now.facets[f].subfaces.iter().collect::<Vec<_>>(), "facet {f}");
         }
         assert_eq!(later.subfaces().collect::<Vec<_>>(), now.subfaces().collect::<Vec<_>>());
         assert_eq!(now.facets[0].subfaces.len(), 5);
