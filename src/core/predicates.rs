@@ -136,6 +136,10 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     let diff = |p: DVec3| [p.x - d.x, p.y - d.y, p.z - d.z];
     match orient3d_filter(diff(a), diff(b), diff(c)) {
         Some(s) => s,
+        // four points with one coordinate equal lie in a plane of the axes: the determinant
+        // has a zero column (most ties on CAD parts, which the adaptive stages would spend
+        // their every stage on)
+        None if (0..3).any(|k| a[k] == d[k] && b[k] == d[k] && c[k] == d[k]) => Sign::Zero,
         None => Sign::of(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).reversed(),
     }
 }
@@ -552,6 +556,34 @@ mod tests {
         assert_eq!(insphere(o, x, y, z, v3(2.0, 2.0, 2.0)), Sign::Negative);
         assert_eq!(insphere(o, x, y, z, v3(1.0, 1.0, 1.0)), Sign::Zero);
         assert_eq!(insphere(o, y, x, z, v3(0.3, 0.3, 0.3)), Sign::Negative);
+    }
+
+    /// Points in a plane of the axes are decided without the adaptive stages, as those decide.
+    #[test]
+    fn points_in_a_plane_of_the_axes_are_coplanar() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0
+        };
+        for k in 0..3 {
+            for _ in 0..200 {
+                let level = next();
+                let mut p = [0; 4].map(|_| v3(next(), next(), next()));
+                for q in &mut p {
+                    q[k] = level;
+                }
+                let shewchuk = Sign::of(robust::orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3])));
+                assert_eq!(shewchuk, Sign::Zero);
+                assert_eq!(orient3d(p[0], p[1], p[2], p[3]), Sign::Zero);
+                // one point off the plane by the least amount: decided, and as Shewchuk's
+                p[3][k] = level.next_up();
+                let shewchuk = Sign::of(robust::orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3]))).reversed();
+                assert_eq!(orient3d(p[0], p[1], p[2], p[3]), shewchuk);
+            }
+        }
     }
 
     #[test]

@@ -440,20 +440,25 @@ pub(crate) fn mesh_surface_pinned(
         *t = Instant::now();
     };
     // the input's checks, and beside them the tetrahedralization of its vertices where the
-    // boundary is meshed as it is (not cut to the size first): the checks decide whether it
-    // stands, and a surface they change is tetrahedralized again
+    // boundary is meshed as it is (not cut to the size first), or else the feature scale that
+    // presizing needs: the checks decide whether these stand, and a surface they change is
+    // worked on again
     let early = options.keep_surface || !options.presize;
-    let ((prepared, check_s), early_tr) = rayon::join(
+    let ((prepared, check_s), (early_tr, early_scale)) = rayon::join(
         || {
             let t = Instant::now();
             (input::prepare(surface, options, pinned), t.elapsed().as_secs_f64())
         },
         || {
-            (early && surface.validate().is_ok()).then(|| {
+            if surface.validate().is_err() {
+                (None, None)
+            } else if early {
                 let t = Instant::now();
                 let ranks = ties::ranks(&surface.vertices, &surface.triangles);
-                (tetra::Tetra::new(surface.vertices.clone(), ranks, options.seed), t.elapsed().as_secs_f64())
-            })
+                (Some((tetra::Tetra::new(surface.vertices.clone(), ranks, options.seed), t.elapsed().as_secs_f64())), None)
+            } else {
+                (None, Some(feature_scale(surface, options.seed)))
+            }
         },
     );
     let prepared = prepared?;
@@ -461,6 +466,7 @@ pub(crate) fn mesh_surface_pinned(
     report.stage_seconds.push(("check".to_string(), check_s));
     let mut clock = Instant::now();
     let early_tr = early_tr.filter(|_| prepared.surface.is_none());
+    let early_scale = early_scale.filter(|_| prepared.surface.is_none());
     let surface = prepared.surface.as_ref().unwrap_or(surface);
     let caps = prepared.caps;
     let mut sm = surface_model::SurfaceModel::new(&surface.vertices, &surface.triangles, &surface.face_tags, !options.keep_surface);
@@ -472,7 +478,7 @@ pub(crate) fn mesh_surface_pinned(
                 // the boundary may change: cut it to the size, and its thin triangles into
                 // better ones
                 let h = |p: DVec3| size.size_at(p);
-                let scale = feature_scale(surface, options.seed);
+                let scale = early_scale.unwrap_or_else(|| feature_scale(surface, options.seed));
                 sm.presize(&mut points, &h, &scale);
                 stage(&mut report, "presize", &mut clock);
             }

@@ -13,6 +13,7 @@ use crate::core::cdt;
 use crate::mesh::topology::flat_pieces;
 use super::subface_list::SubfaceList;
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
@@ -292,6 +293,14 @@ impl SurfaceModel {
     /// found by a flood from the inner side of its boundary. Keeps the old subfaces if the
     /// plane mapping degenerates.
     pub fn retriangulate(&mut self, f: u32, points: &[DVec3]) {
+        if let Some(subfaces) = self.triangulation(f, points) {
+            self.set_subfaces(f, subfaces);
+        }
+    }
+
+    /// The subfaces [`SurfaceModel::retriangulate`] gives facet `f`, or `None` where it keeps
+    /// the old ones.
+    fn triangulation(&self, f: u32, points: &[DVec3]) -> Option<Vec<[u32; 3]>> {
         let pts = self.facet_points(f);
         let mut tri: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
         let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
@@ -303,7 +312,7 @@ impl SurfaceModel {
                     ids.push(v);
                     handle.insert(v, h);
                 }
-                _ => return, // two points on one spot in the plane, or not finite
+                _ => return None, // two points on one spot in the plane, or not finite
             }
         }
         let fc = &self.facets[f as usize];
@@ -314,7 +323,7 @@ impl SurfaceModel {
                 let (a, b) = if forward { (w[0], w[1]) } else { (w[1], w[0]) };
                 let (ha, hb) = (handle[&a], handle[&b]);
                 if !cdt::constrain(&mut tri, ha, hb) {
-                    return;
+                    return None;
                 }
                 seeds.push((ha, hb));
             }
@@ -369,10 +378,7 @@ impl SurfaceModel {
             }
             subfaces.push(h.map(|i| ids[i]));
         }
-        if subfaces.is_empty() {
-            return;
-        }
-        self.set_subfaces(f, subfaces);
+        (!subfaces.is_empty()).then_some(subfaces)
     }
 
     /// Puts `subfaces` in place of facet `f`'s.
@@ -406,7 +412,11 @@ impl SurfaceModel {
     ///
     /// `scale` bounds the size near every input vertex (a local feature size: how near the
     /// surface comes to itself there).
-    pub fn presize(&mut self, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64, scale: &[f64]) {
+    ///
+    /// The facets are refined and then triangulated in parallel: each is a function of its
+    /// own points, and the new points are numbered in facet order as one facet after the
+    /// other would number them.
+    pub fn presize(&mut self, points: &mut Vec<DVec3>, size: &(dyn Fn(DVec3) -> f64 + Sync), scale: &[f64]) {
         const MAX_PIECES: f64 = 4096.0;
         // for shape alone an edge is cut into at most this many pieces (a fillet's long
         // strips would otherwise explode into tiny triangles): 4 left plate_holes.STL at 0.23°
@@ -441,15 +451,34 @@ impl SurfaceModel {
                 self.segments[s].points = pts;
             }
         }
-        for f in 0..self.facets.len() as u32 {
-            let local = self.facets[f as usize].triangles.iter().flatten().map(|&v| scale[v as usize]).fold(f64::INFINITY, f64::min);
-            self.refine_facet(f, points, &|p| size(p).min(local));
-            self.retriangulate(f, points);
+        let nf = self.facets.len() as u32;
+        let inside: Vec<Vec<DVec3>> = (0..nf)
+            .into_par_iter()
+            .map(|f| {
+                let local = self.facets[f as usize].triangles.iter().flatten().map(|&v| scale[v as usize]).fold(f64::INFINITY, f64::min);
+                self.refined_points(f, points, &|p| size(p).min(local))
+            })
+            .collect();
+        for (f, new) in (0..nf).zip(inside) {
+            for p in new {
+                points.push(p);
+                let v = (points.len() - 1) as u32;
+                self.facets[f as usize].inner.push(v);
+                self.locate_vertex(v, Location::Facet(f));
+            }
+        }
+        let points = &*points;
+        let triangulated: Vec<Option<Vec<[u32; 3]>>> = (0..nf).into_par_iter().map(|f| self.triangulation(f, points)).collect();
+        for (f, subfaces) in (0..nf).zip(triangulated) {
+            if let Some(subfaces) = subfaces {
+                self.set_subfaces(f, subfaces);
+            }
         }
     }
 
-    /// Spade's refinement of facet `f` in its plane (sides kept): the new points go inside it.
-    fn refine_facet(&mut self, f: u32, points: &mut Vec<DVec3>, size: &dyn Fn(DVec3) -> f64) {
+    /// Spade's refinement of facet `f` in its plane (sides kept): the new points, all inside
+    /// it, in the order spade made them.
+    fn refined_points(&self, f: u32, points: &[DVec3], size: &dyn Fn(DVec3) -> f64) -> Vec<DVec3> {
         let pts = self.facet_points(f);
         let mut tri: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
         let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
@@ -459,14 +488,14 @@ impl SurfaceModel {
                 Ok(h) if h.index() == handle.len() => {
                     handle.insert(v, h);
                 }
-                _ => return,
+                _ => return Vec::new(),
             }
         }
         for &(s, _) in &self.facets[f as usize].loops {
             for w in self.segments[s as usize].points.windows(2) {
                 let (ha, hb) = (handle[&w[0]], handle[&w[1]]);
                 if !cdt::constrain(&mut tri, ha, hb) {
-                    return;
+                    return Vec::new();
                 }
             }
         }
@@ -475,13 +504,10 @@ impl SurfaceModel {
         let h = size(centre);
         tri.refine(cdt::quality_refinement(h, 2 * pts.len() + 50));
         let [o, e1, e2] = self.facets[f as usize].frame;
-        for vh in tri.vertices().skip(handle.len()) {
+        tri.vertices().skip(handle.len()).map(|vh| {
             let p = vh.position();
-            points.push(o + e1 * p.x + e2 * p.y);
-            let v = (points.len() - 1) as u32;
-            self.facets[f as usize].inner.push(v);
-            self.locate_vertex(v, Location::Facet(f));
-        }
+            o + e1 * p.x + e2 * p.y
+        }).collect()
     }
 
     /// Merges boundary Steiner point `v` into its neighbour `w` (on the same segment, or in the
