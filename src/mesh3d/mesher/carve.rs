@@ -11,7 +11,9 @@ use crate::mesh3d::delaunay::store::{DEAD, GHOST};
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::Tetra;
 use crate::mesh3d::mesher::{MeshingError, Seeds};
+use crate::mesh::tet_mesh::TET_FACES;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::collections::VecDeque;
 
 /// Region labels per tet slot: 0 outside the material, `r ≥ 1` region `r`.
@@ -40,20 +42,43 @@ impl Labels {
     }
 }
 
+/// Makes every subface a wall: each tet's faces are looked up among the subfaces (in
+/// parallel), so a subface is found from both of its sides, twice in all. Where fewer are
+/// found, the missing subface is named.
+fn wall_subfaces(tr: &mut Tetra, sm: &SurfaceModel) -> Result<(), MeshingError> {
+    let found: Vec<u8> = tr
+        .tets
+        .par_iter()
+        .with_min_len(4096)
+        .map(|tet| {
+            let v = tet.v;
+            if v[0] == DEAD {
+                return 0;
+            }
+            (0..4).filter(|&k| sm.facet_of(TET_FACES[k].map(|i| v[i])).is_some()).fold(0u8, |bits, k| bits | 1 << k)
+        })
+        .collect();
+    let sides: usize = found.iter().map(|b| b.count_ones() as usize).sum();
+    if sides != 2 * sm.subfaces().count() {
+        let mut buf = Vec::new();
+        if let Some((_, [a, b, c])) = sm.subfaces().find(|&(_, [a, b, c])| tr.face_tet(a, b, c, &mut buf).is_none()) {
+            return Err(MeshingError::Internal(format!("subface ({a}, {b}, {c}) is missing after recovery")));
+        }
+        return Err(MeshingError::Internal(format!("{sides} tet faces are subfaces, against {} subfaces", sm.subfaces().count())));
+    }
+    for (w, bits) in tr.walls.iter_mut().zip(found) {
+        *w |= bits;
+    }
+    Ok(())
+}
+
 /// Walls the subfaces and labels the tets.
 ///
 /// # Errors
 /// [`MeshingError::Internal`] if a subface is not a face of the tetrahedralization (recovery
 /// guarantees it is).
 pub(crate) fn carve(tr: &mut Tetra, sm: &SurfaceModel, seeds: &Seeds) -> Result<Labels, MeshingError> {
-    let mut buf = Vec::new();
-    let subfaces: Vec<[u32; 3]> = sm.subfaces().map(|(_, t)| t).collect();
-    for [a, b, c] in subfaces {
-        let (t, f) = tr
-            .face_tet(a, b, c, &mut buf)
-            .ok_or_else(|| MeshingError::Internal(format!("subface ({a}, {b}, {c}) is missing after recovery")))?;
-        tr.set_wall(t, f, true);
-    }
+    wall_subfaces(tr, sm)?;
     let n = tr.tets.len();
     let dead = |t: usize| tr.tets[t].v[0] == DEAD;
     // components through non-wall faces

@@ -11,6 +11,8 @@ use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::surface_model::SurfaceModel;
 use crate::mesh3d::mesher::tetra::Tetra;
 use crate::mesh3d::optimize::Adjacency;
+use crate::mesh::tet_mesh::{TET_FACES, sorted3};
+use rustc_hash::FxHashMap;
 
 /// The output mesh and its adjacency, as the optimiser keeps it
 /// ([`crate::mesh3d::optimize::Adjacency`]): read off the tetrahedralization's own links
@@ -58,12 +60,24 @@ pub(crate) fn extract(tr: &Tetra, sm: &SurfaceModel, labels: &Labels, input: &Tr
     let mut boundary = Vec::new();
     let mut face_tags = Vec::new();
     let mut buf = Vec::new();
+    // the walled faces by their vertices, each from one of its sides: every subface is one
+    // (carving walls them, refinement walls the pieces it makes), and any that were not would
+    // be found by a walk; what follows does not depend on the side
+    let mut walled: FxHashMap<[u32; 3], (u32, usize)> = FxHashMap::default();
+    walled.reserve(sm.subfaces().count());
+    for &t in &slots {
+        let (w, v) = (tr.walls[t as usize], tr.tets[t as usize].v);
+        for k in (0..4).filter(|&k| w >> k & 1 != 0) {
+            walled.entry(sorted3(TET_FACES[k].map(|i| v[i])).0).or_insert((t, k));
+        }
+    }
     // the faces (slot, face) of the boundary triangles
     let mut listed = Vec::new();
     for (f, s) in sm.subfaces() {
-        let (t, k) = tr
-            .face_tet(s[0], s[1], s[2], &mut buf)
-            .ok_or_else(|| MeshingError::Internal(format!("subface {s:?} is missing at the end")))?;
+        let (t, k) = match walled.get(&sorted3(s).0) {
+            Some(&x) => x,
+            None => tr.face_tet(s[0], s[1], s[2], &mut buf).ok_or_else(|| MeshingError::Internal(format!("subface {s:?} is missing at the end")))?,
+        };
         let other = tr.tets[t as usize].n[k] >> 2;
         let (lt, lo) = (labels.get(t), labels.get(other));
         if lt == 0 && lo == 0 {
