@@ -31,7 +31,8 @@ use crate::mesh::TetMesh;
 use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh3d::optimize::work::Work;
 use glam::DVec3;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 /// Normals this close to parallel (the sine of their angle), and vertices this close to the
 /// plane (relative to the longest edge of the faces at the vertex), count as flat.
@@ -230,22 +231,23 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId], geo: Option<&d
     let mut out = vec![None; nv];
     let mut fans = FxHashMap::default();
     let tag_of: FxHashMap<[u32; 3], u32> = mesh.boundary.iter().zip(&mesh.face_tags).map(|(t, g)| (sorted3(*t).0, g.0)).collect();
-    // every constrained face once (an interface face is seen from both of its tets)
-    let mut seen: FxHashSet<[u32; 3]> = FxHashSet::default();
+    // every constrained face once (an interface face is seen from both of its tets: from the
+    // first of them)
+    let seen_before = |t: usize, other: u32| {
+        let (o, g) = ((other >> 2) as usize, other & 3);
+        other != NONE && o < t && w.tets[o][0] != NONE && w.cons[o] >> g & 1 != 0
+    };
     let mut faces: Vec<Face> = Vec::new();
     for (t, tet) in w.tets.iter().enumerate() {
         if w.cons[t] == 0 || tet[0] == NONE {
             continue;
         }
         for (k, f) in TET_FACES.iter().enumerate() {
-            if w.cons[t] >> k & 1 == 0 {
+            if w.cons[t] >> k & 1 == 0 || seen_before(t, w.nbr[t][k]) {
                 continue;
             }
             let v = f.map(|i| tet[i]);
             let key = sorted3(v).0;
-            if !seen.insert(key) {
-                continue;
-            }
             let other = w.nbr[t][k];
             let r0 = w.region[t];
             let r1 = if other == NONE { RegionId(u32::MAX) } else { w.region[(other >> 2) as usize] };
@@ -284,23 +286,35 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId], geo: Option<&d
             }
         }
     }
-    for v in 0..nv {
-        if stays[v] {
-            continue;
-        }
-        let mine: Vec<&Face> = at[start[v]..start[v + 1]].iter().map(|&i| &faces[i as usize]).collect();
-        if !mine.is_empty() {
-            out[v] = slide_of(v as u32, &mine, &w.pts);
-            if out[v].is_none() && geo.is_some() {
-                out[v] = curved_slide_of(v as u32, &mine, &w.pts);
-                if out[v].is_some() {
-                    let pairs = mine.iter().map(|f| {
-                        let k = f.v.iter().position(|&x| x == v as u32).unwrap_or(0);
-                        [f.v[(k + 1) % 3], f.v[(k + 2) % 3]]
-                    });
-                    fans.insert(v as u32, Fan { pairs: pairs.collect() });
-                }
+    // each vertex's slide from its own faces alone: in parallel
+    let curved = geo.is_some();
+    let found: Vec<(Option<Slide>, Option<Fan>)> = (0..nv)
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|v| {
+            if stays[v] || start[v] == start[v + 1] {
+                return (None, None);
             }
+            let mine: Vec<&Face> = at[start[v]..start[v + 1]].iter().map(|&i| &faces[i as usize]).collect();
+            let flat = slide_of(v as u32, &mine, &w.pts);
+            if flat.is_some() || !curved {
+                return (flat, None);
+            }
+            let bent = curved_slide_of(v as u32, &mine, &w.pts);
+            let fan = bent.is_some().then(|| {
+                let pairs = mine.iter().map(|f| {
+                    let k = f.v.iter().position(|&x| x == v as u32).unwrap_or(0);
+                    [f.v[(k + 1) % 3], f.v[(k + 2) % 3]]
+                });
+                Fan { pairs: pairs.collect() }
+            });
+            (bent, fan)
+        })
+        .collect();
+    for (v, (slide, fan)) in found.into_iter().enumerate() {
+        out[v] = slide;
+        if let Some(fan) = fan {
+            fans.insert(v as u32, fan);
         }
     }
     (out, fans)
