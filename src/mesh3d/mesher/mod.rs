@@ -469,16 +469,21 @@ pub(crate) fn mesh_surface_pinned(
     let early_scale = early_scale.filter(|_| prepared.surface.is_none());
     let surface = prepared.surface.as_ref().unwrap_or(surface);
     let caps = prepared.caps;
-    let mut sm = surface_model::SurfaceModel::new(&surface.vertices, &surface.triangles, &surface.face_tags, !options.keep_surface);
+    // the surface model, and beside it the feature scale that presizing needs where the
+    // checks changed the surface
+    let presizing = !options.keep_surface && options.presize;
+    let (mut sm, scale) = rayon::join(
+        || surface_model::SurfaceModel::new(&surface.vertices, &surface.triangles, &surface.face_tags, !options.keep_surface),
+        || presizing.then(|| early_scale.unwrap_or_else(|| feature_scale(surface, options.seed))),
+    );
     let (tr, delaunay_s) = match early_tr {
         Some((tr, seconds)) => (tr, seconds + clock.elapsed().as_secs_f64()),
         None => {
             let mut points = surface.vertices.clone();
-            if !options.keep_surface && options.presize {
+            if let Some(scale) = scale {
                 // the boundary may change: cut it to the size, and its thin triangles into
                 // better ones
                 let h = |p: DVec3| size.size_at(p);
-                let scale = early_scale.unwrap_or_else(|| feature_scale(surface, options.seed));
                 sm.presize(&mut points, &h, &scale);
                 stage(&mut report, "presize", &mut clock);
             }
