@@ -228,8 +228,6 @@ struct Face {
 /// without `geo` or turning sharply, a vertex of a boundary triangle tagged `pinned`).
 pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId], geo: Option<&dyn BoundaryGeometry>) -> (Vec<Option<Slide>>, FxHashMap<u32, Fan>) {
     let nv = w.pts.len();
-    let mut out = vec![None; nv];
-    let mut fans = FxHashMap::default();
     let tag_of: FxHashMap<[u32; 3], u32> = mesh.boundary.iter().zip(&mesh.face_tags).map(|(t, g)| (sorted3(*t).0, g.0)).collect();
     // every constrained face once (an interface face is seen from both of its tets: from the
     // first of them)
@@ -311,12 +309,17 @@ pub(crate) fn slides(mesh: &TetMesh, w: &Work, pinned: &[FaceId], geo: Option<&d
             (bent, fan)
         })
         .collect();
-    for (v, (slide, fan)) in found.into_iter().enumerate() {
-        out[v] = slide;
-        if let Some(fan) = fan {
-            fans.insert(v as u32, fan);
-        }
-    }
+    let mut fans = FxHashMap::default();
+    let out = found
+        .into_iter()
+        .enumerate()
+        .map(|(v, (slide, fan))| {
+            if let Some(fan) = fan {
+                fans.insert(v as u32, fan);
+            }
+            slide
+        })
+        .collect();
     (out, fans)
 }
 
