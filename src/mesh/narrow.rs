@@ -246,8 +246,11 @@ impl Work {
     /// `(b, a, w)`: the two become `(b, v, w)` and `(v, a, w)`, the neighbour's tag on both
     /// (the cap is gone, the neighbour split at `v`).
     fn caps(&mut self) -> usize {
+        // the caps, found once: a triangle changed by a split below is touched and skipped,
+        // and the others keep their corners through the pass
+        let caps: Vec<(usize, (u32, u32, u32))> = (0..self.t.len()).filter(|&i| !self.dead[i]).filter_map(|i| self.cap(self.t[i]).map(|c| (i, c))).collect();
         // the adjacency only where there is a cap to split
-        if !self.t.iter().zip(&self.dead).any(|(&t, &d)| !d && self.cap(t).is_some()) {
+        if caps.is_empty() {
             return 0;
         }
         let mut on_edge: FxHashMap<(u32, u32), u32> = Default::default();
@@ -260,11 +263,10 @@ impl Work {
         }
         let mut touched = vec![false; self.t.len()];
         let mut done = 0;
-        for i in 0..self.t.len() {
-            if self.dead[i] || touched[i] {
+        for (i, (v, a, b)) in caps {
+            if touched[i] {
                 continue;
             }
-            let Some((v, a, b)) = self.cap(self.t[i]) else { continue };
             let Some(&j) = on_edge.get(&(b, a)) else { continue };
             let j = j as usize;
             if touched[j] || j == i || self.frozen.contains(&self.tags[j]) || self.frozen.contains(&self.tags[i]) {
@@ -311,11 +313,11 @@ impl Work {
     /// the tolerance (a needle: collapsed instead).
     fn cap(&self, t: [u32; 3]) -> Option<(u32, u32, u32)> {
         let c = self.corners(t);
-        let side = |k: usize| c[(k + 1) % 3].distance(c[(k + 2) % 3]);
-        let k = (0..3).max_by(|&i, &j| side(i).total_cmp(&side(j)).then(j.cmp(&i)))?;
-        if (0..3).any(|i| !(side(i) > self.tol)) {
+        let side = [0, 1, 2].map(|k| c[(k + 1) % 3].distance(c[(k + 2) % 3]));
+        if side.iter().any(|&l| !(l > self.tol)) {
             return None;
         }
+        let k = (0..3).max_by(|&i, &j| side[i].total_cmp(&side[j]).then(j.cmp(&i)))?;
         let (v, a, b) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
         let (pa, pb, pv) = (c[(k + 1) % 3], c[(k + 2) % 3], c[k]);
         let e = pb - pa;

@@ -133,7 +133,7 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     // strips, prepared the same way (their zero angles are gone); found while the tets are
     // judged
     let prepared = surface.and_then(|s| crate::mesh3d::mesher::prepared_surface(s, report));
-    let surface = prepared.as_ref().or(surface);
+    let surface = prepared.as_deref().or(surface);
     let r_bound = plan.mesh.max_radius_edge;
     // the tets' pass (in parallel) beside the input's angles and the boundary's index, each
     // on one thread

@@ -244,6 +244,34 @@ pub struct MeshReport {
     /// triangles were merged into facets and retriangulated (TetGen's `-p` rule, 0.1 degrees);
     /// zero when every merged facet is exactly planar, and with `keep_surface`.
     pub flattening_volume: f64,
+    /// The surface meshed where the checks changed the input (caps repaired, narrow strips
+    /// closed), for the summary's input angles ([`prepared_surface`]).
+    #[serde(skip)]
+    pub(crate) prepared: Option<std::sync::Arc<PreparedInput>>,
+}
+
+/// The surface the mesher took where its checks changed the input, with a fingerprint of the
+/// input it was made from.
+#[derive(Debug)]
+pub(crate) struct PreparedInput {
+    /// [`fingerprint`] of the input.
+    input: u64,
+    /// The surface meshed.
+    surface: TriSurface,
+}
+
+/// A hash of a surface's vertices (their bits), triangles and tags: equal surfaces have equal
+/// fingerprints.
+fn fingerprint(s: &TriSurface) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = rustc_hash::FxHasher::default();
+    s.vertices.len().hash(&mut h);
+    for p in &s.vertices {
+        p.to_array().map(f64::to_bits).hash(&mut h);
+    }
+    s.triangles.hash(&mut h);
+    s.face_tags.iter().map(|t| t.0).collect::<Vec<u32>>().hash(&mut h);
+    h.finish()
 }
 
 /// Which budget stopped refinement early: `"points"` (the mesh reached `max_points`) or
@@ -386,7 +414,18 @@ fn faces_text(faces: &[(FaceId, Option<String>)]) -> String {
 /// and the narrow strips closed up at the report's tolerance where it did so (the same steps,
 /// deterministic, without the checks the mesher made), or `None` where it meshed `surface` as
 /// it is.
-pub(crate) fn prepared_surface(surface: &TriSurface, report: &MeshReport) -> Option<TriSurface> {
+///
+/// The mesher keeps the surface it took in its report; where `surface` is the one it was
+/// given, that is returned instead of being made again.
+pub(crate) fn prepared_surface<'a>(surface: &'a TriSurface, report: &'a MeshReport) -> Option<std::borrow::Cow<'a, TriSurface>> {
+    if let Some(p) = report.prepared.as_deref().filter(|p| p.input == fingerprint(surface)) {
+        return Some(std::borrow::Cow::Borrowed(&p.surface));
+    }
+    made_again(surface, report).map(std::borrow::Cow::Owned)
+}
+
+/// [`prepared_surface`] made again from `surface` by the report's steps.
+fn made_again(surface: &TriSurface, report: &MeshReport) -> Option<TriSurface> {
     let repaired = if report.input_caps_repaired > 0 { crate::mesh::caps::repair_caps(surface).map(|r| r.0) } else { None };
     let Some(n) = &report.narrow else { return repaired };
     crate::mesh::narrow::collapse_narrow(repaired.as_ref().unwrap_or(surface), n.tolerance, &[]).map(|r| r.0).or(repaired)
@@ -463,6 +502,7 @@ pub(crate) fn mesh_surface_pinned(
     );
     let prepared = prepared?;
     options.abandon.check()?;
+    let input_fingerprint = prepared.surface.as_ref().map(|_| fingerprint(surface));
     report.stage_seconds.push(("check".to_string(), check_s));
     let mut clock = Instant::now();
     let early_tr = early_tr.filter(|_| prepared.surface.is_none());
@@ -600,6 +640,7 @@ pub(crate) fn mesh_surface_pinned(
     report.boundary_steiner_points = sm.boundary_steiner_points();
     report.input_caps_repaired = caps;
     report.narrow = prepared.narrow;
+    report.prepared = prepared.surface.zip(input_fingerprint).map(|(surface, input)| std::sync::Arc::new(PreparedInput { input, surface }));
     report.flattening_volume = sm.flattening_volume;
     report.volume_steiner_points = refined.volume_points;
     report.refinement_boundary_points = refined.boundary_points;

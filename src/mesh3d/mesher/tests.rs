@@ -281,3 +281,24 @@ fn a_step_narrower_than_the_tolerance_is_closed_up_before_meshing() {
     assert!(r0.narrow.is_none());
     assert!(m0.face_tags.contains(&FaceId(4)));
 }
+
+/// The surface the mesher took (the step closed up) comes with its report, is what the
+/// report's steps make again, and stands only for the input it was made from.
+#[test]
+fn the_prepared_surface_comes_with_the_report_for_its_input_only() {
+    let s = crate::mesh::narrow::tests::stepped_box(1e-5);
+    let (_, r) = mesh_surface(&s, &Seeds::default(), &UniformSize(0.25), &MeshOptions::default()).unwrap();
+    let kept = prepared_surface(&s, &r).expect("the step is closed up");
+    assert!(matches!(kept, std::borrow::Cow::Borrowed(_)));
+    let again = made_again(&s, &r).expect("made again");
+    assert_eq!(kept.vertices, again.vertices);
+    assert_eq!(kept.triangles, again.triangles);
+    assert_eq!(kept.face_tags, again.face_tags);
+    // another input (one vertex moved) is prepared anew
+    let mut other = s.clone();
+    other.vertices[0].x += 1e-9;
+    assert!(matches!(prepared_surface(&other, &r), Some(std::borrow::Cow::Owned(_))));
+    // a surface meshed as it is has none
+    let (_, r0) = mesh_surface(&s, &Seeds::default(), &UniformSize(0.25), &MeshOptions::default().with_narrow_tolerance(Some(0.0))).unwrap();
+    assert!(r0.prepared.is_none());
+}
