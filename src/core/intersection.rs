@@ -295,12 +295,13 @@ pub fn triangle_pair_intersects(ia: [u32; 3], a: [DVec3; 3], ib: [u32; 3], b: [D
         Shared::Edge { a: i, b: j } => {
             let (p, q, r) = (a[(i + 1) % 3], a[(i + 2) % 3], a[i]);
             let s = b[j];
-            if !orient3d(p, q, r, s).is_zero() {
-                return false;
-            }
+            // a fold: coplanar, the third corners on one side of the shared edge. The side
+            // first: two triangles of a flat face lie on both sides, and are decided without
+            // the exact zero that their coplanarity costs (a collinear `p, q, r` has no axis,
+            // and no fold)
             let Some(axis) = projection_axis(p, q, r) else { return false };
             let (p2, q2) = (project(p, axis), project(q, axis));
-            orient2d(p2, q2, project(r, axis)).times(orient2d(p2, q2, project(s, axis))) == Sign::Positive
+            orient2d(p2, q2, project(r, axis)).times(orient2d(p2, q2, project(s, axis))) == Sign::Positive && orient3d(p, q, r, s).is_zero()
         }
         Shared::All => true,
     }
@@ -319,7 +320,20 @@ pub fn triangle_pair_intersects(ia: [u32; 3], a: [DVec3; 3], ib: [u32; 3], b: [D
 ///   constructing.
 /// - Coplanar: two closed convex cones (under 180°) share a ray iff a bounding ray of one lies
 ///   in the other; decided in 2D.
+///
+/// First, in the plane of an axis along which the first triangle projects without
+/// degenerating: a common point `w` other than `v` projects to one other than `v`'s (`w - v`
+/// lies in the first plane, which the projection maps one to one), so the projected cones share
+/// a ray, and one's bounding ray lies in the other (a degenerate projected second cone counts
+/// as sharing). Where they share none the answer is no, without the 3D orientations: two
+/// triangles of a flat face around a vertex are coplanar, an exact zero each.
 fn meet_beyond_shared_vertex(v: DVec3, a1: DVec3, a2: DVec3, b1: DVec3, b2: DVec3) -> bool {
+    if let Some(axis) = projection_axis(v, a1, a2) {
+        let [v, a1, a2, b1, b2] = [v, a1, a2, b1, b2].map(|p| project(p, axis));
+        if !(in_cone_2d(v, a1, a2, b1) || in_cone_2d(v, a1, a2, b2) || in_cone_2d(v, b1, b2, a1) || in_cone_2d(v, b1, b2, a2)) {
+            return false;
+        }
+    }
     let s1 = orient3d(v, a1, a2, b1);
     let s2 = orient3d(v, a1, a2, b2);
     if s1 == s2 && !s1.is_zero() {
