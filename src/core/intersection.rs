@@ -326,23 +326,20 @@ pub fn triangle_pair_intersects(ia: [u32; 3], a: [DVec3; 3], ib: [u32; 3], b: [D
 /// lies in the first plane, which the projection maps one to one), so the projected cones share
 /// a ray, and one's bounding ray lies in the other (a degenerate projected second cone counts
 /// as sharing). Where they share none the answer is no, without the 3D orientations: two
-/// triangles of a flat face around a vertex are coplanar, an exact zero each.
+/// triangles of a flat face around a vertex are coplanar, an exact zero each. Where they share
+/// one and the triangles are coplanar, that is the answer. A first triangle with no such axis
+/// is collinear: both orientations vanish, and it meets nothing.
 fn meet_beyond_shared_vertex(v: DVec3, a1: DVec3, a2: DVec3, b1: DVec3, b2: DVec3) -> bool {
-    if let Some(axis) = projection_axis(v, a1, a2) {
-        let [v, a1, a2, b1, b2] = [v, a1, a2, b1, b2].map(|p| project(p, axis));
-        if !(in_cone_2d(v, a1, a2, b1) || in_cone_2d(v, a1, a2, b2) || in_cone_2d(v, b1, b2, a1) || in_cone_2d(v, b1, b2, a2)) {
-            return false;
-        }
+    let Some(axis) = projection_axis(v, a1, a2) else { return false };
+    let [v2, a12, a22, b12, b22] = [v, a1, a2, b1, b2].map(|p| project(p, axis));
+    if !(in_cone_2d(v2, a12, a22, b12) || in_cone_2d(v2, a12, a22, b22) || in_cone_2d(v2, b12, b22, a12) || in_cone_2d(v2, b12, b22, a22)) {
+        return false;
     }
     let s1 = orient3d(v, a1, a2, b1);
     let s2 = orient3d(v, a1, a2, b2);
-    if s1 == s2 && !s1.is_zero() {
-        return false; // the second triangle touches the first plane only at v
-    }
-    if s1.is_zero() && s2.is_zero() {
-        let Some(axis) = projection_axis(v, a1, a2) else { return false };
-        let [v, a1, a2, b1, b2] = [v, a1, a2, b1, b2].map(|p| project(p, axis));
-        return in_cone_2d(v, a1, a2, b1) || in_cone_2d(v, a1, a2, b2) || in_cone_2d(v, b1, b2, a1) || in_cone_2d(v, b1, b2, a2);
+    if s1 == s2 {
+        // only at v in the first plane, or coplanar with cones sharing a ray
+        return s1.is_zero();
     }
     let d = if s1.is_zero() { s2 } else { s1.reversed() };
     orient3d(v, a1, b1, b2).times(d) != Sign::Negative && orient3d(v, a2, b1, b2).times(d) != Sign::Positive

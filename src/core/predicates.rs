@@ -558,31 +558,21 @@ mod tests {
         assert_eq!(insphere(o, y, x, z, v3(0.3, 0.3, 0.3)), Sign::Negative);
     }
 
-    /// Points in a plane of the axes are decided without the adaptive stages, as those decide.
-    #[test]
-    fn points_in_a_plane_of_the_axes_are_coplanar() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0
-        };
-        for k in 0..3 {
-            for _ in 0..200 {
-                let level = next();
-                let mut p = [0; 4].map(|_| v3(next(), next(), next()));
-                for q in &mut p {
-                    q[k] = level;
-                }
-                let shewchuk = Sign::of(robust::orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3])));
-                assert_eq!(shewchuk, Sign::Zero);
-                assert_eq!(orient3d(p[0], p[1], p[2], p[3]), Sign::Zero);
-                // one point off the plane by the least amount: decided, and as Shewchuk's
-                p[3][k] = level.next_up();
-                let shewchuk = Sign::of(robust::orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3]))).reversed();
-                assert_eq!(orient3d(p[0], p[1], p[2], p[3]), shewchuk);
+    proptest::proptest! {
+        /// Points in a plane of the axes are decided without the adaptive stages, as those
+        /// decide.
+        #[test]
+        fn points_in_a_plane_of_the_axes_are_coplanar(k in 0usize..3, level in -100.0f64..100.0, c in proptest::array::uniform12(-100.0f64..100.0)) {
+            let mut p = [0, 1, 2, 3].map(|i| v3(c[3 * i], c[3 * i + 1], c[3 * i + 2]));
+            for q in &mut p {
+                q[k] = level;
             }
+            proptest::prop_assert_eq!(Sign::of(robust::orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3]))), Sign::Zero);
+            proptest::prop_assert_eq!(orient3d(p[0], p[1], p[2], p[3]), Sign::Zero);
+            // one point off the plane by the least amount: decided, and as Shewchuk's
+            p[3][k] = level.next_up();
+            let shewchuk = Sign::of(robust::orient3d(c3(p[0]), c3(p[1]), c3(p[2]), c3(p[3]))).reversed();
+            proptest::prop_assert_eq!(orient3d(p[0], p[1], p[2], p[3]), shewchuk);
         }
     }
 

@@ -270,7 +270,7 @@ fn fingerprint(s: &TriSurface) -> u64 {
         p.to_array().map(f64::to_bits).hash(&mut h);
     }
     s.triangles.hash(&mut h);
-    s.face_tags.iter().map(|t| t.0).collect::<Vec<u32>>().hash(&mut h);
+    s.face_tags.hash(&mut h);
     h.finish()
 }
 
