@@ -334,7 +334,8 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        // a stack on the stack: no allocation per walk (spills past its size)
+        let mut stack = SmallStack::<u32>::new();
         stack.push(0);
         while let Some(n) = stack.pop() {
             let node = &self.nodes[n as usize];

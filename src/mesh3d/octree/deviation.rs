@@ -95,11 +95,18 @@ pub struct Deviation {
 /// Measures the deviation of `mesh`'s boundary from `surface`; see the module docs. Also
 /// returns, per boundary triangle, the input triangle nearest to its centroid (the first
 /// sample of that triangle; ties to the lower index): the tags come from it.
-pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64, buried: Option<&Buried>) -> (Deviation, Vec<Option<u32>>) {
+/// `features` are the input's [`feature_edges_with_triangles`] at `feature_angle_deg`
+/// (made once by the caller, which snaps to them too).
+pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64, features: &[Feature], buried: Option<&Buried>) -> (Deviation, Vec<Option<u32>>) {
     let bnd = TriSurface::with_single_tag(mesh.vertices.clone(), mesh.boundary.clone(), crate::core::FaceId(1));
-    let bnd_boxes: Vec<Aabb> = (0..bnd.triangles.len()).map(|t| Aabb::from_points(&bnd.corners(t))).collect();
-    let bnd_bvh = Bvh::from_boxes(&bnd_boxes);
-    let (m2i, m2i_bound, n1, nearest, _) = one_sided(&bnd, surface, surface_bvh, h, true, None);
+    // the boundary's BVH (for the input's side) is built while the boundary's side is measured
+    let (bnd_bvh, (m2i, m2i_bound, n1, nearest, _)) = rayon::join(
+        || {
+            let bnd_boxes: Vec<Aabb> = (0..bnd.triangles.len()).into_par_iter().map(|t| Aabb::from_points(&bnd.corners(t))).collect();
+            Bvh::from_boxes(&bnd_boxes)
+        },
+        || one_sided(&bnd, surface, surface_bvh, h, true, None),
+    );
     let (i2m, i2m_bound, n2, _, sealed_area) = one_sided(surface, &bnd, &bnd_bvh, h, false, buried);
     let ((m2i, m2i_at), (i2m, i2m_at)) = (m2i, i2m);
     let mut d = Deviation {
@@ -114,7 +121,6 @@ pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64
         feature_angle_deg,
         ..Deviation::default()
     };
-    let features = feature_edges_with_triangles(surface, feature_angle_deg);
     d.feature_edges = features.len();
     let per_edge: Vec<f64> = features
         .par_iter()
@@ -383,21 +389,20 @@ fn covering_radius(p: &[DVec3; 3], len: [f64; 3]) -> f64 {
     r * (1.0 + 1e-9)
 }
 
-/// The input edges of exactly two triangles whose normals turn by more than `angle_deg`.
-pub fn feature_edges(s: &TriSurface, angle_deg: f64) -> Vec<[u32; 2]> {
-    feature_edges_with_triangles(s, angle_deg).into_iter().map(|(e, _)| e).collect()
-}
+/// A feature edge (its ends, the lower first) and its two triangles.
+pub type Feature = ([u32; 2], [u32; 2]);
 
-/// [`feature_edges`], each with its two triangles.
-fn feature_edges_with_triangles(s: &TriSurface, angle_deg: f64) -> Vec<([u32; 2], [u32; 2])> {
-    let mut rec: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * s.triangles.len());
-    for (t, tri) in s.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            rec.push(([a.min(b), a.max(b)], t as u32));
-        }
-    }
-    rec.sort_unstable();
+/// The input edges of exactly two triangles whose normals turn by more than `angle_deg`,
+/// each with its two triangles, in the order of their ends.
+pub fn feature_edges_with_triangles(s: &TriSurface, angle_deg: f64) -> Vec<Feature> {
+    let mut rec: Vec<([u32; 2], u32)> = s
+        .triangles
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(t, tri)| (0..3).map(move |k| ([tri[k].min(tri[(k + 1) % 3]), tri[k].max(tri[(k + 1) % 3])], t as u32)))
+        .collect();
+    // (edge, triangle) pairs: equal records are the same record, so any sort gives one order
+    rec.par_sort_unstable();
     let normal = |t: u32| {
         let [a, b, c] = s.corners(t as usize);
         (b - a).cross(c - a).normalize_or_zero()

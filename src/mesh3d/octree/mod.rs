@@ -306,8 +306,7 @@ pub fn cell_size(surface: &TriSurface, size: &dyn SizeField) -> f64 {
 /// See [`OctreeError`].
 pub fn mesh_octree(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions) -> Result<(TetMesh, OctreeReport), OctreeError> {
     let t = Instant::now();
-    let oracle = Winding::new(surface);
-    let cycle = rows::is_cycle(surface);
+    let (oracle, cycle) = rayon::join(|| Winding::new(surface), || rows::is_cycle(surface));
     let (mesh, mut report) = mesh_at(&oracle, cycle, cell_size(surface, size), opts, t.elapsed().as_secs_f64())?;
     add_winding_volume(&mut report, &oracle);
     Ok((mesh, report))
@@ -351,19 +350,21 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     if tree.is_some() {
         stage("octree", &mut t);
     }
-    let (mut mesh, all_zero, inner, minus) = fill(&lattice, tree.as_ref(), &cuts, oracle)?;
+    // the input's feature edges (for snapping and the deviation) beside the stencils
+    let (filled, features) = rayon::join(|| fill(&lattice, tree.as_ref(), &cuts, oracle), || deviation::feature_edges_with_triangles(surface, opts.feature_angle_deg));
+    let (mut mesh, all_zero, inner, minus) = filled?;
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     stage("boundary", &mut t);
     let mut snapped = Snapped::default();
     if opts.snap {
-        snapped = snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg);
+        snapped = snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg, &features);
         stage("snap", &mut t);
     }
     let buried = buried::Buried::new(oracle, h / 16.0);
     // the cells are checked while the boundary is measured (both read the mesh), the tags
     // after
-    let ((dev, nearest), valid) = rayon::join(|| deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg, Some(&buried)), || mesh.validate_cells());
+    let ((dev, nearest), valid) = rayon::join(|| deviation(surface, oracle.bvh(), &mesh, h, opts.feature_angle_deg, &features, Some(&buried)), || mesh.validate_cells());
     valid?;
     mesh.face_tags = tags::tags_of(surface, &nearest);
     mesh.face_names = surface.face_names.clone();
@@ -437,7 +438,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
 /// of all-zero tets kept, and per output tet whether it is a whole background tet of four
 /// inside vertices.
 #[allow(clippy::type_complexity)]
-fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, Vec<bool>, Vec<bool>), OctreeError> {
+fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, Vec<bool>, Vec<Minus>), OctreeError> {
     let nl = lattice.num_vertices() as u32;
     // per centre: the output tets as global corner ids (lattice id, or nl + cut index)
     // centres in runs of CENTRES_PER_TASK: one set of buffers per run, results in order
@@ -550,11 +551,20 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
     }
     let mut vertices = Vec::new();
     let mut minus = Vec::new();
+    let last = lattice.n.map(|x| 2 * x as i32);
     for (v, m) in map.iter_mut().enumerate() {
         if *m == 0 {
             *m = vertices.len() as u32;
             vertices.push(corner_position(v as u32, lattice, cuts));
-            minus.push(v < nl as usize && cuts.sign[v] == -1);
+            minus.push(if v < nl as usize && cuts.sign[v] == -1 {
+                // inside; its star of background tets is whole unless it is a corner on the
+                // lattice's outer faces or the centre of a cube at them (doubled coordinates
+                // 0, 1, 2n - 1, 2n)
+                let c = lattice.coords(v as u32);
+                if (0..3).any(|k| c[k] <= 1 || c[k] + 1 >= last[k]) { Minus::OnLatticeBoundary } else { Minus::Interior }
+            } else {
+                Minus::No
+            });
         }
     }
     for t in &mut tets {
@@ -564,36 +574,45 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
     Ok((TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..TetMesh::default() }, zero, inner, minus))
 }
 
-/// The faces of one tet only, outward. A whole background tet of four inside vertices has
-/// only faces shared with another tet (its neighbour across a face has three inside
-/// vertices, so it keeps that face), so only the other tets' faces are sorted, and among
-/// them a face of three inside vertices seen once is shared with such a whole tet.
-fn boundary_faces(mesh: &TetMesh, inner: &[bool], minus: &[bool]) -> Vec<[u32; 3]> {
+/// The faces of one tet only, outward, in the order of their sorted vertices. Faces at a
+/// lattice vertex inside (sign -1, never warped) whose background tets all lie in the
+/// lattice are not sorted: such a vertex is interior to the mesh, since every background
+/// tet at it is kept whole or stuffed with the part of it on the vertex's side of the cut
+/// points, all at least `α` of an edge away, so no face at it is seen once. So a whole
+/// background tet (`inner`, four inside vertices) is looked at only where it reaches the
+/// lattice's outer layer: a surface that is not closed (a surface model) can have its
+/// winding number above one half out there, and the mesh then ends at the lattice's faces.
+fn boundary_faces(mesh: &TetMesh, inner: &[bool], minus: &[Minus]) -> Vec<[u32; 3]> {
     use crate::mesh::tet_mesh::TET_FACES;
     let records = || {
-        mesh.tets.iter().zip(inner).filter(|(_, inner)| !**inner).flat_map(|(tet, _)| {
-            TET_FACES.iter().map(move |f| {
+        mesh.tets.iter().zip(inner).filter(|(tet, inner)| !**inner || tet.iter().any(|&v| minus[v as usize] == Minus::OnLatticeBoundary)).flat_map(|(tet, _)| {
+            TET_FACES.iter().filter_map(move |f| {
                 let v = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                if v.iter().any(|&x| minus[x as usize] == Minus::Interior) {
+                    return None;
+                }
                 let mut k = v;
                 k.sort_unstable();
-                (k, v)
+                Some((k, v))
             })
         })
     };
     let rec = crate::core::bucket_sort::collect_sorted_by_lead(mesh.vertices.len(), records, |r| r.0[0]);
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < rec.len() {
-        let mut j = i + 1;
-        while j < rec.len() && rec[j].0 == rec[i].0 {
-            j += 1;
-        }
-        if j - i == 1 && !rec[i].0.iter().all(|&v| minus[v as usize]) {
-            out.push(rec[i].1);
-        }
-        i = j;
-    }
-    out
+    rec.chunk_by(|x, y| x.0 == y.0).filter_map(|run| if let [(_, v)] = run { Some(*v) } else { None }).collect()
+}
+
+/// Whether a mesh vertex is a lattice vertex inside (sign -1), and where: the boundary's
+/// faces are sought only away from the interior ones.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Minus {
+    /// A cut point, or a lattice vertex on the surface (warped) or outside.
+    No,
+    /// Inside, on the lattice's outer layer (a surface that is not closed can have its
+    /// winding number above one half there): the background tets around it stop at the
+    /// lattice's faces.
+    OnLatticeBoundary,
+    /// Inside, with every background tet around it in the lattice.
+    Interior,
 }
 
 use cut::Cuts;

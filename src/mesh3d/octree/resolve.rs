@@ -76,8 +76,7 @@ impl Resolve {
 pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions, r: Resolve) -> Result<(TetMesh, OctreeReport), OctreeError> {
     // the oracle and the cycle test do not depend on the cell: made once for every try
     let t = Instant::now();
-    let oracle = Winding::new(surface);
-    let cycle = is_cycle(surface);
+    let (oracle, cycle) = rayon::join(|| Winding::new(surface), || is_cycle(surface));
     let prepared = t.elapsed().as_secs_f64();
     let bbox = surface.bbox();
     let count = |h: f64| Lattice::covering(&bbox, h).ok().map(|l| l.num_vertices());

@@ -12,7 +12,7 @@
 //! angle. Output: boundary vertices moved in place, and [`Snapped`].
 //!
 //! # Invariants
-//! - Feature edges are [`feature_edges`]'s; feature corners are their ends where the feature
+//! - Feature edges are [`feature_edges_with_triangles`](super::deviation::feature_edges_with_triangles)'s; feature corners are their ends where the feature
 //!   edges do not run on as one line: one or three or more meet, or two turn by more than the
 //!   feature angle.
 //! - Only boundary vertices move, each at most once, onto a point of a feature edge (its
@@ -31,7 +31,7 @@
 //!   tried, and then none.
 //! - Connectivity, tags and regions are untouched; the boundary stays a face set of the mesh.
 
-use super::deviation::feature_edges;
+use super::deviation::Feature;
 #[cfg(test)]
 use super::{MAX_DIHEDRAL, MIN_DIHEDRAL};
 use crate::core::Aabb;
@@ -127,8 +127,15 @@ struct Near<'a> {
 }
 
 impl Near<'_> {
-    fn distance(&self, p: DVec3) -> f64 {
-        self.bvh.nearest(p, |t| point_triangle_distance(p, self.surface.corners(t as usize))).map_or(f64::INFINITY, |(_, d)| d)
+    /// The distance from `p` to the input, the search bounded from the start by triangle
+    /// `hint` (the distance is the same).
+    fn distance(&self, p: DVec3, hint: Option<u32>) -> f64 {
+        self.bvh.nearest_from(p, hint, |t| point_triangle_distance(p, self.surface.corners(t as usize))).map_or(f64::INFINITY, |(_, d)| d)
+    }
+
+    /// The input triangle nearest to `p`.
+    fn nearest(&self, p: DVec3) -> Option<u32> {
+        self.bvh.nearest(p, |t| point_triangle_distance(p, self.surface.corners(t as usize))).map(|(t, _)| t)
     }
 
     /// The centroid and the edge midpoints at `v` of boundary triangle `f`.
@@ -144,7 +151,9 @@ impl Near<'_> {
 /// (or no worse than before), no boundary triangle at it turned by 90° or more, and each of
 /// those triangles' centroid and edge midpoints at `v` within the slack of the input (or no
 /// farther than before).
-fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], near: &Near) -> bool {
+/// `hint` is the input triangle nearest to the vertex's place, where the distances of the
+/// samples around it are searched from.
+fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], near: &Near, hint: Option<u32>) -> bool {
     let old = mesh.vertices[v as usize];
     // the position of vertex `w` with `v` at `to`
     let at = |to: DVec3| move |w: u32| if w == v { to } else { mesh.vertices[w as usize] };
@@ -196,17 +205,20 @@ fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], ne
         let new = Near::samples(f, v, at(q));
         let was = Near::samples(f, v, at(old));
         new.iter().zip(&was).all(|(&a, &b)| {
-            let d = near.distance(a);
-            d <= near.slack || d <= near.distance(b)
+            let d = near.distance(a, hint);
+            d <= near.slack || d <= near.distance(b, hint)
         })
     })
 }
 
 /// Snaps `mesh`'s boundary vertices onto the feature edges and corners of `surface`; see the
 /// module docs.
-pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh, h: f64, angle_deg: f64) -> Snapped {
+/// `features` are the input's
+/// [`feature_edges_with_triangles`](super::deviation::feature_edges_with_triangles) at
+/// `angle_deg`.
+pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh, h: f64, angle_deg: f64, features: &[Feature]) -> Snapped {
     let mut out = Snapped::default();
-    let features = feature_edges(surface, angle_deg);
+    let features: Vec<[u32; 2]> = features.iter().map(|f| f.0).collect();
     if features.is_empty() || mesh.boundary.is_empty() {
         return out;
     }
@@ -273,8 +285,11 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
             }
         }
     }
+    // each moving vertex's nearest input triangle, from its place (a vertex moves once, so
+    // it is still there when its move is weighed)
+    let hints: Vec<Option<u32>> = moves.par_iter().map(|m| near.nearest(mesh.vertices[m.2 as usize])).collect();
     let mut snapped_to: Vec<Option<DVec3>> = vec![None; nv];
-    for (kind, _, v, q) in moves {
+    for ((kind, _, v, q), hint) in moves.into_iter().zip(hints) {
         if snapped_to[v as usize].is_some() {
             continue;
         }
@@ -285,9 +300,9 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
         let s = &star[off[v as usize] as usize..off[v as usize + 1] as usize];
         let p = mesh.vertices[v as usize];
         let half = 0.5 * (p + q);
-        let to = if allowed(mesh, s, v, q, tris, &near) {
+        let to = if allowed(mesh, s, v, q, tris, &near, hint) {
             Some(q)
-        } else if allowed(mesh, s, v, half, tris, &near) {
+        } else if allowed(mesh, s, v, half, tris, &near, hint) {
             out.refused += 1;
             Some(half)
         } else {

@@ -121,3 +121,31 @@ fn graded_keeps_the_boundary_with_a_third_of_the_tets() {
     assert_eq!(open, g.boundary.len());
     assert_eq!(run(1).0, g);
 }
+
+/// The boundary is every face of one tet only, where the stuffed volume is a solid's and
+/// where it reaches the lattice's outer faces: two equal squares 0.05 apart, facing the same
+/// way, have a winding number near 1 just behind them out to the lattice's faces (a surface
+/// model, not a solid).
+#[test]
+fn the_boundary_is_every_face_of_one_tet() {
+    let square = |z: f64| {
+        let v = vec![DVec3::new(0.0, 0.0, z), DVec3::new(1.0, 0.0, z), DVec3::new(1.0, 1.0, z), DVec3::new(0.0, 1.0, z)];
+        TriSurface::with_single_tag(v, vec![[0, 1, 2], [0, 2, 3]], crate::core::FaceId(1))
+    };
+    let sheets = together(&[square(0.0), square(0.05)]);
+    for (s, name) in [(sheets, "two sheets"), (sphere(8), "sphere")] {
+        let (mesh, _) = mesh_octree(&s, &UniformSize(0.1), &OctreeOptions::default()).unwrap();
+        mesh.validate().unwrap();
+        let key = |f: &[u32; 3]| {
+            let mut k = *f;
+            k.sort_unstable();
+            k
+        };
+        let mut once: Vec<[u32; 3]> = mesh.faces().iter().filter(|f| f.neighbor.is_none()).map(|f| key(&f.vertices)).collect();
+        let mut boundary: Vec<[u32; 3]> = mesh.boundary.iter().map(key).collect();
+        once.sort_unstable();
+        boundary.sort_unstable();
+        assert!(!boundary.is_empty(), "{name}");
+        assert_eq!(boundary, once, "{name}");
+    }
+}
