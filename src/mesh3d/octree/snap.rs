@@ -205,6 +205,10 @@ fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], ne
         let new = Near::samples(f, v, at(q));
         let was = Near::samples(f, v, at(old));
         new.iter().zip(&was).all(|(&a, &b)| {
+            // within the slack of the hint triangle is within it of the input: no search
+            if hint.is_some_and(|t| point_triangle_distance(a, near.surface.corners(t as usize)) <= near.slack) {
+                return true;
+            }
             let d = near.distance(a, hint);
             d <= near.slack || d <= near.distance(b, hint)
         })
