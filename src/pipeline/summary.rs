@@ -171,13 +171,14 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
     let worst_unexplained_tet_under_bound = place(counts.worst[3], &angles, bound);
     let above = q.above_radius_edge;
     let opt = report.optimize.as_ref();
+    let volume = mesh.volume();
     let summary = MeshSummary {
         nodes: mesh.vertices.len(),
         tets: mesh.tets.len(),
         regions: report.regions,
-        volume: mesh.volume(),
+        volume,
         cad_volume,
-        volume_error: cad_volume.filter(|v| *v > 0.0).map(|v| mesh.volume() / v - 1.0),
+        volume_error: cad_volume.filter(|v| *v > 0.0).map(|v| volume / v - 1.0),
         min_dihedral_deg: q.min_dihedral.0,
         max_dihedral_deg: q.max_dihedral.0,
         max_radius_edge: q.max_radius_edge.0,

@@ -567,9 +567,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
             });
         }
     }
-    for t in &mut tets {
-        *t = t.map(|v| map[v as usize]);
-    }
+    tets.par_iter_mut().for_each(|t| *t = t.map(|v| map[v as usize]));
     let n = tets.len();
     Ok((TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..TetMesh::default() }, zero, inner, minus))
 }

@@ -12,9 +12,10 @@
 //! angle. Output: boundary vertices moved in place, and [`Snapped`].
 //!
 //! # Invariants
-//! - Feature edges are [`feature_edges_with_triangles`](super::deviation::feature_edges_with_triangles)'s; feature corners are their ends where the feature
-//!   edges do not run on as one line: one or three or more meet, or two turn by more than the
-//!   feature angle.
+//! - Feature edges are those of
+//!   [`feature_edges_with_triangles`](super::deviation::feature_edges_with_triangles), found
+//!   once by the caller; feature corners are their ends where the feature edges do not run
+//!   on as one line: one or three or more meet, or two turn by more than the feature angle.
 //! - Only boundary vertices move, each at most once, onto a point of a feature edge (its
 //!   closest) or onto a corner, within [`REACH`] cells. Corners go first (each takes its
 //!   nearest boundary vertex if it is that vertex's nearest corner), then the other boundary
