@@ -370,6 +370,9 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
     if o.turned_outward {
         out.push("WARNING: the surface encloses a negative volume (its triangles face inward): meshed turned outward".to_string());
     }
+    if o.reaches_box {
+        out.push("WARNING: the volume the surface's winding number encloses reaches the lattice's box: the surface does not close it (a surface model, or an open sheet), so the mesh is cut off by the box and its boundary there is not the input's".to_string());
+    }
     let resolve = crate::mesh3d::octree::RESOLVE;
     let short: Vec<String> = kept_tries(o)
         .into_iter()
@@ -492,6 +495,9 @@ mod tests {
         o.turned_outward = true;
         assert_eq!(octree_warnings(Some(&o)), vec!["WARNING: the surface encloses a negative volume (its triangles face inward): meshed turned outward".to_string()]);
         o.turned_outward = false;
+        o.reaches_box = true;
+        assert_eq!(octree_warnings(Some(&o)), vec!["WARNING: the volume the surface's winding number encloses reaches the lattice's box: the surface does not close it (a surface model, or an open sheet), so the mesh is cut off by the box and its boundary there is not the input's".to_string()]);
+        o.reaches_box = false;
         o.overlap = Some("a.step: solid 1 and solid 2 overlap".into());
         assert_eq!(octree_warnings(Some(&o)), vec!["WARNING: a.step: solid 1 and solid 2 overlap; each solid was meshed on its own (isosurface stuffing), so the overlap is meshed in both and no contacts are listed".to_string()]);
         o.overlap = None;

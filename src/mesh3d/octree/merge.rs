@@ -46,6 +46,7 @@ impl OctreeReport {
                 _ => None,
             };
             out.turned_outward |= r.turned_outward;
+            out.reaches_box |= r.reaches_box;
             out.cell_tries.extend(r.cell_tries.iter().cloned());
             out.hausdorff_over_cell = out.hausdorff_over_cell.max(r.hausdorff_over_cell);
             out.bound_over_cell = out.bound_over_cell.max(r.bound_over_cell);

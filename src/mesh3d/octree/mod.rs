@@ -177,6 +177,12 @@ pub struct OctreeReport {
     /// turned outward (the pipeline's decision, for one surface meshed whole).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub turned_outward: bool,
+    /// The volume the winding number encloses reaches the lattice's box (a lattice corner on
+    /// its faces is inside): the surface does not close it there (a surface model, an open
+    /// or inward-facing sheet), and the mesh is cut off by the box, whose faces are then part
+    /// of its boundary.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub reaches_box: bool,
     /// Two solids of an assembly overlap (the pipeline's check, its message): each was
     /// meshed on its own, so the overlap is meshed in both; no contacts are listed.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -346,6 +352,11 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     if !cuts.sign.contains(&-1) {
         return Err(OctreeError::Empty(h));
     }
+    let last = lattice.n.map(|x| 2 * x as i32);
+    let reaches_box = (0..lattice.num_corners() as u32).into_par_iter().any(|v| {
+        let c = lattice.coords(v);
+        cuts.sign[v as usize] == -1 && (0..3).any(|k| c[k] == 0 || c[k] == last[k])
+    });
     let tree = (opts.grading == Grading::Graded).then(|| graded::Octree::build(&lattice, &cuts.sign));
     if tree.is_some() {
         stage("octree", &mut t);
@@ -422,6 +433,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         winding_volume: None,
         input_crossings: (dev.hausdorff_bound > h).then(|| oracle.meets().iter().filter(|l| !l.is_empty()).count()),
         turned_outward: false,
+        reaches_box,
         overlap: None,
         cell_tries: Vec::new(),
         hausdorff_over_cell: dev.hausdorff / h,

@@ -134,8 +134,10 @@ fn the_boundary_is_every_face_of_one_tet() {
     };
     let sheets = together(&[square(0.0), square(0.05)]);
     for (s, name) in [(sheets, "two sheets"), (sphere(8), "sphere")] {
-        let (mesh, _) = mesh_octree(&s, &UniformSize(0.1), &OctreeOptions::default()).unwrap();
+        let (mesh, report) = mesh_octree(&s, &UniformSize(0.1), &OctreeOptions::default()).unwrap();
         mesh.validate().unwrap();
+        // the sheets' volume reaches the lattice's box; the sphere's does not
+        assert_eq!(report.reaches_box, name == "two sheets", "{name}");
         let key = |f: &[u32; 3]| {
             let mut k = *f;
             k.sort_unstable();
