@@ -108,6 +108,14 @@ impl Lattice {
         }
     }
 
+    /// Whether vertex `v`'s star of background tets stops at the lattice's box: a corner on
+    /// the box's faces, or the centre of a cube at them (doubled coordinates 0, 1, 2n - 1,
+    /// 2n on some axis).
+    pub fn on_outer_layer(&self, v: u32) -> bool {
+        let c = self.coords(v);
+        (0..3).any(|k| c[k] <= 1 || c[k] + 1 >= 2 * self.n[k] as i32)
+    }
+
     /// The vertex at doubled coordinates `c`, if it is in the lattice.
     pub fn id(&self, c: [i32; 3]) -> Option<u32> {
         let odd = c[0] & 1;

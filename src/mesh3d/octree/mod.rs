@@ -352,11 +352,8 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     if !cuts.sign.contains(&-1) {
         return Err(OctreeError::Empty(h));
     }
-    let last = lattice.n.map(|x| 2 * x as i32);
-    let reaches_box = (0..lattice.num_corners() as u32).into_par_iter().any(|v| {
-        let c = lattice.coords(v);
-        cuts.sign[v as usize] == -1 && (0..3).any(|k| c[k] == 0 || c[k] == last[k])
-    });
+    // a corner on the outer layer is on the box's faces
+    let reaches_box = (0..lattice.num_corners() as u32).into_par_iter().any(|v| cuts.sign[v as usize] == -1 && lattice.on_outer_layer(v));
     let tree = (opts.grading == Grading::Graded).then(|| graded::Octree::build(&lattice, &cuts.sign));
     if tree.is_some() {
         stage("octree", &mut t);
@@ -563,19 +560,16 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
     }
     let mut vertices = Vec::new();
     let mut minus = Vec::new();
-    let last = lattice.n.map(|x| 2 * x as i32);
     for (v, m) in map.iter_mut().enumerate() {
         if *m == 0 {
             *m = vertices.len() as u32;
             vertices.push(corner_position(v as u32, lattice, cuts));
-            minus.push(if v < nl as usize && cuts.sign[v] == -1 {
-                // inside; its star of background tets is whole unless it is a corner on the
-                // lattice's outer faces or the centre of a cube at them (doubled coordinates
-                // 0, 1, 2n - 1, 2n)
-                let c = lattice.coords(v as u32);
-                if (0..3).any(|k| c[k] <= 1 || c[k] + 1 >= last[k]) { Minus::OnLatticeBoundary } else { Minus::Interior }
-            } else {
+            minus.push(if v >= nl as usize || cuts.sign[v] != -1 {
                 Minus::No
+            } else if lattice.on_outer_layer(v as u32) {
+                Minus::OnLatticeBoundary
+            } else {
+                Minus::Interior
             });
         }
     }

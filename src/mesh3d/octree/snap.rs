@@ -93,9 +93,9 @@ fn stars(mesh: &TetMesh, wanted: &[bool]) -> (Vec<u32>, Vec<u32>) {
 }
 
 /// The feature corners of `s` among the ends of `features`.
-fn corners(s: &TriSurface, features: &[[u32; 2]], angle_deg: f64) -> Vec<DVec3> {
+fn corners(s: &TriSurface, features: &[Feature], angle_deg: f64) -> Vec<DVec3> {
     let mut at: Vec<Vec<u32>> = vec![Vec::new(); s.vertices.len()];
-    for &[a, b] in features {
+    for &([a, b], _) in features {
         at[a as usize].push(b);
         at[b as usize].push(a);
     }
@@ -223,13 +223,12 @@ fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], ne
 /// `angle_deg`.
 pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh, h: f64, angle_deg: f64, features: &[Feature]) -> Snapped {
     let mut out = Snapped::default();
-    let features: Vec<[u32; 2]> = features.iter().map(|f| f.0).collect();
     if features.is_empty() || mesh.boundary.is_empty() {
         return out;
     }
     let reach = REACH * h;
-    let seg = |e: u32| features[e as usize].map(|v| surface.vertices[v as usize]);
-    let fbvh = Bvh::build(features.iter().enumerate().map(|(e, &[a, b])| {
+    let seg = |e: u32| features[e as usize].0.map(|v| surface.vertices[v as usize]);
+    let fbvh = Bvh::build(features.iter().enumerate().map(|(e, &([a, b], _))| {
         (e as u32, Aabb::from_points(&[surface.vertices[a as usize], surface.vertices[b as usize]]))
     }));
     let nv = mesh.vertices.len();
@@ -260,7 +259,7 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
         (i as u32, Aabb { min: p, max: p })
     }));
     let mut moves: Vec<(u8, f64, u32, DVec3)> = Vec::new();
-    let corners = corners(surface, &features, angle_deg);
+    let corners = corners(surface, features, angle_deg);
     let cbvh = Bvh::build(corners.iter().enumerate().map(|(i, &c)| (i as u32, Aabb { min: c, max: c })));
     let near = Near { surface, bvh: surface_bvh, slack: 0.5 * h, corners: &corners, corner_bvh: &cbvh };
     for (k, &c) in corners.iter().enumerate() {
