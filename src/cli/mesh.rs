@@ -87,7 +87,7 @@ pub struct Args {
     /// without one, diagonal / 25 made finer by √2 until every solid holds lattice vertices
     /// and its volume within 1 % (an open surface: its volume settled within 1 % from the
     /// cell before), then up to four finer tries while the Hausdorff bound is
-    /// above the cell, to at most 2^23 lattice vertices a solid; inside is where the
+    /// above the cell, to at most 2^25 lattice vertices and 2^25 tets a solid; inside is where the
     /// surface's winding number exceeds one half,
     /// so open and self-intersecting surfaces mesh too; the boundary approximates the input
     /// within the reported Hausdorff distance, its vertices snapped onto sharp edges and

@@ -389,8 +389,9 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
         .collect();
     if !short.is_empty() {
         out.push(format!(
-            "WARNING: the default cell stopped (at the budget of {} lattice vertices, or the tries for a volume without an exact reference) before the volume was within {} %: {}; give --size for a finer cell",
+            "WARNING: the default cell stopped (at the budget of {} lattice vertices or {} tets a solid, or the tries for a volume without an exact reference) before the volume was within {} %: {}; give --size for a finer cell",
             resolve.max_lattice_vertices,
+            resolve.max_tets,
             100.0 * resolve.volume_error,
             short.join(", ")
         ));
@@ -507,7 +508,7 @@ mod tests {
         o.cell_tries[1].volume_error = Some(0.0234);
         let w = octree_warnings(Some(&o));
         assert_eq!(w.len(), 1, "{w:?}");
-        assert_eq!(w[0], "WARNING: the default cell stopped (at the budget of 8388608 lattice vertices, or the tries for a volume without an exact reference) before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
+        assert_eq!(w[0], "WARNING: the default cell stopped (at the budget of 33554432 lattice vertices or 33554432 tets a solid, or the tries for a volume without an exact reference) before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
         o.cell_tries[1] = CellTry { cell: 1.0, volume_change: Some(0.05), kept: true, ..CellTry::default() };
         assert!(octree_warnings(Some(&o))[0].contains(": at 1.0000e0, its volume still changing by 5.000 % from the cell before; give --size"));
         // an inexact volume that settled: said so, with the winding number's figure

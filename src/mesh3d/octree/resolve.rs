@@ -11,8 +11,10 @@
 //! no lattice vertex at all. The cell shrinks by √2 until the solid holds lattice vertices and,
 //! where its input volume is exact ([`OctreeReport::input_volume_exact`]), the mesh is within
 //! [`Resolve::volume_error`] of it; or until the next try would build more than
-//! [`Resolve::max_lattice_vertices`]: then the last mesh is kept and its tries show how far it
-//! got. Where the volume holds but the Hausdorff bound is above the cell (sharp edges and
+//! [`Resolve::max_lattice_vertices`] or, by the last try's count, more than
+//! [`Resolve::max_tets`]: then the last mesh is kept and its tries show how far it got. (Two
+//! budgets: the lattice spans the solid's box, so a thin-walled part, a drawer or a casing
+//! whose walls fill a few percent of its box, builds many lattice vertices for few tets.) Where the volume holds but the Hausdorff bound is above the cell (sharp edges and
 //! thin fins rounded off by about a cell: featuretype, wing_fuselage), up to
 //! [`Resolve::bound_tries`] finer tries follow, and the one with the smallest bound over its
 //! cell is kept (a dirty input's inner faces stay as far from the boundary whatever the cell:
@@ -35,6 +37,9 @@ pub struct Resolve {
     pub volume_error: f64,
     /// The most lattice vertices a try may build (per solid).
     pub max_lattice_vertices: u64,
+    /// The most tets a try may make (per solid), estimated from the try before (its count
+    /// times `2√2`, the cell being `√2` finer).
+    pub max_tets: u64,
     /// Tries after the first that holds the volume, while the Hausdorff bound is above the
     /// cell (sharp features rounded off by a cell); the one with the smallest bound over its
     /// cell is kept.
@@ -45,11 +50,12 @@ pub struct Resolve {
     pub change_tries: usize,
 }
 
-/// The default: within 1 % of the volume, at most 2^23 lattice vertices a solid (about
-/// 25 million tets where the solid fills its box), four tries for the Hausdorff bound (snapped
+/// The default: within 1 % of the volume, at most 2^25 lattice vertices and 2^25 tets a
+/// solid (the tets bound a solid that fills its box, as 2^23 lattice vertices alone did; the
+/// lattice vertices, a thin-walled part whose box is mostly empty), four tries for the Hausdorff bound (snapped
 /// boundaries hold the volume at a coarser cell than before, so the tries for the bound start
 /// coarser: featuretype.STL needs the fourth), five for an inexact volume to settle.
-pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 23, bound_tries: 4, change_tries: 5 };
+pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 25, max_tets: 1 << 25, bound_tries: 4, change_tries: 5 };
 
 /// Each try's cell is the last one's over this.
 const STEP: f64 = std::f64::consts::SQRT_2;
@@ -93,7 +99,8 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
     loop {
         let result = mesh_at(&oracle, cycle, h, opts, prepared);
         let next = h / STEP;
-        let room = count(next).is_some_and(|n| n as u64 <= r.max_lattice_vertices);
+        let tets = result.as_ref().map_or(0.0, |(m, _)| m.tets.len() as f64);
+        let room = count(next).is_some_and(|n| n as u64 <= r.max_lattice_vertices) && tets * STEP.powi(3) <= r.max_tets as f64;
         match result {
             Ok((mesh, report)) => {
                 let error = volume_error(&report);
@@ -195,5 +202,12 @@ mod tests {
             Ok((_, r)) => assert!(r.cell_tries.iter().all(|t| !RESOLVE.holds(t)) && r.cell_tries.last().unwrap().kept, "{:?}", r.cell_tries),
             Err(e) => panic!("{e}"),
         }
+        // a budget of tets: the try after the first with tets inside would pass it, so that
+        // one is the last, kept short of the volume
+        let first = tries.iter().position(|t| !t.empty).unwrap();
+        let few = Resolve { max_tets: 1, ..RESOLVE };
+        let (_, r) = mesh_octree_resolved(&s, &UniformSize(0.1), &OctreeOptions::default(), few).unwrap();
+        assert_eq!(r.cell_tries.len(), first + 1, "{:?}", r.cell_tries);
+        assert!(r.cell_tries[first].kept && !RESOLVE.holds(&r.cell_tries[first]), "{:?}", r.cell_tries);
     }
 }
