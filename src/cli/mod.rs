@@ -379,22 +379,24 @@ fn octree_warnings(o: Option<&crate::mesh3d::octree::OctreeReport>) -> Vec<Strin
         .filter(|t| !resolve.holds(t))
         .map(|t| {
             let solid = t.solid.map(|s| format!("solid {s} ")).unwrap_or_default();
-            match (t.empty, t.volume_error, t.volume_change) {
-                (true, _, _) => format!("{solid}at {:.4e}, no lattice vertex inside", t.cell),
-                (false, Some(e), _) => format!("{solid}at {:.4e}, {:.3} % off", t.cell, 100.0 * e),
-                (false, None, Some(c)) => format!("{solid}at {:.4e}, its volume still changing by {:.3} % from the cell before", t.cell, 100.0 * c),
-                (false, None, None) => format!("{solid}at {:.4e}, one cell only", t.cell),
-            }
+            let what = match (t.empty, t.volume_error, t.volume_change) {
+                (true, _, _) => "no lattice vertex inside".to_string(),
+                (false, Some(e), _) => format!("{:.3} % off", 100.0 * e),
+                (false, None, Some(c)) => format!("its volume still changing by {:.3} % from the cell before", 100.0 * c),
+                (false, None, None) => "one cell only".to_string(),
+            };
+            // what stopped it: the tries an inexact volume gets, or the budget
+            let inside = o.cell_tries.iter().filter(|u| u.solid == t.solid && !u.empty).count();
+            let why = if !t.empty && t.volume_error.is_none() && inside > resolve.change_tries {
+                format!("the last of {inside} tries for a volume without an exact reference")
+            } else {
+                format!("the next cell would pass the budget of {} lattice vertices or {} tets a solid", resolve.max_lattice_vertices, resolve.max_tets)
+            };
+            format!("{solid}at {:.4e}, {what} ({why})", t.cell)
         })
         .collect();
     if !short.is_empty() {
-        out.push(format!(
-            "WARNING: the default cell stopped (at the budget of {} lattice vertices or {} tets a solid, or the tries for a volume without an exact reference) before the volume was within {} %: {}; give --size for a finer cell",
-            resolve.max_lattice_vertices,
-            resolve.max_tets,
-            100.0 * resolve.volume_error,
-            short.join(", ")
-        ));
+        out.push(format!("WARNING: the default cell stopped before the volume was within {} %: {}; give --size for a finer cell", 100.0 * resolve.volume_error, short.join(", ")));
     }
     let d = &o.deviation;
     // the bound, not only the sample: it is what the default cell is chosen by
@@ -508,9 +510,14 @@ mod tests {
         o.cell_tries[1].volume_error = Some(0.0234);
         let w = octree_warnings(Some(&o));
         assert_eq!(w.len(), 1, "{w:?}");
-        assert_eq!(w[0], "WARNING: the default cell stopped (at the budget of 33554432 lattice vertices or 33554432 tets a solid, or the tries for a volume without an exact reference) before the volume was within 1 %: at 1.0000e0, 2.340 % off; give --size for a finer cell");
+        assert_eq!(w[0], "WARNING: the default cell stopped before the volume was within 1 %: at 1.0000e0, 2.340 % off (the next cell would pass the budget of 33554432 lattice vertices or 33554432 tets a solid); give --size for a finer cell");
         o.cell_tries[1] = CellTry { cell: 1.0, volume_change: Some(0.05), kept: true, ..CellTry::default() };
-        assert!(octree_warnings(Some(&o))[0].contains(": at 1.0000e0, its volume still changing by 5.000 % from the cell before; give --size"));
+        assert!(octree_warnings(Some(&o))[0].contains(": at 1.0000e0, its volume still changing by 5.000 % from the cell before (the next cell would pass the budget of"));
+        // an inexact volume stopped by its tries, not the budget: said so
+        let tries = o.cell_tries.clone();
+        o.cell_tries = (0..7).map(|k| CellTry { cell: 1.0 / (k + 1) as f64, volume_change: (k > 0).then_some(0.05), kept: k == 6, ..CellTry::default() }).collect();
+        assert!(octree_warnings(Some(&o))[0].contains(": at 1.4286e-1, its volume still changing by 5.000 % from the cell before (the last of 7 tries for a volume without an exact reference); give --size"));
+        o.cell_tries = tries;
         // an inexact volume that settled: said so, with the winding number's figure
         o.cell_tries[1].volume_change = Some(0.004);
         (o.volume, o.winding_volume) = (0.99, Some(crate::mesh3d::octree::WindingVolume { volume: 1.0, error: 0.001, cells_per_axis: 64 }));
@@ -523,7 +530,7 @@ mod tests {
             CellTry { solid: Some(1), cell: 0.7, volume_error: Some(0.001), ..CellTry::default() },
             CellTry { solid: Some(2), cell: 2.0, empty: true, kept: true, ..CellTry::default() },
         ];
-        assert!(octree_warnings(Some(&o))[0].ends_with("before the volume was within 1 %: solid 2 at 2.0000e0, no lattice vertex inside; give --size for a finer cell"));
+        assert!(octree_warnings(Some(&o))[0].ends_with("before the volume was within 1 %: solid 2 at 2.0000e0, no lattice vertex inside (the next cell would pass the budget of 33554432 lattice vertices or 33554432 tets a solid); give --size for a finer cell"));
         assert_eq!(cell_choice(&o).unwrap(), "per solid, 4 tries from 2.0000e0, kept cells of 1.0000e0 to 2.0000e0: 1 of 2 stopped short of it (WARNING below)");
     }
 
