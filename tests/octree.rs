@@ -209,6 +209,9 @@ fn graded_from_the_command_line_and_a_job_file() {
     assert!(text.contains("octree           graded cell"), "{text}");
     let cells = text.lines().find(|l| l.starts_with("  cells ")).unwrap_or_else(|| panic!("{text}"));
     assert!(cells.matches(" of ").count() >= 2, "{cells}");
+    // and how many tets lie in one-cube cells, the grading's floor at this cell
+    let tets: usize = text.lines().find_map(|l| l.strip_prefix("tets ")).and_then(|t| t.trim().parse().ok()).unwrap_or_else(|| panic!("{text}"));
+    assert!(text.contains(&format!(" of the {tets} tets (")) && text.contains("%) in one-cube cells"), "{text}");
     assert!(out.is_file());
     let job = dir.path().join("job.toml");
     std::fs::write(

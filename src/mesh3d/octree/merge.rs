@@ -21,6 +21,7 @@ impl OctreeReport {
             for (o, n) in out.cells_per_level.iter_mut().zip(&r.cells_per_level) {
                 *o += n;
             }
+            out.coarse_tets += r.coarse_tets;
             out.crossing_edges += r.crossing_edges;
             out.cut_points += r.cut_points;
             out.bisected_cut_points += r.bisected_cut_points;
@@ -91,14 +92,14 @@ mod tests {
 
     #[test]
     fn counts_add_and_extremes_keep() {
-        let a = OctreeReport { tets: 10, volume: 1.0, input_volume: 1.1, dihedral: [20.0, 140.0], cells_per_level: vec![5, 1], solids: 1, ..OctreeReport::default() };
-        let mut b = OctreeReport { tets: 7, volume: 2.0, input_volume: 2.0, dihedral: [15.0, 130.0], cells_per_level: vec![3, 2, 1], solids: 1, ..OctreeReport::default() };
+        let a = OctreeReport { tets: 10, volume: 1.0, input_volume: 1.1, dihedral: [20.0, 140.0], cells_per_level: vec![5, 1], coarse_tets: 4, solids: 1, ..OctreeReport::default() };
+        let mut b = OctreeReport { tets: 7, volume: 2.0, input_volume: 2.0, dihedral: [15.0, 130.0], cells_per_level: vec![3, 2, 1], coarse_tets: 3, solids: 1, ..OctreeReport::default() };
         b.deviation.hausdorff = 0.5;
         b.stage_seconds = vec![("winding".into(), 1.0)];
         let m = OctreeReport::merged(&[a, b]).unwrap();
         assert_eq!((m.tets, m.solids), (17, 2));
         assert_eq!(m.dihedral, [15.0, 140.0]);
-        assert_eq!(m.cells_per_level, vec![8, 3, 1]);
+        assert_eq!((m.cells_per_level, m.coarse_tets), (vec![8, 3, 1], 7));
         assert!((m.volume - 3.0).abs() < 1e-12 && (m.input_volume - 3.1).abs() < 1e-12);
         assert_eq!(m.deviation.hausdorff, 0.5);
         assert_eq!(m.stage_seconds, vec![("winding".to_string(), 1.0)]);

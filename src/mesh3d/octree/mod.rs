@@ -143,6 +143,12 @@ pub struct OctreeReport {
     /// Graded mode: the octree's cells per level (one cube, two per side, ...); empty in
     /// uniform mode.
     pub cells_per_level: Vec<usize>,
+    /// Graded mode: the tets of cells coarser than one cube (whole background tets). The
+    /// others lie in one-cube cells: the band along the surface that the stencils need, the
+    /// layer inside it, and what alignment and balance keep fine: the floor of the grading at
+    /// this cell. 0 in uniform mode.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub coarse_tets: usize,
     /// Lattice edges the surface crosses (before warping).
     pub crossing_edges: usize,
     /// Cut points kept after warping.
@@ -360,7 +366,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     }
     // the input's feature edges (for snapping and the deviation) beside the stencils
     let (filled, features) = rayon::join(|| fill(&lattice, tree.as_ref(), &cuts, oracle), || deviation::feature_edges_with_triangles(surface, opts.feature_angle_deg));
-    let (mut mesh, all_zero, inner, minus) = filled?;
+    let (mut mesh, all_zero, coarse_tets, inner, minus) = filled?;
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     stage("boundary", &mut t);
@@ -413,6 +419,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         cell_size: h,
         lattice_vertices: n,
         cells_per_level: tree.as_ref().map(|t| t.cells_per_level()).unwrap_or_default(),
+        coarse_tets,
         crossing_edges: cuts.crossing_edges,
         cut_points: cuts.edges.len(),
         bisected_cut_points: cuts.bisected,
@@ -444,16 +451,16 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
 /// The stencils over every background tet (the lattice's, or the graded octree's when
 /// `tree` is given); the result's vertices are the used lattice vertices (in lattice order)
 /// then the used cut points (in edge order). Returns the mesh (no boundary yet), the number
-/// of all-zero tets kept, and per output tet whether it is a whole background tet of four
-/// inside vertices.
+/// of all-zero tets kept, the number of tets of coarse octree cells, and per output tet
+/// whether it is a whole background tet of four inside vertices.
 #[allow(clippy::type_complexity)]
-fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, Vec<bool>, Vec<Minus>), OctreeError> {
+fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &Winding) -> Result<(TetMesh, usize, usize, Vec<bool>, Vec<Minus>), OctreeError> {
     let nl = lattice.num_vertices() as u32;
     // per centre: the output tets as global corner ids (lattice id, or nl + cut index)
     // centres in runs of CENTRES_PER_TASK: one set of buffers per run, results in order
     const CENTRES_PER_TASK: usize = 512;
     let centres = lattice.num_centres();
-    let chunks: Vec<(Vec<[u32; 4]>, usize, Vec<DVec3>, Vec<bool>, Vec<DVec3>)> = (0..centres.div_ceil(CENTRES_PER_TASK))
+    let chunks: Vec<(Vec<[u32; 4]>, [usize; 2], Vec<DVec3>, Vec<bool>, Vec<DVec3>)> = (0..centres.div_ceil(CENTRES_PER_TASK))
         .into_par_iter()
         .map(|run| {
             let mut background: Vec<graded::Background> = Vec::with_capacity(12);
@@ -461,6 +468,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
             let mut out = Vec::new();
             let mut local = Vec::new();
             let mut zero = 0;
+            let mut coarse = 0;
             let mut bad = Vec::new();
             let mut inner = Vec::new();
             let mut missing = Vec::new();
@@ -479,6 +487,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
                     if s == [-1; 4] {
                         out.push(t);
                         inner.push(true);
+                        coarse += usize::from(!bcc);
                         continue;
                     }
                     if !bcc {
@@ -530,7 +539,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
                     inner.resize(inner.len() + out.len() - before, false);
                 }
             }
-            (out, zero, bad, inner, missing)
+            (out, [zero, coarse], bad, inner, missing)
         })
         .collect();
     if let Some(&at) = chunks.iter().find_map(|c| c.4.first()) {
@@ -543,7 +552,8 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
     if let Some(&at) = bad.first() {
         return Err(OctreeError::Inverted { count: bad.len(), at, h: lattice.h });
     }
-    let zero = chunks.iter().map(|c| c.1).sum();
+    let zero = chunks.iter().map(|c| c.1[0]).sum();
+    let coarse = chunks.iter().map(|c| c.1[1]).sum();
     let total: usize = chunks.iter().map(|c| c.0.len()).sum();
     let mut tets = Vec::with_capacity(total);
     let mut inner = Vec::with_capacity(total);
@@ -575,7 +585,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
     }
     tets.par_iter_mut().for_each(|t| *t = t.map(|v| map[v as usize]));
     let n = tets.len();
-    Ok((TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..TetMesh::default() }, zero, inner, minus))
+    Ok((TetMesh { vertices, tets, region_tags: vec![RegionId(1); n], ..TetMesh::default() }, zero, coarse, inner, minus))
 }
 
 /// The faces of one tet only, outward, in the order of their sorted vertices. Faces at a
@@ -683,6 +693,11 @@ fn push_checked(t: [u32; 4], lattice: &Lattice, cuts: &Cuts, out: &mut Vec<[u32;
     } else {
         bad.push((p[0] + p[1] + p[2] + p[3]) / 4.0);
     }
+}
+
+/// For serde: leaves a zero count out.
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 #[cfg(test)]

@@ -117,6 +117,17 @@ fn graded_keeps_the_boundary_with_a_third_of_the_tets() {
         t
     };
     assert_eq!(tris(&g), tris(&u));
+    // the tets of coarse cells are the graded mesh's tets that the uniform mesh lacks; the
+    // others are the uniform mesh's own
+    let key = |m: &TetMesh, t: &[u32; 4]| {
+        let mut c = t.map(|v| m.vertices[v as usize].to_array().map(f64::to_bits));
+        c.sort_unstable();
+        c
+    };
+    let uniform: std::collections::HashSet<[[u64; 3]; 4]> = u.tets.iter().map(|t| key(&u, t)).collect();
+    let not_uniform = g.tets.iter().filter(|t| !uniform.contains(&key(&g, t))).count();
+    assert_eq!(ru.coarse_tets, 0);
+    assert!(rg.coarse_tets > 0 && rg.coarse_tets == not_uniform, "{} reported, {not_uniform} not the uniform mesh's", rg.coarse_tets);
     let open = g.faces().iter().filter(|f| f.neighbor.is_none()).count();
     assert_eq!(open, g.boundary.len());
     assert_eq!(run(1).0, g);
