@@ -118,39 +118,61 @@ impl Octree {
 
     /// The balanced octree whose cells are aligned by `shift`, coarse where `deep` allows.
     fn aligned(n: [u32; 3], deep: &[bool], shift: [u32; 3]) -> Octree {
-        let cubes = deep.len();
-        let mut allowed = deep.to_vec();
-        let mut level = vec![0u8; cubes];
+        // per level `l` (blocks of `s = 2^l` cubes a side), a grid of blocks: block `k` has
+        // its low cube at `k·s − shift` on each axis, and is allowed when it lies in the
+        // lattice and its 8 halves, blocks `2k + {0, 1}` of the level below, are (level 0:
+        // the cube at `k − shift`, when deep)
+        let index = |m: [u32; 3], k: [u32; 3]| k[0] as usize + m[0] as usize * (k[1] as usize + m[1] as usize * k[2] as usize);
+        let dims0 = [0, 1, 2].map(|a| n[a] + shift[a]);
+        let grid0: Vec<bool> = (0..dims0.iter().map(|&x| x as usize).product::<usize>())
+            .into_par_iter()
+            .map(|i| {
+                let k = cube_coords(dims0, i);
+                (0..3).all(|a| k[a] >= shift[a]) && deep[cube_index(n, [0, 1, 2].map(|a| (k[a] - shift[a]) as i64)).unwrap_or(0)]
+            })
+            .collect();
+        let mut grids: Vec<([u32; 3], Vec<bool>)> = vec![(dims0, grid0)];
         for l in 1..=MAX_LEVEL {
             let s = 1u32 << l;
             if n.iter().any(|&x| x < s) {
                 break;
             }
-            // a block of level l is allowed when its 8 halves (level l - 1) are
-            let half = s / 2;
-            let next: Vec<bool> = (0..cubes)
+            let (below_dims, below) = &grids[grids.len() - 1];
+            let dims = [0, 1, 2].map(|a| (n[a] + shift[a]) / s + 1);
+            let grid: Vec<bool> = (0..dims.iter().map(|&x| x as usize).product::<usize>())
                 .into_par_iter()
                 .map(|i| {
-                    let c = cube_coords(n, i);
-                    if (0..3).any(|a| (c[a] + shift[a]) % s != 0 || c[a] + s > n[a]) {
-                        return false;
-                    }
-                    (0..8u32).all(|k| {
-                        let q = [c[0] + half * (k & 1), c[1] + half * ((k >> 1) & 1), c[2] + half * (k >> 2)];
-                        allowed[cube_index(n, q.map(|x| x as i64)).unwrap_or(0)]
-                    })
+                    let k = cube_coords(dims, i);
+                    let inside = (0..3).all(|a| k[a] * s >= shift[a] && k[a] * s - shift[a] + s <= n[a]);
+                    inside
+                        && (0..8u32).all(|d| {
+                            let h = [2 * k[0] + (d & 1), 2 * k[1] + ((d >> 1) & 1), 2 * k[2] + (d >> 2)];
+                            (0..3).all(|a| h[a] < below_dims[a]) && below[index(*below_dims, h)]
+                        })
                 })
                 .collect();
-            if !next.contains(&true) {
+            if !grid.contains(&true) {
                 break;
             }
-            level.par_iter_mut().enumerate().for_each(|(i, lv)| {
-                if cube_index(n, align(cube_coords(n, i), shift, s)).is_some_and(|o| next[o]) {
-                    *lv = l;
-                }
-            });
-            allowed = next;
+            grids.push((dims, grid));
         }
+        // a cube's level: the coarsest whose block holding it is allowed (a block is allowed
+        // only where its halves are, so the levels allowed are 1 up to some level)
+        let level: Vec<u8> = (0..deep.len())
+            .into_par_iter()
+            .map(|i| {
+                let c = cube_coords(n, i);
+                let mut lv = 0u8;
+                for (l, (dims, grid)) in grids.iter().enumerate().skip(1) {
+                    let k = [0, 1, 2].map(|a| (c[a] + shift[a]) >> l);
+                    if !grid[index(*dims, k)] {
+                        break;
+                    }
+                    lv = l as u8;
+                }
+                lv
+            })
+            .collect();
         let mut tree = Octree { n, level, shift };
         tree.balance();
         tree
@@ -163,18 +185,23 @@ impl Octree {
         loop {
             let n = self.n;
             let level = &self.level;
-            // the origins of the cells to split this round
+            // the origins of the cells to split this round: a cell of level 2 or more with a
+            // cube two levels finer across a face or an edge (the shell of cubes around the
+            // cell, less its 8 corner cubes, which touch it at a corner only)
             let mut split: Vec<usize> = (0..level.len())
                 .into_par_iter()
                 .filter_map(|i| {
                     let l = level[i];
-                    if l < 2 {
+                    if l < 2 || self.origin(i).1 != i {
                         return None;
                     }
-                    let c = cube_coords(n, i).map(|x| x as i64);
-                    neighbours18()
-                        .any(|d| cube_index(n, [c[0] + d[0], c[1] + d[1], c[2] + d[2]]).is_some_and(|j| level[j] + 1 < l))
-                        .then(|| self.origin(i).1)
+                    let o = cube_coords(n, i).map(|x| x as i64);
+                    let s = 1i64 << l;
+                    let finer = |d: [i64; 3]| {
+                        let out = d.iter().filter(|&&x| x < 0 || x >= s).count();
+                        (out == 1 || out == 2) && cube_index(n, [o[0] + d[0], o[1] + d[1], o[2] + d[2]]).is_some_and(|j| level[j] + 1 < l)
+                    };
+                    (-1..=s).any(|z| (-1..=s).any(|y| (-1..=s).any(|x| finer([x, y, z])))).then_some(i)
                 })
                 .collect();
             if split.is_empty() {
@@ -201,13 +228,18 @@ impl Octree {
     }
 
     /// The cell holding cube `i`: its low cube's coordinates and its index.
+    #[inline]
     fn origin(&self, i: usize) -> ([u32; 3], usize) {
-        let c = align(cube_coords(self.n, i), self.shift, 1u32 << self.level[i]);
-        match cube_index(self.n, c) {
-            Some(o) => (c.map(|x| x as u32), o),
-            // not reached: a coarse cell lies in the lattice
-            None => (cube_coords(self.n, i), i),
+        let l = self.level[i];
+        if l == 0 {
+            return (cube_coords(self.n, i), i);
         }
+        let c = cube_coords(self.n, i);
+        // a coarse cell lies in the lattice, so its low cube's coordinates are not negative
+        let mask = (1u32 << l) - 1;
+        let o = [0, 1, 2].map(|a| c[a].saturating_sub((c[a] + self.shift[a]) & mask));
+        let [a, b] = [self.n[0] as usize, self.n[1] as usize];
+        (o, o[0] as usize + a * (o[1] as usize + b * o[2] as usize))
     }
 
     /// Number of cells.
@@ -305,12 +337,6 @@ impl Octree {
     }
 }
 
-/// The low cube of the cell of size `s` (cubes) aligned by `shift` that holds the cube at `c`
-/// (negative where that cell would start before the lattice).
-fn align(c: [u32; 3], shift: [u32; 3], s: u32) -> [i64; 3] {
-    [0, 1, 2].map(|a| c[a] as i64 - ((c[a] + shift[a]) % s) as i64)
-}
-
 /// Coordinates of cube `i` (lattice centre order, `x` fastest).
 fn cube_coords(n: [u32; 3], i: usize) -> [u32; 3] {
     let (a, b) = (n[0] as usize, n[1] as usize);
@@ -331,7 +357,8 @@ fn neighbours26() -> impl Iterator<Item = [i64; 3]> {
     (0..27).filter(|&k| k != 13).map(|k| [k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1])
 }
 
-/// The 18 offsets to the cubes sharing a face or an edge.
+/// The 18 offsets to the cubes sharing a face or an edge (the tests' check of balance).
+#[cfg(test)]
 fn neighbours18() -> impl Iterator<Item = [i64; 3]> {
     neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() < 3)
 }
