@@ -93,6 +93,7 @@ impl Lattice {
     }
 
     /// Doubled coordinates of vertex `v`.
+    #[inline]
     pub fn coords(&self, v: u32) -> [i32; 3] {
         let v = v as usize;
         let nc = self.num_corners();
@@ -117,6 +118,7 @@ impl Lattice {
     }
 
     /// The vertex at doubled coordinates `c`, if it is in the lattice.
+    #[inline]
     pub fn id(&self, c: [i32; 3]) -> Option<u32> {
         let odd = c[0] & 1;
         if c.iter().any(|&x| x & 1 != odd || x < 0) {
@@ -133,11 +135,13 @@ impl Lattice {
     }
 
     /// True for a cube centre.
+    #[inline]
     pub fn is_centre(&self, v: u32) -> bool {
         v as usize >= self.num_corners()
     }
 
     /// Position of vertex `v`.
+    #[inline]
     pub fn position(&self, v: u32) -> DVec3 {
         let [x, y, z] = self.coords(v);
         self.origin + DVec3::new(x as f64, y as f64, z as f64) * (0.5 * self.h)
