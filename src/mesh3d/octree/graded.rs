@@ -201,7 +201,19 @@ impl Octree {
                         let out = d.iter().filter(|&&x| x < 0 || x >= s).count();
                         (out == 1 || out == 2) && cube_index(n, [o[0] + d[0], o[1] + d[1], o[2] + d[2]]).is_some_and(|j| level[j] + 1 < l)
                     };
-                    (-1..=s).any(|z| (-1..=s).any(|y| (-1..=s).any(|x| finer([x, y, z])))).then_some(i)
+                    // where y and z are inside the cell only x = -1 and x = s are outside it
+                    let inside = |x: i64| (0..s).contains(&x);
+                    (-1..=s)
+                        .any(|z| {
+                            (-1..=s).any(|y| {
+                                if inside(y) && inside(z) {
+                                    finer([-1, y, z]) || finer([s, y, z])
+                                } else {
+                                    (-1..=s).any(|x| finer([x, y, z]))
+                                }
+                            })
+                        })
+                        .then_some(i)
                 })
                 .collect();
             if split.is_empty() {
