@@ -459,7 +459,7 @@ mod tests {
     fn tiles(l: &Lattice, t: &Octree) {
         let mut tets = Vec::new();
         for i in 0..l.num_centres() {
-            t.tets_of(&l, i, &mut tets);
+            t.tets_of(l, i, &mut tets);
         }
         let mut vol = 0.0;
         let (mut lo, mut hi) = (180.0f64, 0.0f64);
