@@ -91,6 +91,13 @@ impl TriSurface {
         [self.vertices[a as usize], self.vertices[b as usize], self.vertices[c as usize]]
     }
 
+    /// A BVH over the triangles' boxes (item = triangle index).
+    pub fn triangle_bvh(&self) -> crate::core::bvh::Bvh {
+        use rayon::prelude::*;
+        let boxes: Vec<Aabb> = (0..self.triangles.len()).into_par_iter().map(|t| Aabb::from_points(&self.corners(t))).collect();
+        crate::core::bvh::Bvh::from_boxes(&boxes)
+    }
+
     /// The signed volume its triangles enclose, by the divergence theorem (positive for a
     /// closed surface oriented outward; for any surface, the integral of its winding number).
     pub fn signed_volume(&self) -> f64 {

@@ -48,7 +48,6 @@
 //!   the report depends only on the input; it is computed in parallel, reduced by `max`.
 
 use super::buried::{Buried, Side};
-use crate::core::Aabb;
 use crate::core::bvh::Bvh;
 use crate::core::closest::point_triangle_distance;
 use crate::mesh::{TetMesh, TriSurface};
@@ -100,13 +99,7 @@ pub struct Deviation {
 pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64, features: &[Feature], buried: Option<&Buried>) -> (Deviation, Vec<Option<u32>>) {
     let bnd = TriSurface::with_single_tag(mesh.vertices.clone(), mesh.boundary.clone(), crate::core::FaceId(1));
     // the boundary's BVH (for the input's side) is built while the boundary's side is measured
-    let (bnd_bvh, (m2i, m2i_bound, n1, nearest, _)) = rayon::join(
-        || {
-            let bnd_boxes: Vec<Aabb> = (0..bnd.triangles.len()).into_par_iter().map(|t| Aabb::from_points(&bnd.corners(t))).collect();
-            Bvh::from_boxes(&bnd_boxes)
-        },
-        || one_sided(&bnd, surface, surface_bvh, h, true, None),
-    );
+    let (bnd_bvh, (m2i, m2i_bound, n1, nearest, _)) = rayon::join(|| bnd.triangle_bvh(), || one_sided(&bnd, surface, surface_bvh, h, true, None));
     let (i2m, i2m_bound, n2, _, sealed_area) = one_sided(surface, &bnd, &bnd_bvh, h, false, buried);
     let ((m2i, m2i_at), (i2m, i2m_at)) = (m2i, i2m);
     let mut d = Deviation {
@@ -433,8 +426,7 @@ mod tests {
 
     fn surface(v: Vec<DVec3>, t: Vec<[u32; 3]>) -> (TriSurface, Bvh) {
         let s = TriSurface::with_single_tag(v, t, FaceId(1));
-        let boxes: Vec<Aabb> = (0..s.triangles.len()).map(|t| Aabb::from_points(&s.corners(t))).collect();
-        let bvh = Bvh::from_boxes(&boxes);
+        let bvh = s.triangle_bvh();
         (s, bvh)
     }
 

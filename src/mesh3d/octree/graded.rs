@@ -256,17 +256,22 @@ impl Octree {
 
     /// Number of cells.
     fn cells(&self) -> usize {
-        (0..self.level.len()).into_par_iter().filter(|&i| self.origin(i).1 == i).count()
+        self.cells_per_level().iter().sum()
     }
 
     /// Number of cells per level, finest first.
     pub fn cells_per_level(&self) -> Vec<usize> {
-        let mut out = vec![0usize; MAX_LEVEL as usize + 1];
-        for i in 0..self.level.len() {
-            if self.origin(i).1 == i {
-                out[self.level[i] as usize] += 1;
-            }
-        }
+        let mut out = (0..self.level.len())
+            .into_par_iter()
+            .filter(|&i| self.origin(i).1 == i)
+            .fold(
+                || vec![0usize; MAX_LEVEL as usize + 1],
+                |mut acc, i| {
+                    acc[self.level[i] as usize] += 1;
+                    acc
+                },
+            )
+            .reduce(|| vec![0usize; MAX_LEVEL as usize + 1], |a, b| a.iter().zip(&b).map(|(x, y)| x + y).collect());
         while out.len() > 1 && out.last() == Some(&0) {
             out.pop();
         }

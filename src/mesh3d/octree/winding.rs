@@ -29,10 +29,9 @@
 use crate::core::bvh::{Bvh, NodeView};
 use crate::core::intersection::{SegmentCrossing, segment_crosses_triangle};
 use crate::core::predicates::orient3d;
-use crate::core::{Aabb, Sign};
+use crate::core::Sign;
 use crate::mesh::TriSurface;
 use glam::DVec3;
-use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// The winding number above which a point is inside.
@@ -87,8 +86,7 @@ pub struct Crossing {
 impl<'a> Winding<'a> {
     /// Builds the BVH and the node dipoles of `surface`.
     pub fn new(surface: &'a TriSurface) -> Winding<'a> {
-        let boxes: Vec<Aabb> = (0..surface.triangles.len()).into_par_iter().map(|t| Aabb::from_points(&surface.corners(t))).collect();
-        let bvh = Bvh::from_boxes(&boxes);
+        let bvh = surface.triangle_bvh();
         let mut dipoles = vec![Dipole::default(); bvh.num_nodes()];
         // per node: area, Σ a c (centroids relative to `o`), Σ a n, summed from the
         // children: a reverse sweep sees them first
