@@ -1,24 +1,30 @@
 //! The graded background of isosurface stuffing: a 2:1 balanced octree over the lattice's
-//! cubes, fine (one cube) wherever the surface comes within a cube, coarser inside, and the
+//! cubes, fine (one cube) wherever the surface crosses a cube, coarser inside, and the
 //! tetrahedra that join its cells (Labelle and Shewchuk 2007, section 6, in our own
 //! construction).
 //!
 //! Stage: between the cut points and the stencils of the octree mesher, in graded mode.
-//! Input: the fine [`Lattice`] and the signs after warping. Output: [`Octree`], which gives
+//! Input: the fine [`Lattice`], the signs after warping and the vertices' positions (a
+//! vertex snapping may move counts as outside). Output: [`Octree`], which gives
 //! the background tets owned by each cube, marked BCC (two fine cells: the stencils cut them)
 //! or graded (a coarser cell: whole, inside).
 //!
 //! # Invariants
 //! - A cell is an aligned block of `2^L` cubes per side (level `L`): its low cube `x` has
 //!   `(x + shift) % 2^L == 0` on each axis, for the one of the 8 shifts in `{0, 1}³` that
-//!   leaves the fewest cells. Its corners and, for `L ≥ 1`, its centre are lattice corners,
+//!   leaves the fewest cells (in the first round below). Its corners and, for `L ≥ 1`, its centre are lattice corners,
 //!   so the octree's vertices are lattice vertices and keep their ids, signs and positions.
-//! - A cell coarser than one cube is *deep*: every lattice vertex in it and the centres of
-//!   the cubes beside it are inside (sign `-1`, so never warped), and every background tet
-//!   of a coarse cell has only such vertices: it is kept whole, as the uniform lattice's tets
-//!   over the same region would be. So the surface, its cut points and warping touch only
-//!   tets between two one-cube cells, the uniform lattice's: the stencils and the uniform
-//!   angle bounds apply unchanged there, and the boundary is the uniform mode's.
+//! - A cell coarser than one cube is *deep*: no lattice vertex in it, nor the centre of a
+//!   cube beside it, is outside (sign `+1`), so no background tet of a coarse cell is cut:
+//!   each is kept whole, and the surface's cut points and stencils touch only tets between
+//!   two one-cube cells, the uniform lattice's, where the uniform angle bounds apply
+//!   unchanged. A vertex warped onto the surface (sign `0`) may be a coarse tet's, but for a
+//!   coarse cell's centre, where every such tet stays positive with its dihedral angles in
+//!   [`WARPED_FLOOR`] at the warped positions: in rounds, the cubes of coarse cells within
+//!   one cube of a warped vertex of a tet outside it are made fine and the octree rebuilt
+//!   (1–3 rounds on the corpus). The warped vertices in coarse cells' tets lie on faces of
+//!   the uniform lattice's tets, so the boundary is the uniform mode's. (Keeping every cube
+//!   with a warped vertex fine instead costs 5–25 % more tets on the corpus.)
 //! - Balance: cells sharing a face or an edge differ by at most one level. The
 //!   midpoint of a cell's edge is a vertex exactly when a finer cell touches that edge.
 //! - Background tets: for every face between two cells (the finer cell's face where they
@@ -34,11 +40,17 @@
 //!   refinement, whatever the order).
 
 use super::lattice::Lattice;
-use crate::core::predicates::orient3d_int;
+use crate::core::predicates::{orient3d, orient3d_int};
+use crate::quality::tetrahedron::tet_min_max_dihedral;
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// The coarsest level a cell may take (`2^MAX_LEVEL` cubes per side).
 pub const MAX_LEVEL: u8 = 12;
+
+/// The dihedral angles (degrees) a coarse cell's tet may take with a vertex warped onto the
+/// surface: feature snapping's floor, well inside the uniform bounds.
+pub const WARPED_FLOOR: [f64; 2] = super::snap::FLOOR;
 
 /// The balanced octree; see the module docs.
 #[derive(Clone, Debug)]
@@ -56,11 +68,29 @@ pub struct Octree {
 pub type Background = ([u32; 4], bool);
 
 impl Octree {
-    /// The octree over `lattice` for the vertex signs `sign` (after warping).
-    pub fn build(lattice: &Lattice, sign: &[i8]) -> Octree {
-        let (n, cubes) = (lattice.n, lattice.num_centres());
-        let deep = Self::deep_cubes(lattice, sign);
-        // the alignment that leaves the fewest cells (ties: the first in this order)
+    /// The octree over `lattice` for the vertex signs `sign` (after warping) and the
+    /// vertices' positions (warped or not).
+    pub fn build(lattice: &Lattice, sign: &[i8], position: &(dyn Fn(u32) -> DVec3 + Sync)) -> Octree {
+        let mut deep = Self::deep_cubes(lattice, sign);
+        let mut tree = Self::fewest_cells(lattice.n, &deep);
+        // rounds: the cubes of coarse cells beside a warped vertex that bends a tet of theirs
+        // too far are made fine, until none does (the deep cubes only decrease, so this ends;
+        // on the corpus 1–3 rounds, a few dozen cubes), keeping the first round's alignment
+        loop {
+            let unfit = tree.unfit_cubes(lattice, sign, position);
+            if unfit.is_empty() {
+                return tree;
+            }
+            for i in unfit {
+                deep[i] = false;
+            }
+            tree = Self::aligned(lattice.n, &deep, tree.shift);
+        }
+    }
+
+    /// The balanced octree over the cubes `deep` allows, for the alignment that leaves the
+    /// fewest cells (ties: the first in this order).
+    fn fewest_cells(n: [u32; 3], deep: &[bool]) -> Octree {
         // (a cell of level 1 takes an aligned 2 × 2 × 2 block of deep cubes, so along the
         // fine band about half a layer of deep cubes stays fine whatever the alignment; which
         // half depends on it: 0.5–12 % fewer tets on the corpus at diagonal / 100 than the
@@ -68,7 +98,7 @@ impl Octree {
         let trees: Vec<(usize, Octree)> = (0..8u32)
             .into_par_iter()
             .map(|k| {
-                let tree = Self::aligned(n, &deep, [k & 1, (k >> 1) & 1, k >> 2]);
+                let tree = Self::aligned(n, deep, [k & 1, (k >> 1) & 1, k >> 2]);
                 (tree.cells(), tree)
             })
             .collect();
@@ -78,7 +108,83 @@ impl Octree {
                 best = Some((cells, tree));
             }
         }
-        best.map_or_else(|| Octree { n, level: vec![0; cubes], shift: [0; 3] }, |b| b.1)
+        best.map_or_else(|| Octree { n, level: vec![0; deep.len()], shift: [0; 3] }, |b| b.1)
+    }
+
+    /// The cubes of coarse cells to make fine, in index order: for every background tet of
+    /// a coarse cell with a vertex warped onto the surface that is not positive with its
+    /// dihedral angles in [`WARPED_FLOOR`] at the warped positions, or whose coarse cell's
+    /// centre was warped, the cubes of coarse cells whose centres lie within one cube of a
+    /// warped vertex of it (at least one cube of the tet's coarse cell: the vertex is its
+    /// centre, a corner of one of its cubes, or the centre of a cube beside it).
+    fn unfit_cubes(&self, lattice: &Lattice, sign: &[i8], position: &(dyn Fn(u32) -> DVec3 + Sync)) -> Vec<usize> {
+        let mut unfit: Vec<usize> = (0..self.level.len())
+            .into_par_iter()
+            .filter(|&i| self.level[i] > 0 || self.beside_coarser(i))
+            .fold(
+                || (Vec::new(), Vec::new()),
+                |(mut background, mut unfit): (Vec<Background>, Vec<usize>), i| {
+                    background.clear();
+                    self.tets_of(lattice, i, &mut background);
+                    for &(t, bcc) in &background {
+                        if bcc || t.iter().all(|&v| sign[v as usize] == -1) {
+                            continue;
+                        }
+                        // the first two vertices are the cells' centres; the second's cell
+                        // is coarse, and so is the first's unless it is one cube
+                        let coarse_centres_inside = sign[t[1] as usize] == -1 && (self.level[i] == 0 || sign[t[0] as usize] == -1);
+                        let p = t.map(position);
+                        let fits = coarse_centres_inside && t.iter().all(|&v| sign[v as usize] <= 0) && orient3d(p[0], p[1], p[2], p[3]).is_positive() && {
+                            let (lo, hi) = tet_min_max_dihedral(&p);
+                            lo >= WARPED_FLOOR[0] && hi <= WARPED_FLOOR[1]
+                        };
+                        if !fits {
+                            for &v in t.iter().filter(|&&v| sign[v as usize] != -1) {
+                                self.coarse_cubes_near(lattice.coords(v), &mut unfit);
+                            }
+                        }
+                    }
+                    (background, unfit)
+                },
+            )
+            .map(|(_, unfit)| unfit)
+            .reduce(Vec::new, |mut a, b| {
+                a.extend(b);
+                a
+            });
+        unfit.par_sort_unstable();
+        unfit.dedup();
+        unfit
+    }
+
+    /// Whether the one-cube cell `i` shares a face with a coarser cell (it owns the
+    /// background tets across that face, not the lattice's).
+    fn beside_coarser(&self, i: usize) -> bool {
+        let c = cube_coords(self.n, i).map(i64::from);
+        (0..6).any(|k| {
+            let mut q = c;
+            q[k / 2] += if k % 2 == 0 { -1 } else { 1 };
+            cube_index(self.n, q).is_some_and(|j| self.level[j] > 0)
+        })
+    }
+
+    /// Appends the cubes of coarse cells whose centres lie within one cube, on every axis,
+    /// of the lattice vertex at doubled coordinates `p`.
+    fn coarse_cubes_near(&self, p: [i32; 3], out: &mut Vec<usize>) {
+        // a cube `k` has its centre at `2k + 1`: within one cube when `|2k + 1 − p| ≤ 2`
+        let range = |x: i32| (x - 3).div_euclid(2)..=(x + 1).div_euclid(2);
+        for z in range(p[2]) {
+            for y in range(p[1]) {
+                for x in range(p[0]) {
+                    let c = [x, y, z].map(i64::from);
+                    if (0..3).all(|a| (2 * c[a] + 1 - i64::from(p[a])).abs() <= 2) {
+                        if let Some(j) = cube_index(self.n, c).filter(|&j| self.level[j] > 0) {
+                            out.push(j);
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// Per cube: whether it is deep (see the module docs), so that it may lie in a coarse
@@ -86,20 +192,20 @@ impl Octree {
     fn deep_cubes(lattice: &Lattice, sign: &[i8]) -> Vec<bool> {
         let n = lattice.n;
         let cubes = lattice.num_centres();
-        // a cube is inside when its 8 corners and its centre are
+        // a cube is inside when its 8 corners and its centre are not outside
         let inside: Vec<bool> = (0..cubes)
             .into_par_iter()
             .map(|i| {
                 let c = cube_coords(n, i);
                 let centre = lattice.num_corners() as u32 + i as u32;
-                sign[centre as usize] == -1
+                sign[centre as usize] <= 0
                     && (0..8).all(|k| {
                         let q = [2 * (c[0] + (k & 1)), 2 * (c[1] + ((k >> 1) & 1)), 2 * (c[2] + (k >> 2))];
-                        lattice.id(q.map(|x| x as i32)).is_some_and(|v| sign[v as usize] == -1)
+                        lattice.id(q.map(|x| x as i32)).is_some_and(|v| sign[v as usize] <= 0)
                     })
             })
             .collect();
-        // deep: the cube is inside and so are the centres of the 6 cubes beside it (every
+        // deep: the cube is inside and the centres of the 6 cubes beside it are not outside (every
         // background tet of a coarse cell joins its centre, its corners, the midpoints on its
         // faces and the centres of the cells beside it)
         let nc = lattice.num_corners();
@@ -110,7 +216,7 @@ impl Octree {
                 inside[i]
                     && neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() == 1).all(|d| {
                         let q = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
-                        cube_index(n, q).is_some_and(|j| sign[nc + j] == -1)
+                        cube_index(n, q).is_some_and(|j| sign[nc + j] <= 0)
                     })
             })
             .collect()
@@ -292,7 +398,8 @@ impl Octree {
 
     /// Appends the background tets owned by the cell whose low cube is `i` (nothing when
     /// `i` is not a cell's low cube): one fan per face shared with an equal cell in `+x`,
-    /// `+y`, `+z`, or with a coarser cell on any side. Positively oriented.
+    /// `+y`, `+z`, or with a coarser cell on any side. Positively oriented at the lattice
+    /// positions; the first two vertices are the two cells' centres (this cell's first).
     pub fn tets_of(&self, lattice: &Lattice, i: usize, out: &mut Vec<Background>) {
         let (o, oi) = self.origin(i);
         if oi != i {
@@ -401,7 +508,7 @@ mod tests {
     fn balanced_and_deep() {
         let l = lattice(1.0, 1.0 / 64.0);
         let sign = ball(&l, 0.5);
-        let t = Octree::build(&l, &sign);
+        let t = Octree::build(&l, &sign, &|v| l.position(v));
         let levels = t.cells_per_level();
         assert!(levels.len() >= 4, "{levels:?}");
         // inside, the cells one cube wide are a band along the surface: under a sixth
@@ -428,6 +535,49 @@ mod tests {
         }
     }
 
+    /// Vertices warped onto the surface join coarse cells where the tets at them stay positive
+    /// and within the warped floor, and only there: a ball whose vertices within `reach` of
+    /// the sphere are warped radially onto it (`reach` a third of a cube's diagonal: some of
+    /// the moves bend the tets too far).
+    #[test]
+    fn warped_vertices_join_coarse_cells_only_within_the_floor() {
+        let l = lattice(1.0, 1.0 / 40.0);
+        let mid = l.origin + DVec3::new(l.n[0] as f64, l.n[1] as f64, l.n[2] as f64) * (0.5 * l.h);
+        let (r, reach) = (0.43, l.h * 3f64.sqrt() / 3.0);
+        let mut sign = ball(&l, r);
+        let mut warped = std::collections::HashMap::new();
+        for v in 0..l.num_vertices() as u32 {
+            let p = l.position(v);
+            if sign[v as usize] == -1 && (p - mid).length() > r - reach {
+                sign[v as usize] = 0;
+                warped.insert(v, mid + (p - mid).normalize() * r);
+            }
+        }
+        let position = |v: u32| warped.get(&v).copied().unwrap_or_else(|| l.position(v));
+        let t = Octree::build(&l, &sign, &position);
+        let mut tets = Vec::new();
+        for i in 0..l.num_centres() {
+            t.tets_of(&l, i, &mut tets);
+        }
+        let mut at_warped = 0;
+        for &(tet, bcc) in &tets {
+            if bcc || !tet.iter().any(|&v| sign[v as usize] == 0) {
+                continue;
+            }
+            at_warped += 1;
+            assert!(tet.iter().all(|&v| sign[v as usize] <= 0), "{tet:?}");
+            let p = tet.map(position);
+            assert!(orient3d(p[0], p[1], p[2], p[3]).is_positive());
+            let (lo, hi) = tet_min_max_dihedral(&p);
+            assert!(lo >= WARPED_FLOOR[0] && hi <= WARPED_FLOOR[1], "{lo} {hi}");
+        }
+        assert!(at_warped > 0);
+        // without the check, some tets of coarse cells at warped vertices leave the floor
+        let deep = Octree::deep_cubes(&l, &sign);
+        let unchecked = Octree::aligned(l.n, &deep, t.shift);
+        assert!(!unchecked.unfit_cubes(&l, &sign, &position).is_empty());
+    }
+
     /// The background tets tile the lattice's box: positive, their volumes sum to the box's,
     /// every interior face is shared by two tets, and the shapes are the three of the module
     /// docs.
@@ -435,7 +585,7 @@ mod tests {
     fn background_tiles_the_box() {
         let l = lattice(1.0, 1.0 / 24.0);
         let sign = ball(&l, 0.45);
-        let t = Octree::build(&l, &sign);
+        let t = Octree::build(&l, &sign, &|v| l.position(v));
         assert!(t.cells_per_level().len() >= 3);
         tiles(&l, &t);
     }
@@ -447,7 +597,7 @@ mod tests {
         let l = lattice(1.0, 1.0 / 28.0);
         let mid = DVec3::new(0.47, 0.52, 0.55);
         let sign: Vec<i8> = (0..l.num_vertices() as u32).map(|v| if (l.position(v) - mid).length() < 0.41 { -1 } else { 1 }).collect();
-        let built = Octree::build(&l, &sign);
+        let built = Octree::build(&l, &sign, &|v| l.position(v));
         let deep = Octree::deep_cubes(&l, &sign);
         let mut counts = Vec::new();
         for k in 0..8u32 {

@@ -37,10 +37,12 @@
 //!   (all positive): the cases below 10.7° include single-tet stencils, which no choice of
 //!   diagonals changes. The report gives the extremes of every mesh, and the callers check
 //!   them against the paper's bounds.
-//! - Graded mode: the cut, warped and stencilled tets are the uniform lattice's, so they keep
-//!   the uniform mode's angles; the coarser tets are whole and their shapes lie in [30°, 135°]
-//!   (`graded.rs`). The boundary is the uniform mode's at the same cell size, the same
-//!   triangles.
+//! - Graded mode: the cut and stencilled tets are the uniform lattice's, so they keep the
+//!   uniform mode's angles; the coarser tets are whole, their shapes lie in [30°, 135°] at
+//!   the lattice positions, and those with a vertex warped onto the surface are kept only
+//!   within [15°, 160°] at the warped positions (`graded.rs`). The boundary is the uniform
+//!   mode's at the same cell size, the same triangles: no coarse tet has a vertex that
+//!   feature snapping may move (`graded_octree`).
 //! - Every output tet is positively oriented, decided exactly; a stencil tet that warping or
 //!   a true cut point turns flat or inside out is an error ([`OctreeError::Inverted`]), never
 //!   silently flipped.
@@ -353,20 +355,22 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     // the divergence theorem gives the stuffed volume where the winding number is 0 or 1
     let input_volume_exact = cycle && w.par_iter().all(|&x| x > -0.5 && x < 1.5);
     stage("winding", &mut t);
-    let cuts = cut::cut_and_warp(&lattice, oracle, &w, opts.alpha_long, opts.alpha_short);
+    // the input's feature edges (for the octree, snapping and the deviation) beside the cuts
+    let (cuts, features) = rayon::join(
+        || cut::cut_and_warp(&lattice, oracle, &w, opts.alpha_long, opts.alpha_short),
+        || deviation::feature_edges_with_triangles(surface, opts.feature_angle_deg),
+    );
     stage("cut_warp", &mut t);
     if !cuts.sign.contains(&-1) {
         return Err(OctreeError::Empty(h));
     }
     // a corner on the outer layer is on the box's faces
     let reaches_box = (0..lattice.num_corners() as u32).into_par_iter().any(|v| cuts.sign[v as usize] == -1 && lattice.on_outer_layer(v));
-    let tree = (opts.grading == Grading::Graded).then(|| graded::Octree::build(&lattice, &cuts.sign));
+    let tree = (opts.grading == Grading::Graded).then(|| graded_octree(surface, &lattice, &cuts, &features, h, opts));
     if tree.is_some() {
         stage("octree", &mut t);
     }
-    // the input's feature edges (for snapping and the deviation) beside the stencils
-    let (filled, features) = rayon::join(|| fill(&lattice, tree.as_ref(), &cuts, oracle), || deviation::feature_edges_with_triangles(surface, opts.feature_angle_deg));
-    let (mut mesh, all_zero, coarse_tets, inner, minus) = filled?;
+    let (mut mesh, all_zero, coarse_tets, inner, minus) = fill(&lattice, tree.as_ref(), &cuts, oracle)?;
     stage("stencils", &mut t);
     mesh.boundary = boundary_faces(&mesh, &inner, &minus);
     stage("boundary", &mut t);
@@ -448,6 +452,27 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     Ok((mesh, report))
 }
 
+/// The graded octree over `lattice` for `cuts`. With snapping on, a vertex warped within
+/// reach of a feature edge counts as outside for the octree: snapping may move it, weighing
+/// every tet at it, and where those are the uniform mesh's it decides as in uniform mode,
+/// so the graded mesh keeps the uniform mesh's boundary.
+fn graded_octree(surface: &TriSurface, lattice: &Lattice, cuts: &Cuts, features: &[deviation::Feature], h: f64, opts: &OctreeOptions) -> graded::Octree {
+    let position = |v: u32| cuts.position(lattice, v);
+    if !opts.snap || features.is_empty() {
+        return graded::Octree::build(lattice, &cuts.sign, &position);
+    }
+    let mut warped: Vec<(u32, DVec3)> = cuts.warped.iter().map(|(&v, &p)| (v, p)).collect();
+    warped.sort_unstable_by_key(|w| w.0);
+    let points: Vec<DVec3> = warped.iter().map(|w| w.1).collect();
+    let mut sign = cuts.sign.clone();
+    for (&(v, _), near) in warped.iter().zip(snap::within_reach(surface, features, h, &points)) {
+        if near {
+            sign[v as usize] = 1;
+        }
+    }
+    graded::Octree::build(lattice, &sign, &position)
+}
+
 /// The stencils over every background tet (the lattice's, or the graded octree's when
 /// `tree` is given); the result's vertices are the used lattice vertices (in lattice order)
 /// then the used cut points (in edge order). Returns the mesh (no boundary yet), the number
@@ -491,8 +516,17 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
                         continue;
                     }
                     if !bcc {
-                        // a coarse cell is deep inside (graded.rs): never cut
-                        missing.push(lattice.position(t[0]));
+                        // a coarse cell is deep (graded.rs): never cut, and its tets at
+                        // vertices warped onto the surface are whole, positive and within
+                        // the warped floor (the stencil of no vertex outside is the tet)
+                        if s.contains(&1) || s == [0; 4] {
+                            missing.push(lattice.position(t[0]));
+                            continue;
+                        }
+                        let before = out.len();
+                        push_checked(t, lattice, cuts, &mut out, &mut bad);
+                        inner.resize(inner.len() + out.len() - before, false);
+                        coarse += out.len() - before;
                         continue;
                     }
                     let before = out.len();

@@ -216,6 +216,32 @@ fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], ne
     })
 }
 
+/// A BVH over the feature edges' boxes.
+fn feature_bvh(surface: &TriSurface, features: &[Feature]) -> Bvh {
+    Bvh::build(features.iter().enumerate().map(|(e, &([a, b], _))| (e as u32, Aabb::from_points(&[surface.vertices[a as usize], surface.vertices[b as usize]]))))
+}
+
+/// Per point: whether it lies within [`REACH`] cells of a feature edge (a hair more, so
+/// that every boundary vertex [`snap_features`] may move at `points` is among them: a
+/// corner move's vertex is within reach of its corner, an end of a feature edge).
+pub fn within_reach(surface: &TriSurface, features: &[Feature], h: f64, points: &[DVec3]) -> Vec<bool> {
+    if features.is_empty() {
+        return vec![false; points.len()];
+    }
+    let reach = REACH * h * (1.0 + 1e-6);
+    let bvh = feature_bvh(surface, features);
+    points
+        .par_iter()
+        .map(|&p| {
+            bvh.nearest_within(p, reach, |e| {
+                let [a, b] = features[e as usize].0.map(|v| surface.vertices[v as usize]);
+                closest_point_on_segment(p, a, b).distance(p)
+            })
+            .is_some()
+        })
+        .collect()
+}
+
 /// Snaps `mesh`'s boundary vertices onto the feature edges and corners of `surface`; see the
 /// module docs.
 /// `features` are the input's
@@ -228,9 +254,7 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
     }
     let reach = REACH * h;
     let seg = |e: u32| features[e as usize].0.map(|v| surface.vertices[v as usize]);
-    let fbvh = Bvh::build(features.iter().enumerate().map(|(e, &([a, b], _))| {
-        (e as u32, Aabb::from_points(&[surface.vertices[a as usize], surface.vertices[b as usize]]))
-    }));
+    let fbvh = feature_bvh(surface, features);
     let nv = mesh.vertices.len();
     let mut on_boundary = vec![false; nv];
     for f in &mesh.boundary {
