@@ -22,10 +22,10 @@
 //!   coarse cell's centre, where every such tet stays positive with its dihedral angles in
 //!   [`WARPED_FLOOR`] at the warped positions: in rounds, the cubes of coarse cells within
 //!   one cube of a warped vertex of a tet outside it are made fine and the octree rebuilt
-//!   (2 or 3 rounds on fandisk and Angled, a few dozen cubes). The warped vertices in coarse
-//!   cells' tets lie on faces of the uniform lattice's tets, so the boundary is the uniform
-//!   mode's. (Against keeping every cube with a warped vertex fine: 0–31 % fewer tets on the
-//!   corpus at diagonal / 100.)
+//!   (one rebuild at most on five corpus parts at two cells, 0–123 cubes). The warped
+//!   vertices in coarse cells' tets lie on faces of the uniform lattice's tets, so the
+//!   boundary is the uniform mode's. (Against keeping every cube with a warped vertex fine:
+//!   0–31 % fewer tets on the corpus at diagonal / 100.)
 //! - Balance: cells sharing a face or an edge differ by at most one level. The
 //!   midpoint of a cell's edge is a vertex exactly when a finer cell touches that edge.
 //! - Background tets: for every face between two cells (the finer cell's face where they
