@@ -12,8 +12,9 @@
 //! # Invariants
 //! - A cell is an aligned block of `2^L` cubes per side (level `L`): its low cube `x` has
 //!   `(x + shift) % 2^L == 0` on each axis, for the one of the 8 shifts in `{0, 1}³` that
-//!   leaves the fewest cells (in the first round below). Its corners and, for `L ≥ 1`, its centre are lattice corners,
-//!   so the octree's vertices are lattice vertices and keep their ids, signs and positions.
+//!   leaves the fewest cells (in the first round below). Its corners and, for `L ≥ 1`, its
+//!   centre are lattice corners, so the octree's vertices are lattice vertices and keep
+//!   their ids, signs and positions.
 //! - A cell coarser than one cube is *deep*: no lattice vertex in it, nor the centre of a
 //!   cube beside it, is outside (sign `+1`), so no background tet of a coarse cell is cut:
 //!   each is kept whole, and the surface's cut points and stencils touch only tets between
@@ -206,9 +207,9 @@ impl Octree {
                     })
             })
             .collect();
-        // deep: the cube is inside and the centres of the 6 cubes beside it are not outside (every
-        // background tet of a coarse cell joins its centre, its corners, the midpoints on its
-        // faces and the centres of the cells beside it)
+        // deep: the cube is inside and the centres of the 6 cubes beside it are not outside
+        // (every background tet of a coarse cell joins its centre, its corners, the midpoints
+        // on its faces and the centres of the cells beside it)
         let nc = lattice.num_corners();
         (0..cubes)
             .into_par_iter()

@@ -461,8 +461,8 @@ fn graded_octree(surface: &TriSurface, lattice: &Lattice, cuts: &Cuts, features:
     if !opts.snap || features.is_empty() {
         return graded::Octree::build(lattice, &cuts.sign, &position);
     }
-    let mut warped: Vec<(u32, DVec3)> = cuts.warped.iter().map(|(&v, &p)| (v, p)).collect();
-    warped.sort_unstable_by_key(|w| w.0);
+    // (each vertex's answer is its own: the map's order does not matter)
+    let warped: Vec<(u32, DVec3)> = cuts.warped.iter().map(|(&v, &p)| (v, p)).collect();
     let points: Vec<DVec3> = warped.iter().map(|w| w.1).collect();
     let mut sign = cuts.sign.clone();
     for (&(v, _), near) in warped.iter().zip(snap::within_reach(surface, features, h, &points)) {
