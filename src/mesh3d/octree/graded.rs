@@ -26,7 +26,10 @@
 //!   (one rebuild at most on five corpus parts at two cells, 0–123 cubes). The warped
 //!   vertices in coarse cells' tets lie on faces of the uniform lattice's tets, so the
 //!   boundary is the uniform mode's. (Against keeping every cube with a warped vertex fine:
-//!   0–31 % fewer tets on the corpus at diagonal / 100.)
+//!   0–31 % fewer tets on the corpus at diagonal / 100.) Nor is a cube deep when a lattice
+//!   tet across one of its faces has all four vertices on the surface: the stencils keep
+//!   such a tet only when it is inside and not a sliver, and a coarse cell would fill the
+//!   gap they leave (rabbit.obj at its default cell, four boundary triangles).
 //! - Balance: cells sharing a face or an edge differ by at most one level. The
 //!   midpoint of a cell's edge is a vertex exactly when a finer cell touches that edge.
 //! - Background tets: for every face between two cells (the finer cell's face where they
@@ -209,8 +212,11 @@ impl Octree {
             .collect();
         // deep: the cube is inside and the centres of the 6 cubes beside it are not outside
         // (every background tet of a coarse cell joins its centre, its corners, the midpoints
-        // on its faces and the centres of the cells beside it)
+        // on its faces and the centres of the cells beside it), and no lattice tet across
+        // one of its faces has its four vertices on the surface (the stencils keep such a
+        // tet only when inside and not a sliver: a coarse cell would fill what they leave)
         let nc = lattice.num_corners();
+        let corner = |q: [i64; 3]| lattice.id(q.map(|x| x as i32)).map_or(1, |v| sign[v as usize]);
         (0..cubes)
             .into_par_iter()
             .map(|i| {
@@ -218,7 +224,27 @@ impl Octree {
                 inside[i]
                     && neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() == 1).all(|d| {
                         let q = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
-                        cube_index(n, q).is_some_and(|j| sign[nc + j] <= 0)
+                        cube_index(n, q).is_some_and(|j| {
+                            sign[nc + j] <= 0 && {
+                                // the face towards `d`: its corners in doubled coordinates
+                                // around the edge loop, and whether an edge of it has both
+                                // ends on the surface where both centres are
+                                let all_zero_tet = sign[nc + i] == 0 && sign[nc + j] == 0 && {
+                                    let axis = (0..3).find(|&a| d[a] != 0).unwrap_or(0);
+                                    let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+                                    let at = |ua: i64, ub: i64| {
+                                        let mut r = [0i64; 3];
+                                        r[axis] = 2 * c[axis] + if d[axis] > 0 { 2 } else { 0 };
+                                        r[a] = 2 * (c[a] + ua);
+                                        r[b] = 2 * (c[b] + ub);
+                                        r
+                                    };
+                                    let ring = [at(0, 0), at(1, 0), at(1, 1), at(0, 1)].map(corner);
+                                    (0..4).any(|k| ring[k] == 0 && ring[(k + 1) % 4] == 0)
+                                };
+                                !all_zero_tet
+                            }
+                        })
                     })
             })
             .collect()
@@ -535,6 +561,35 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A lattice tet of four vertices on the surface keeps both its cubes fine (the stencils
+    /// may leave it out), and the cubes around it may still be coarse.
+    #[test]
+    fn a_tet_of_four_surface_vertices_keeps_its_cubes_fine() {
+        let l = lattice(1.0, 1.0 / 24.0);
+        let mut sign = ball(&l, 0.45);
+        // two cubes beside each other at the middle, x and x + 1, and the edge of their
+        // shared face from its low corner along y
+        let k = l.n.map(|x| x / 2);
+        let cube = |c: [u32; 3]| c[0] as usize + l.n[0] as usize * (c[1] as usize + l.n[1] as usize * c[2] as usize);
+        let (a, b) = (cube(k), cube([k[0] + 1, k[1], k[2]]));
+        let nc = l.num_corners();
+        let before = Octree::deep_cubes(&l, &sign);
+        assert!(before[a] && before[b]);
+        let corner = |c: [u32; 3]| l.id(c.map(|x| 2 * x as i32)).unwrap() as usize;
+        for v in [nc + a, nc + b, corner([k[0] + 1, k[1], k[2]]), corner([k[0] + 1, k[1] + 1, k[2]])] {
+            sign[v] = 0;
+        }
+        let after = Octree::deep_cubes(&l, &sign);
+        assert!(!after[a] && !after[b]);
+        // a cube beside them with one of those vertices as a corner, and `a`'s centre beside
+        // it, makes no such tet with them: it stays deep
+        assert!(after[cube([k[0], k[1] - 1, k[2]])]);
+        // three of the four on the surface make no such tet: both stay deep
+        sign[corner([k[0] + 1, k[1] + 1, k[2]])] = -1;
+        let three = Octree::deep_cubes(&l, &sign);
+        assert!(three[a] && three[b]);
     }
 
     /// Vertices warped onto the surface join coarse cells where the tets at them stay positive
