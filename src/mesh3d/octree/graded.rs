@@ -216,7 +216,13 @@ impl Octree {
         // one of its faces has its four vertices on the surface (the stencils keep such a
         // tet only when inside and not a sliver: a coarse cell would fill what they leave)
         let nc = lattice.num_corners();
-        let corner = |q: [i64; 3]| lattice.id(q.map(|x| x as i32)).map_or(1, |v| sign[v as usize]);
+        let on_surface = |q: [i64; 3]| lattice.id(q.map(|x| x as i32)).is_some_and(|v| sign[v as usize] == 0);
+        // an edge of cube `c`'s face towards `d` with both ends on the surface
+        let edge_on_surface = |c: [i64; 3], d: [i64; 3]| {
+            let axis = (0..3).find(|&a| d[a] != 0).unwrap_or(0);
+            let ring = face_corners(c, 1, axis, d[axis]).map(on_surface);
+            (0..4).any(|k| ring[k] && ring[(k + 1) % 4])
+        };
         (0..cubes)
             .into_par_iter()
             .map(|i| {
@@ -225,25 +231,8 @@ impl Octree {
                     && neighbours26().filter(|d| d.iter().filter(|&&x| x != 0).count() == 1).all(|d| {
                         let q = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
                         cube_index(n, q).is_some_and(|j| {
-                            sign[nc + j] <= 0 && {
-                                // the face towards `d`: its corners in doubled coordinates
-                                // around the edge loop, and whether an edge of it has both
-                                // ends on the surface where both centres are
-                                let all_zero_tet = sign[nc + i] == 0 && sign[nc + j] == 0 && {
-                                    let axis = (0..3).find(|&a| d[a] != 0).unwrap_or(0);
-                                    let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-                                    let at = |ua: i64, ub: i64| {
-                                        let mut r = [0i64; 3];
-                                        r[axis] = 2 * c[axis] + if d[axis] > 0 { 2 } else { 0 };
-                                        r[a] = 2 * (c[a] + ua);
-                                        r[b] = 2 * (c[b] + ub);
-                                        r
-                                    };
-                                    let ring = [at(0, 0), at(1, 0), at(1, 1), at(0, 1)].map(corner);
-                                    (0..4).any(|k| ring[k] == 0 && ring[(k + 1) % 4] == 0)
-                                };
-                                !all_zero_tet
-                            }
+                            let four_on_surface = sign[nc + i] == 0 && sign[nc + j] == 0 && edge_on_surface(c, d);
+                            sign[nc + j] <= 0 && !four_on_surface
                         })
                     })
             })
@@ -451,17 +440,7 @@ impl Octree {
                 let (oj, _) = self.origin(j);
                 let c2 = centre(oj.map(|x| x as i64), 1i64 << lj);
                 // the face's ring: corners and the midpoints that are vertices
-                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-                let plane = 2 * (o[axis] + if dir > 0 { s } else { 0 });
-                let at = |ua: i64, ub: i64| {
-                    let mut r = [0i64; 3];
-                    r[axis] = plane;
-                    r[a] = 2 * o[a] + ua;
-                    r[b] = 2 * o[b] + ub;
-                    r
-                };
-                let e = 2 * s;
-                let corners = [at(0, 0), at(e, 0), at(e, e), at(0, e)];
+                let corners = face_corners(o, s, axis, dir);
                 let mut ring = Vec::with_capacity(8);
                 for k in 0..4 {
                     let (p, q) = (corners[k], corners[(k + 1) % 4]);
@@ -487,6 +466,21 @@ impl Octree {
             }
         }
     }
+}
+
+/// The corners, in doubled coordinates and in order around it, of the face towards `dir`
+/// (`+1` or `-1`) along `axis` of the cell of `s` cubes a side whose low cube is at `o`.
+fn face_corners(o: [i64; 3], s: i64, axis: usize, dir: i64) -> [[i64; 3]; 4] {
+    let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+    let at = |ua: i64, ub: i64| {
+        let mut r = [0i64; 3];
+        r[axis] = 2 * (o[axis] + if dir > 0 { s } else { 0 });
+        r[a] = 2 * o[a] + ua;
+        r[b] = 2 * o[b] + ub;
+        r
+    };
+    let e = 2 * s;
+    [at(0, 0), at(e, 0), at(e, e), at(0, e)]
 }
 
 /// Coordinates of cube `i` (lattice centre order, `x` fastest).

@@ -216,9 +216,14 @@ fn allowed(mesh: &TetMesh, star: &[u32], v: u32, q: DVec3, at_v: &[[u32; 3]], ne
     })
 }
 
+/// The ends of feature edge `e`.
+fn segment(surface: &TriSurface, features: &[Feature], e: u32) -> [DVec3; 2] {
+    features[e as usize].0.map(|v| surface.vertices[v as usize])
+}
+
 /// A BVH over the feature edges' boxes.
 fn feature_bvh(surface: &TriSurface, features: &[Feature]) -> Bvh {
-    Bvh::build(features.iter().enumerate().map(|(e, &([a, b], _))| (e as u32, Aabb::from_points(&[surface.vertices[a as usize], surface.vertices[b as usize]]))))
+    Bvh::build((0..features.len() as u32).map(|e| (e, Aabb::from_points(&segment(surface, features, e)))))
 }
 
 /// Per point: whether it lies within [`REACH`] cells of a feature edge (a hair more, so
@@ -234,7 +239,7 @@ pub fn within_reach(surface: &TriSurface, features: &[Feature], h: f64, points: 
         .par_iter()
         .map(|&p| {
             bvh.nearest_within(p, reach, |e| {
-                let [a, b] = features[e as usize].0.map(|v| surface.vertices[v as usize]);
+                let [a, b] = segment(surface, features, e);
                 closest_point_on_segment(p, a, b).distance(p)
             })
             .is_some()
@@ -253,7 +258,7 @@ pub fn snap_features(surface: &TriSurface, surface_bvh: &Bvh, mesh: &mut TetMesh
         return out;
     }
     let reach = REACH * h;
-    let seg = |e: u32| features[e as usize].0.map(|v| surface.vertices[v as usize]);
+    let seg = |e: u32| segment(surface, features, e);
     let fbvh = feature_bvh(surface, features);
     let nv = mesh.vertices.len();
     let mut on_boundary = vec![false; nv];
