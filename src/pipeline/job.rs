@@ -128,7 +128,7 @@ pub struct MeshSection {
     /// The method (default `delaunay`).
     pub method: Option<Spanned<Method>>,
     /// The octree's grading (`method = "octree"` only): `"uniform"` (default) or `"graded"`
-    /// (the same boundary, coarser cells inside).
+    /// (the same boundary triangles, coarser inside: octree cells, then vertex collapses).
     pub grading: Option<Spanned<crate::mesh3d::octree::Grading>>,
     /// See [`MeshOptions::max_radius_edge`] (at least 1.1; default 1.5).
     pub max_radius_edge: Option<Spanned<f64>>,

@@ -22,6 +22,13 @@ impl OctreeReport {
                 *o += n;
             }
             out.coarse_tets += r.coarse_tets;
+            out.coarsened = match (out.coarsened, r.coarsened) {
+                (None, None) => None,
+                (a, b) => {
+                    let (a, b) = (a.unwrap_or_default(), b.unwrap_or_default());
+                    Some(super::coarsen::Coarsened { vertices: a.vertices + b.vertices, tets: a.tets + b.tets, passes: a.passes.max(b.passes) })
+                }
+            };
             out.crossing_edges += r.crossing_edges;
             out.cut_points += r.cut_points;
             out.bisected_cut_points += r.bisected_cut_points;

@@ -22,7 +22,9 @@
 //!    (found by the deviation's first sample of each);
 //! 7. `snap.rs`: boundary vertices moved onto the input's feature corners and edges where
 //!    the angle bounds allow;
-//! 8. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
+//! 8. `coarsen.rs` (graded mode): interior vertices collapsed onto a neighbour where every
+//!    tet made keeps [15°, 160°], the boundary kept;
+//! 9. `deviation.rs`: Hausdorff distance both ways (sampled) and unresolved feature edges.
 //!
 //! Around them, `resolve.rs` ([`mesh_octree_resolved`]) chooses the cell where no size is
 //! given: finer by √2 until the mesh holds the input's volume.
@@ -42,7 +44,10 @@
 //!   the lattice positions, and those with a vertex warped onto the surface are kept only
 //!   within [15°, 160°] at the warped positions (`graded.rs`). The boundary is the uniform
 //!   mode's at the same cell size, the same triangles: no coarse tet has a vertex that
-//!   feature snapping may move (`graded_octree`).
+//!   feature snapping may move (`graded_octree`). Last, coarsening (on by default) collapses
+//!   interior vertices where every tet it makes is positive with its angles in [15°, 160°]
+//!   and the link condition holds: the boundary's vertices stay, so the boundary triangles
+//!   are still the uniform mode's (`coarsen.rs`).
 //! - Every output tet is positively oriented, decided exactly; a stencil tet that warping or
 //!   a true cut point turns flat or inside out is an error ([`OctreeError::Inverted`]), never
 //!   silently flipped.
@@ -51,6 +56,7 @@
 //!   anything.
 
 mod buried;
+pub mod coarsen;
 mod cut;
 mod deviation;
 mod graded;
@@ -101,7 +107,8 @@ pub enum Grading {
     #[default]
     Uniform,
     /// Fine (the cell size) wherever the surface comes within a cell, coarser inside: a 2:1
-    /// balanced octree whose cells double away from the boundary (see `graded.rs`).
+    /// balanced octree whose cells double away from the boundary (see `graded.rs`), then
+    /// coarsened inside by vertex collapses, the boundary kept (`coarsen.rs`).
     Graded,
 }
 
@@ -119,11 +126,14 @@ pub struct OctreeOptions {
     /// Move boundary vertices onto the feature edges and corners where the angle bounds
     /// allow (`snap.rs`).
     pub snap: bool,
+    /// Graded mode: coarsen the mesh inside by collapsing interior vertices, the boundary
+    /// kept (`coarsen.rs`).
+    pub coarsen: bool,
 }
 
 impl Default for OctreeOptions {
     fn default() -> Self {
-        OctreeOptions { grading: Grading::Uniform, alpha_long: ALPHA_LONG, alpha_short: ALPHA_SHORT, feature_angle_deg: 30.0, snap: true }
+        OctreeOptions { grading: Grading::Uniform, alpha_long: ALPHA_LONG, alpha_short: ALPHA_SHORT, feature_angle_deg: 30.0, snap: true, coarsen: true }
     }
 }
 
@@ -145,12 +155,17 @@ pub struct OctreeReport {
     /// Graded mode: the octree's cells per level (one cube, two per side, ...); empty in
     /// uniform mode.
     pub cells_per_level: Vec<usize>,
-    /// Graded mode: the tets of cells coarser than one cube (whole background tets). The
-    /// others lie in one-cube cells: the band along the surface that the stencils need, the
-    /// layer inside it, and what alignment and balance keep fine: the floor of the grading at
-    /// this cell. 0 in uniform mode.
+    /// Graded mode: the tets of cells coarser than one cube (whole background tets), before
+    /// coarsening. The others lie in one-cube cells: the band along the surface that the
+    /// stencils need, the layer inside it, and what alignment and balance keep fine: the
+    /// floor of the octree's grading at this cell, which coarsening goes under. 0 in uniform
+    /// mode.
     #[serde(skip_serializing_if = "is_zero")]
     pub coarse_tets: usize,
+    /// Graded mode: the interior vertices collapsed after the stencils and snapping, and the
+    /// tets that went with them (`coarsen.rs`); `tets` counts what is left.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coarsened: Option<coarsen::Coarsened>,
     /// Lattice edges the surface crosses (before warping).
     pub crossing_edges: usize,
     /// Cut points kept after warping.
@@ -379,6 +394,11 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         snapped = snap::snap_features(surface, oracle.bvh(), &mut mesh, h, opts.feature_angle_deg, &features);
         stage("snap", &mut t);
     }
+    let coarsened = (tree.is_some() && opts.coarsen).then(|| {
+        let c = coarsen::coarsen(&mut mesh);
+        stage("coarsen", &mut t);
+        c
+    });
     let buried = buried::Buried::new(oracle, h / 16.0);
     // the cells are checked while the boundary is measured (both read the mesh), the tags
     // after
@@ -424,6 +444,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         lattice_vertices: n,
         cells_per_level: tree.as_ref().map(|t| t.cells_per_level()).unwrap_or_default(),
         coarse_tets,
+        coarsened,
         crossing_edges: cuts.crossing_edges,
         cut_points: cuts.edges.len(),
         bisected_cut_points: cuts.bisected,

@@ -89,23 +89,36 @@ fn same_bytes_for_any_thread_count() {
 }
 
 /// Graded and uniform at the same cell size: the same boundary triangles and volume, the
-/// same angle bounds, at most a third of the tets, conforming (every face of one tet only is
-/// a boundary triangle), and the same bytes for any thread count.
+/// same angle bounds, at most a third of the tets from the octree alone and fewer again
+/// coarsened, conforming (every face of one tet only is a boundary triangle), and the same
+/// bytes for any thread count.
 #[test]
 fn graded_keeps_the_boundary_with_a_third_of_the_tets() {
     let s = sphere(16);
     let h = 0.04;
     let (u, ru) = mesh_octree(&s, &UniformSize(h), &OctreeOptions::default()).unwrap();
     let opts = OctreeOptions { grading: Grading::Graded, ..OctreeOptions::default() };
-    let run = |threads: usize| {
+    let run = |threads: usize, opts: &OctreeOptions| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| mesh_octree(&s, &UniformSize(h), &opts).unwrap())
+        pool.install(|| mesh_octree(&s, &UniformSize(h), opts).unwrap())
     };
-    let (g, rg) = run(2);
+    // coarsened
+    let (c, rc) = run(2, &opts);
+    check(&c, &rc);
+    let collapsed = rc.coarsened.expect("graded mode coarsens");
+    assert!(collapsed.vertices > 0 && rc.tets + collapsed.tets == run(1, &OctreeOptions { coarsen: false, ..opts.clone() }).1.tets);
+    assert!((rc.volume - ru.volume).abs() < 1e-9 * ru.volume, "{} {}", rc.volume, ru.volume);
+    assert_eq!(boundary_triangles(&c), boundary_triangles(&u));
+    assert_eq!(run(1, &opts).0, c);
+    // the octree alone
+    let opts = OctreeOptions { coarsen: false, ..opts };
+    let (g, rg) = run(2, &opts);
     check(&g, &rg);
     assert_eq!(rg.grading, "graded");
+    assert!(rg.coarsened.is_none());
     assert!(rg.cells_per_level.len() >= 3, "{:?}", rg.cells_per_level);
     assert!(3 * g.tets.len() <= u.tets.len(), "{} graded against {} uniform", g.tets.len(), u.tets.len());
+    assert!(2 * c.tets.len() <= g.tets.len(), "{} coarsened against {} graded", c.tets.len(), g.tets.len());
     assert!((rg.volume - ru.volume).abs() < 1e-9 * ru.volume, "{} {}", rg.volume, ru.volume);
     assert_eq!(boundary_triangles(&g), boundary_triangles(&u));
     // the tets of coarse cells are the graded mesh's tets that the uniform mesh lacks; the
@@ -121,7 +134,9 @@ fn graded_keeps_the_boundary_with_a_third_of_the_tets() {
     assert!(rg.coarse_tets > 0 && rg.coarse_tets == not_uniform, "{} reported, {not_uniform} not the uniform mesh's", rg.coarse_tets);
     let open = g.faces().iter().filter(|f| f.neighbor.is_none()).count();
     assert_eq!(open, g.boundary.len());
-    assert_eq!(run(1).0, g);
+    let open = c.faces().iter().filter(|f| f.neighbor.is_none()).count();
+    assert_eq!(open, c.boundary.len());
+    assert_eq!(run(1, &opts).0, g);
 }
 
 /// The boundary triangles of `m` by their corners' bits, sorted.

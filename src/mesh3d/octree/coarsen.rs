@@ -1,0 +1,418 @@
+//! Graded mode's last stage: the mesh coarsened inside by collapsing interior vertices onto a
+//! neighbour, the boundary kept as it is.
+//!
+//! Stage: after the stencils and feature snapping of a graded octree mesh, before its
+//! boundary is measured. Input: a valid [`TetMesh`] with its boundary triangles. Output: the
+//! same mesh with fewer vertices and tets, and [`Coarsened`].
+//!
+//! The octree can coarsen only aligned blocks of cubes at least a cube away from the surface,
+//! so along the surface it keeps a band of uniform cells two to three cubes deep, and the
+//! transitions between levels; on thin walls that band is the whole mesh. A collapse works
+//! at any vertex off the boundary: vertex `v` goes onto its neighbour `w`, the tets at edge
+//! `vw` go, and the other tets at `v` take `w` in its place.
+//!
+//! # Invariants
+//! - The boundary is the same: a vertex on a boundary triangle, on a face of one tet only,
+//!   or at tets of two regions never moves nor goes, so every boundary triangle stays a face
+//!   of the mesh, by the same vertices at the same positions (the same boundary resolution as
+//!   the uniform mesh at the cell).
+//! - A collapse is made only where every tet it makes is positive by the exact
+//!   [`orient3d`] and has its dihedral angles in [`FLOOR`] (feature snapping's, inside the
+//!   paper's uniform bounds), and where the link condition holds (Dey, Edelsbrunner, Guha
+//!   and Nekhayev 1999: the vertices and edges linked to both `v` and `w` are those linked to
+//!   the edge `vw`). The new tets then fill the star of `v` as the old ones did: the mesh
+//!   stays a valid triangulation of the same volume, every tet in one region.
+//! - Of the neighbours allowed, `v` goes onto the one whose new tets' worst angle, measured
+//!   against the floor, is best (ties: the lowest index).
+//! - Deterministic: passes go over the vertices in index order, a collapse made at once; a
+//!   vertex is tried again in the next pass only where a tet at it or at a neighbour changed
+//!   (what its try read), until a pass collapses nothing or after [`MAX_PASSES`] (a count,
+//!   never a time). The vertices left keep their order and the tets theirs.
+
+use crate::core::predicates::orient3d;
+use crate::mesh::TetMesh;
+use crate::quality::tetrahedron::{dihedrals_of_extreme_cosines, tet_extreme_dihedral_cosines};
+use serde::Serialize;
+
+/// The dihedral angles (degrees) every tet a collapse makes must have.
+pub const FLOOR: [f64; 2] = super::snap::FLOOR;
+
+/// The most passes over the vertices (on the corpus, a pass after the third collapses under
+/// 1 % of what the first did).
+pub const MAX_PASSES: usize = 8;
+
+/// What coarsening did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Coarsened {
+    /// Interior vertices collapsed.
+    pub vertices: usize,
+    /// Tets removed.
+    pub tets: usize,
+    /// Passes made.
+    pub passes: usize,
+}
+
+/// Coarsens `mesh` inside; see the module docs.
+pub fn coarsen(mesh: &mut TetMesh) -> Coarsened {
+    let mut c = Collapser::new(mesh);
+    let mut done = Coarsened::default();
+    let n = mesh.vertices.len();
+    let mut stale: Vec<bool> = (0..n).map(|v| !c.fixed[v] && !c.star[v].is_empty()).collect();
+    let (mut nbrs, mut scratch) = (Vec::new(), Scratch::default());
+    while done.passes < MAX_PASSES {
+        done.passes += 1;
+        let before = done.vertices;
+        for v in 0..n as u32 {
+            if !stale[v as usize] || c.star[v as usize].is_empty() {
+                continue;
+            }
+            stale[v as usize] = false;
+            c.neighbours(mesh, v, &mut nbrs);
+            let Some(w) = c.best_target(mesh, v, &nbrs, &mut scratch) else { continue };
+            // a try reads the tets at its vertex and at the vertex's neighbours: those of
+            // every vertex within two of `v` change or may
+            for &x in &nbrs {
+                for &t in &c.star[x as usize] {
+                    for y in mesh.tets[t as usize] {
+                        stale[y as usize] = !c.fixed[y as usize];
+                    }
+                }
+            }
+            done.tets += c.collapse(mesh, v, w);
+            done.vertices += 1;
+        }
+        if done.vertices == before {
+            break;
+        }
+    }
+    if done.vertices > 0 {
+        c.compact(mesh);
+    }
+    done
+}
+
+/// The three vertices of `tet` but `v` (one of its four).
+fn opposite(tet: [u32; 4], v: u32) -> [u32; 3] {
+    let k = tet.iter().position(|&x| x == v).unwrap_or(3);
+    [tet[(k + 1) % 4], tet[(k + 2) % 4], tet[(k + 3) % 4]]
+}
+
+/// The tets at each vertex, which tets are left, and which vertices stay.
+struct Collapser {
+    /// Per vertex: the slots of the tets at it.
+    star: Vec<Vec<u32>>,
+    alive: Vec<bool>,
+    /// Vertices that never move nor go (see the module docs).
+    fixed: Vec<bool>,
+}
+
+/// Buffers of the link condition.
+#[derive(Default)]
+struct Scratch {
+    /// Vertices and edges linked to the edge `vw`.
+    edge_vertices: Vec<u32>,
+    edge_edges: Vec<[u32; 2]>,
+    /// Neighbours of `w`, and edges linked to `w`.
+    w_nbrs: Vec<u32>,
+    w_edges: Vec<[u32; 2]>,
+}
+
+impl Collapser {
+    fn new(mesh: &TetMesh) -> Collapser {
+        let n = mesh.vertices.len();
+        let mut star = vec![Vec::new(); n];
+        for (t, tet) in mesh.tets.iter().enumerate() {
+            for &v in tet {
+                star[v as usize].push(t as u32);
+            }
+        }
+        let mut fixed = vec![false; n];
+        for tri in &mesh.boundary {
+            for &v in tri {
+                fixed[v as usize] = true;
+            }
+        }
+        for f in mesh.faces() {
+            let other_region = f.neighbor.is_some_and(|u| mesh.region_tags[u as usize] != mesh.region_tags[f.tet as usize]);
+            if f.neighbor.is_none() || other_region {
+                for v in f.vertices {
+                    fixed[v as usize] = true;
+                }
+            }
+        }
+        Collapser { star, alive: vec![true; mesh.tets.len()], fixed }
+    }
+
+    /// The vertices sharing a tet with `v`, sorted.
+    fn neighbours(&self, mesh: &TetMesh, v: u32, out: &mut Vec<u32>) {
+        out.clear();
+        for &t in &self.star[v as usize] {
+            out.extend(mesh.tets[t as usize].into_iter().filter(|&x| x != v));
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+
+    /// The neighbour `v` goes onto, if any may (see the module docs).
+    fn best_target(&self, mesh: &TetMesh, v: u32, nbrs: &[u32], scratch: &mut Scratch) -> Option<u32> {
+        // a candidate's score: its new tets' extreme angles against the floor at both ends,
+        // `min(θ_min / FLOOR[0], (180° − θ_max) / (180° − FLOOR[1]))`, at least 1 within it;
+        // the cosines (the angle is non-decreasing in them) folded over its tets, a candidate
+        // given up once they pass what it needs (with a margin: the angles decide)
+        let mut best: Option<(f64, u32)> = None;
+        let thresholds = |need: f64| {
+            let lo = -(FLOOR[0] * need).to_radians().cos() - 1e-12;
+            let hi = -(180.0 - (180.0 - FLOOR[1]) * need).to_radians().cos() + 1e-12;
+            (lo, hi)
+        };
+        let (mut t_lo, mut t_hi) = thresholds(1.0);
+        'candidates: for &w in nbrs {
+            let (mut c_lo, mut c_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &t in &self.star[v as usize] {
+                let tet = mesh.tets[t as usize];
+                if tet.contains(&w) {
+                    continue;
+                }
+                let p = tet.map(|x| mesh.vertices[if x == v { w } else { x } as usize]);
+                if !orient3d(p[0], p[1], p[2], p[3]).is_positive() {
+                    continue 'candidates;
+                }
+                let Some((lo, hi)) = tet_extreme_dihedral_cosines(&p) else { continue 'candidates };
+                (c_lo, c_hi) = (c_lo.min(lo), c_hi.max(hi));
+                if c_lo < t_lo || c_hi > t_hi {
+                    continue 'candidates;
+                }
+            }
+            if c_lo > c_hi {
+                continue; // no new tet (not at an interior vertex)
+            }
+            let (lo, hi) = dihedrals_of_extreme_cosines(c_lo, c_hi);
+            let score = (lo / FLOOR[0]).min((180.0 - hi) / (180.0 - FLOOR[1]));
+            if lo < FLOOR[0] || hi > FLOOR[1] || best.is_some_and(|(b, _)| score <= b) {
+                continue;
+            }
+            if self.link_condition(mesh, v, w, nbrs, scratch) {
+                best = Some((score, w));
+                (t_lo, t_hi) = thresholds(score);
+            }
+        }
+        best.map(|(_, w)| w)
+    }
+
+    /// Whether the vertices and edges linked to both `v` and `w` are those linked to the edge
+    /// `vw` (`nbrs`: the neighbours of `v`).
+    fn link_condition(&self, mesh: &TetMesh, v: u32, w: u32, nbrs: &[u32], s: &mut Scratch) -> bool {
+        let sorted = |a: u32, b: u32| if a < b { [a, b] } else { [b, a] };
+        s.edge_vertices.clear();
+        s.edge_edges.clear();
+        for &t in &self.star[v as usize] {
+            let tet = mesh.tets[t as usize];
+            if tet.contains(&w) {
+                let mut o = tet.into_iter().filter(|&x| x != v && x != w);
+                if let (Some(a), Some(b)) = (o.next(), o.next()) {
+                    s.edge_vertices.extend([a, b]);
+                    s.edge_edges.push(sorted(a, b));
+                }
+            }
+        }
+        s.edge_vertices.sort_unstable();
+        s.edge_vertices.dedup();
+        s.edge_edges.sort_unstable();
+        s.w_nbrs.clear();
+        s.w_edges.clear();
+        for &t in &self.star[w as usize] {
+            let tet = mesh.tets[t as usize];
+            s.w_nbrs.extend(tet.into_iter().filter(|&x| x != w));
+            if !tet.contains(&v) {
+                let f = opposite(tet, w);
+                s.w_edges.extend([sorted(f[0], f[1]), sorted(f[1], f[2]), sorted(f[0], f[2])]);
+            }
+        }
+        s.w_nbrs.sort_unstable();
+        s.w_nbrs.dedup();
+        s.w_edges.sort_unstable();
+        s.w_edges.dedup();
+        // vertices: the common neighbours (but `v` and `w`) are the edge's
+        let mut common = nbrs.iter().copied().filter(|&x| x != w && s.w_nbrs.binary_search(&x).is_ok());
+        if !common.by_ref().eq(s.edge_vertices.iter().copied()) {
+            return false;
+        }
+        // edges: an edge linked to `v` by a tet without `w` and linked to `w` is the edge's
+        for &t in &self.star[v as usize] {
+            let tet = mesh.tets[t as usize];
+            if tet.contains(&w) {
+                continue;
+            }
+            let f = opposite(tet, v);
+            for e in [sorted(f[0], f[1]), sorted(f[1], f[2]), sorted(f[0], f[2])] {
+                if s.w_edges.binary_search(&e).is_ok() && s.edge_edges.binary_search(&e).is_err() {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Collapses `v` onto `w`; returns the tets removed.
+    fn collapse(&mut self, mesh: &mut TetMesh, v: u32, w: u32) -> usize {
+        let star = std::mem::take(&mut self.star[v as usize]);
+        let mut removed = 0;
+        for t in star {
+            let tet = &mut mesh.tets[t as usize];
+            if tet.contains(&w) {
+                self.alive[t as usize] = false;
+                removed += 1;
+                for x in *tet {
+                    if x != v {
+                        let s = &mut self.star[x as usize];
+                        if let Some(k) = s.iter().position(|&u| u == t) {
+                            s.swap_remove(k);
+                        }
+                    }
+                }
+            } else {
+                for x in tet.iter_mut() {
+                    if *x == v {
+                        *x = w;
+                    }
+                }
+                self.star[w as usize].push(t);
+            }
+        }
+        removed
+    }
+
+    /// Drops the tets removed and the vertices no tet uses, keeping the order of the rest.
+    fn compact(&self, mesh: &mut TetMesh) {
+        let mut keep = 0;
+        for t in 0..mesh.tets.len() {
+            if self.alive[t] {
+                mesh.tets[keep] = mesh.tets[t];
+                mesh.region_tags[keep] = mesh.region_tags[t];
+                keep += 1;
+            }
+        }
+        mesh.tets.truncate(keep);
+        mesh.region_tags.truncate(keep);
+        let mut used = vec![false; mesh.vertices.len()];
+        for tet in &mesh.tets {
+            for &v in tet {
+                used[v as usize] = true;
+            }
+        }
+        let mut id = vec![u32::MAX; mesh.vertices.len()];
+        let mut vertices = Vec::with_capacity(mesh.vertices.len());
+        for (v, p) in mesh.vertices.iter().enumerate() {
+            if used[v] {
+                id[v] = vertices.len() as u32;
+                vertices.push(*p);
+            }
+        }
+        mesh.vertices = vertices;
+        for tet in &mut mesh.tets {
+            *tet = tet.map(|v| id[v as usize]);
+        }
+        for tri in &mut mesh.boundary {
+            *tri = tri.map(|v| id[v as usize]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::RegionId;
+    use crate::mesh::shapes;
+    use crate::quality::tetrahedron::{tet_min_max_dihedral, tet_volume};
+    use glam::DVec3;
+
+    /// The faces of `m` between two tets of different regions, or of one tet, by their
+    /// corners' bits and the region (or regions) beside them, sorted.
+    fn constrained(m: &TetMesh) -> Vec<([[u64; 3]; 3], u32, Option<u32>)> {
+        let mut out: Vec<_> = m
+            .faces()
+            .iter()
+            .filter(|f| f.neighbor.is_none_or(|u| m.region_tags[u as usize] != m.region_tags[f.tet as usize]))
+            .map(|f| {
+                let mut c = f.vertices.map(|v| m.vertices[v as usize].to_array().map(f64::to_bits));
+                c.sort_unstable();
+                let mut r = [Some(m.region_tags[f.tet as usize].0), f.neighbor.map(|u| m.region_tags[u as usize].0)];
+                r.sort_unstable();
+                (c, r[1].unwrap_or(0), r[0])
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    fn region_volumes(m: &TetMesh) -> [f64; 3] {
+        let mut v = [0.0; 3];
+        for (t, r) in m.tets.iter().zip(&m.region_tags) {
+            v[r.0 as usize] += tet_volume(&t.map(|x| m.vertices[x as usize]));
+        }
+        v
+    }
+
+    /// A jittered cube of two regions: coarsening keeps every face on the boundary and
+    /// between the regions (the same corners, bit for bit), each region's volume and the
+    /// regions of the tets, leaves a valid mesh whose new tets lie within the floor, removes
+    /// most interior vertices, and gives the same mesh again.
+    #[test]
+    fn keeps_the_boundary_and_the_interfaces_and_removes_most_interior_vertices() {
+        let mut m = shapes::kuhn_cube(10, 0.2, 7);
+        for t in 0..m.tets.len() {
+            let c = m.tets[t].iter().map(|&v| m.vertices[v as usize]).sum::<DVec3>() / 4.0;
+            if c.x + 0.3 * c.y > 0.61 {
+                m.region_tags[t] = RegionId(2);
+            }
+        }
+        let before = m.clone();
+        let old: std::collections::HashSet<[[u64; 3]; 4]> = before.tets.iter().map(|t| key(&before, t)).collect();
+        let done = coarsen(&mut m);
+        m.validate().unwrap();
+        assert_eq!(constrained(&m), constrained(&before));
+        let (a, b) = (region_volumes(&m), region_volumes(&before));
+        for r in 1..3 {
+            assert!((a[r] - b[r]).abs() < 1e-12, "{a:?} {b:?}");
+        }
+        assert_eq!(done.tets, before.tets.len() - m.tets.len());
+        assert_eq!(done.vertices, before.vertices.len() - m.vertices.len());
+        let interior = 9usize.pow(3);
+        assert!(2 * done.vertices > interior, "{done:?} of {interior}");
+        for t in &m.tets {
+            if !old.contains(&key(&m, t)) {
+                let (lo, hi) = tet_min_max_dihedral(&t.map(|v| m.vertices[v as usize]));
+                assert!(lo >= FLOOR[0] && hi <= FLOOR[1], "{lo} {hi}");
+            }
+        }
+        let mut again = before.clone();
+        assert_eq!(coarsen(&mut again), done);
+        assert_eq!(again, m);
+    }
+
+    fn key(m: &TetMesh, t: &[u32; 4]) -> [[u64; 3]; 4] {
+        let mut c = t.map(|v| m.vertices[v as usize].to_array().map(f64::to_bits));
+        c.sort_unstable();
+        c
+    }
+
+    /// Three tets around the edge `ab`, `(v, w, a, b)`, `(v, a, b, c)` and `(w, a, b, c)`:
+    /// `c` is linked to both `v` and `w` but not to the edge `vw`, and `v` onto `w` would
+    /// make `(v, a, b, c)` a second `(w, a, b, c)`; the link condition refuses it. With the
+    /// third tet gone, it holds.
+    #[test]
+    fn the_link_condition_refuses_a_collapse_that_would_double_a_tet() {
+        let p = [DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.0, 0.0, -1.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(-1.0, 1.0, 0.0), DVec3::new(-1.0, -1.0, 0.0)];
+        let [a, b, v, w, c] = [0u32, 1, 2, 3, 4];
+        let tets = vec![[v, w, a, b], [v, a, b, c], [w, a, b, c]];
+        let mesh = TetMesh { vertices: p.to_vec(), region_tags: vec![RegionId(1); tets.len()], tets, ..TetMesh::default() };
+        let coll = Collapser::new(&mesh);
+        let mut nbrs = Vec::new();
+        coll.neighbours(&mesh, v, &mut nbrs);
+        assert!(!coll.link_condition(&mesh, v, w, &nbrs, &mut Scratch::default()));
+        let two = TetMesh { tets: mesh.tets[..2].to_vec(), region_tags: vec![RegionId(1); 2], ..mesh.clone() };
+        let coll = Collapser::new(&two);
+        coll.neighbours(&two, v, &mut nbrs);
+        assert!(coll.link_condition(&two, v, w, &nbrs, &mut Scratch::default()));
+    }
+}
