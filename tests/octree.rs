@@ -197,9 +197,8 @@ fn graded_sphere_has_a_third_of_the_tets() {
 /// Graded mode on real parts at diagonal / 100, CAD and scanned, thick and thin-walled: the
 /// same boundary triangles and volume as the uniform mesh at the same cell, with at most a
 /// third of its tets; every tet coarsening made within [15°, 160°] and the whole mesh within
-/// the paper's bounds. Measured (c1): fandisk 0.137, part 0.168, Angled 0.224, linkrods
-/// 0.266, Zylkopf 0.221, Duck 0.092 (the octree alone: 0.392, 0.505, 0.613, 0.695, 0.617,
-/// 0.292).
+/// the paper's bounds. Measured: fandisk 0.123, part 0.142, Angled 0.202, linkrods 0.243,
+/// Zylkopf 0.198, Duck 0.081 (the octree alone: 0.392, 0.505, 0.613, 0.695, 0.617, 0.292).
 #[test]
 #[ignore = "heavy: run in release with --include-ignored"]
 fn graded_has_a_third_of_the_uniform_tets_on_real_parts() {
