@@ -290,6 +290,30 @@ fn graded_from_the_command_line_and_a_job_file() {
     let o = run(&["run".as_ref(), job.as_os_str()]);
     assert!(o.status.success(), "{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(dir.path().join("j.msh").is_file());
+    // without coarsening: the octree's cells only, more tets
+    let o = run(&["mesh".as_ref(), flange.as_os_str(), "-o".as_ref(), out.as_os_str(), "--method".as_ref(), "octree".as_ref(), "--octree-grading".as_ref(), "graded".as_ref(), "--octree-coarsen".as_ref(), "off".as_ref(), "--size".as_ref(), "2".as_ref()]);
+    let off = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && !off.contains("  coarsened "), "{off}");
+    let off_tets: usize = off.lines().find_map(|l| l.strip_prefix("tets ")).and_then(|t| t.trim().parse().ok()).unwrap_or_else(|| panic!("{off}"));
+    assert_eq!(off_tets, tets + fewer);
+    // and only there
+    let o = run(&["mesh".as_ref(), flange.as_os_str(), "-o".as_ref(), out.as_os_str(), "--method".as_ref(), "octree".as_ref(), "--octree-coarsen".as_ref(), "off".as_ref()]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    // `coarsen` in a job file: accepted with a graded octree, refused otherwise at its line
+    for (grading, ok) in [("graded", true), ("uniform", false)] {
+        std::fs::write(
+            &job,
+            format!("[input]\nfile = {:?}\n[density]\nsize = 2\n[mesh]\nmethod = \"octree\"\ngrading = \"{grading}\"\ncoarsen = false\n[[output]]\nfile = {:?}\n", flange, dir.path().join("j.msh")),
+        )
+        .unwrap();
+        let o = run(&["run".as_ref(), job.as_os_str()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.success(), ok, "{grading}: {err}");
+        if !ok {
+            assert!(o.status.code() == Some(1) || o.status.code() == Some(2), "{err}");
+            assert!(err.contains("key `coarsen`") && err.contains(":8:"), "{err}");
+        }
+    }
 }
 
 /// A CAD assembly (18 solids): each solid meshed on its own, its own region, the contacts

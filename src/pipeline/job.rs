@@ -130,6 +130,9 @@ pub struct MeshSection {
     /// The octree's grading (`method = "octree"` only): `"uniform"` (default) or `"graded"`
     /// (the same boundary triangles, coarser inside: octree cells, then vertex collapses).
     pub grading: Option<Spanned<crate::mesh3d::octree::Grading>>,
+    /// Graded octree only: collapse interior vertices after the octree (default `true`;
+    /// `false`: the octree's cells only).
+    pub coarsen: Option<Spanned<bool>>,
     /// See [`MeshOptions::max_radius_edge`] (at least 1.1; default 1.5).
     pub max_radius_edge: Option<Spanned<f64>>,
     /// See [`MeshOptions::min_dihedral`] (0 to 35; default 18).
@@ -276,6 +279,11 @@ impl JobFile {
                 return Err(self.error_at(g.span().start, "key `grading`: only for method = \"octree\"".into()));
             }
         }
+        if let Some(c) = &m.coarsen {
+            if self.method() != Method::Octree || self.octree_options().grading != crate::mesh3d::octree::Grading::Graded {
+                return Err(self.error_at(c.span().start, "key `coarsen`: only for method = \"octree\" with grading = \"graded\"".into()));
+            }
+        }
         if let Some(r) = &m.max_radius_edge {
             if !(r.get_ref().is_finite() && *r.get_ref() >= 1.1) {
                 return Err(self.error_at(r.span().start, format!("key `max_radius_edge`: {} is below 1.1: no tetrahedral mesh reaches it", r.get_ref())));
@@ -339,7 +347,8 @@ impl JobFile {
     /// The octree mesher's options.
     pub fn octree_options(&self) -> crate::mesh3d::octree::OctreeOptions {
         let grading = self.job.mesh.grading.as_ref().map_or_else(Default::default, |g| *g.get_ref());
-        crate::mesh3d::octree::OctreeOptions { grading, ..Default::default() }
+        let coarsen = self.job.mesh.coarsen.as_ref().is_none_or(|c| *c.get_ref());
+        crate::mesh3d::octree::OctreeOptions { grading, coarsen, ..Default::default() }
     }
 
     /// [`MeshOptions`] of the `[mesh]` section.
