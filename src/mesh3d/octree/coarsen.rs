@@ -62,7 +62,8 @@ pub struct Coarsened {
     pub vertices: usize,
     /// Tets removed.
     pub tets: usize,
-    /// Passes made.
+    /// Passes made: those over the whole mesh, and before them, where the mesh was cut into
+    /// slabs, in each round of slabs those of the slab that made the most.
     pub passes: usize,
 }
 
@@ -126,8 +127,9 @@ fn fixed_vertices(mesh: &TetMesh) -> Vec<bool> {
 /// does not depend on the threads): each slab's tets, those whose four vertices lie in it,
 /// coarsened on their own in parallel, where a vertex of a tet across two slabs (its star
 /// is not all there) neither moves nor is collapsed onto; the results put back in slab order,
-/// then the tets across slabs. Returns what was done and the vertices to try again on the
-/// whole mesh: those of the tets at such a vertex.
+/// then the tets across slabs. Only the vertices `stale_in` are tried. Returns what was done
+/// and the vertices to try again (in the shifted slabs, then on the whole mesh): those of
+/// `stale_in` on a tet at such a vertex.
 fn coarsen_slabs(mesh: &mut TetMesh, fixed: &[bool], slabs: usize, shift: f64, stale_in: &[bool]) -> (Coarsened, Vec<bool>) {
     let (lo, hi) = mesh.vertices.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), &p| (a.min(p), b.max(p)));
     let extent = hi - lo;
