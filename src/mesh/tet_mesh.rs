@@ -54,6 +54,46 @@ pub struct TetFace {
 }
 
 impl TetMesh {
+    /// Drops the vertices no tet uses, keeping the order of the rest, and renumbers the tets
+    /// and the boundary triangles; returns how many went (as
+    /// [`TriSurface::remove_unused_vertices`](crate::mesh::TriSurface::remove_unused_vertices)).
+    ///
+    /// ```
+    /// use fepre::mesh::TetMesh;
+    /// use glam::DVec3;
+    /// let vertices = vec![DVec3::X, DVec3::splat(9.0), DVec3::ZERO, DVec3::Y, DVec3::Z];
+    /// let mut m = TetMesh { vertices, tets: vec![[2, 0, 3, 4]], boundary: vec![[2, 3, 0]], ..TetMesh::default() };
+    /// assert_eq!(m.remove_unused_vertices(), 1);
+    /// assert_eq!((m.tets[0], m.boundary[0], m.vertices.len()), ([1, 0, 2, 3], [1, 2, 0], 4));
+    /// ```
+    pub fn remove_unused_vertices(&mut self) -> usize {
+        let mut used = vec![false; self.vertices.len()];
+        for &v in self.tets.iter().flatten() {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+        let mut id = vec![u32::MAX; self.vertices.len()];
+        let mut next = 0;
+        for (i, &u) in used.iter().enumerate() {
+            if u {
+                id[i] = next as u32;
+                self.vertices[next] = self.vertices[i];
+                next += 1;
+            }
+        }
+        let removed = self.vertices.len() - next;
+        self.vertices.truncate(next);
+        let renumber = |v: u32| id.get(v as usize).copied().unwrap_or(u32::MAX);
+        for tet in &mut self.tets {
+            *tet = tet.map(renumber);
+        }
+        for tri in &mut self.boundary {
+            *tri = tri.map(renumber);
+        }
+        removed
+    }
+
     /// Checks the invariants: array lengths, finite coordinates, indices, positive orientation
     /// of every tet (exact), at most two tets per face and from opposite sides, and every
     /// boundary triangle a face of some tet.

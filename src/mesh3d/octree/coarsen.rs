@@ -67,6 +67,15 @@ pub struct Coarsened {
     pub passes: usize,
 }
 
+impl std::ops::AddAssign for Coarsened {
+    /// What two stages did, one after the other.
+    fn add_assign(&mut self, o: Coarsened) {
+        self.vertices += o.vertices;
+        self.tets += o.tets;
+        self.passes += o.passes;
+    }
+}
+
 /// Vertices per slab, about, where the mesh is cut into slabs coarsened in parallel.
 pub const SLAB_VERTICES: usize = 40_000;
 
@@ -87,18 +96,13 @@ fn coarsen_with(mesh: &mut TetMesh, slab_vertices: usize) -> Coarsened {
         for shift in [0.0, 0.5] {
             let d;
             (d, stale) = coarsen_slabs(mesh, &fixed, slabs, shift, &stale);
-            done.vertices += d.vertices;
-            done.tets += d.tets;
-            done.passes += d.passes;
+            done += d;
         }
     }
     // the whole mesh: what the slabs left (all of it, for one slab)
-    let whole = run(mesh, &fixed, &vec![false; n], stale);
-    done.vertices += whole.vertices;
-    done.tets += whole.tets;
-    done.passes += whole.passes;
+    done += run(mesh, &fixed, &vec![false; n], stale);
     if done.vertices > 0 {
-        compact(mesh);
+        mesh.remove_unused_vertices();
     }
     done
 }
@@ -255,30 +259,6 @@ fn run(mesh: &mut TetMesh, fixed: &[bool], no_target: &[bool], mut stale: Vec<bo
     done
 }
 
-/// Drops the vertices no tet uses, keeping the order of the rest.
-fn compact(mesh: &mut TetMesh) {
-    let mut used = vec![false; mesh.vertices.len()];
-    for tet in &mesh.tets {
-        for &v in tet {
-            used[v as usize] = true;
-        }
-    }
-    let mut id = vec![u32::MAX; mesh.vertices.len()];
-    let mut vertices = Vec::with_capacity(mesh.vertices.len());
-    for (v, p) in mesh.vertices.iter().enumerate() {
-        if used[v] {
-            id[v] = vertices.len() as u32;
-            vertices.push(*p);
-        }
-    }
-    mesh.vertices = vertices;
-    for tet in &mut mesh.tets {
-        *tet = tet.map(|v| id[v as usize]);
-    }
-    for tri in &mut mesh.boundary {
-        *tri = tri.map(|v| id[v as usize]);
-    }
-}
 /// The three vertices of `tet` but `v` (one of its four).
 fn opposite(tet: [u32; 4], v: u32) -> [u32; 3] {
     let k = tet.iter().position(|&x| x == v).unwrap_or(3);
