@@ -2,7 +2,7 @@
 //! surfaces, materials, sections and steps. Indices are 0-based; deck writers add one.
 
 use super::element::ElementKind;
-use super::step::Step;
+use super::step::{Bc, Load, Step};
 use crate::core::RegionId;
 use glam::DVec3;
 use serde::Serialize;
@@ -225,7 +225,40 @@ impl FeModel {
         }
         self.check_ties()?;
         for step in &self.steps {
-            step.check_names(self)?;
+            self.check_step(step)?;
+        }
+        Ok(())
+    }
+
+    /// Checks that every set and surface `step` names is defined in this model.
+    fn check_step(&self, step: &Step) -> Result<(), FeModelError> {
+        let node_set = |s: &String| if self.node_sets.contains_key(s) { Ok(()) } else { Err(FeModelError::Name(format!("step {}: node set {s} is not defined", step.name))) };
+        let surface = |s: &String| if self.surfaces.contains_key(s) { Ok(()) } else { Err(FeModelError::Name(format!("step {}: surface {s} is not defined", step.name))) };
+        for bc in &step.bcs {
+            match bc {
+                Bc::Fixed { nodes, dofs } => {
+                    node_set(nodes)?;
+                    if dofs.is_empty() || dofs.iter().any(|d| !(1..=3).contains(d)) {
+                        return Err(FeModelError::Name(format!("step {}: fixed dofs {dofs:?} on {nodes} (1 to 3)", step.name)));
+                    }
+                }
+                Bc::Displacement { nodes, .. } | Bc::Temperature { nodes, .. } => node_set(nodes)?,
+            }
+        }
+        for load in &step.loads {
+            match load {
+                Load::Nodal { forces, .. } => {
+                    if let Some(&(v, _)) = forces.iter().find(|(v, _)| *v as usize >= self.nodes.len()) {
+                        return Err(FeModelError::Node { what: format!("step {}: a nodal force", step.name), node: v, nodes: self.nodes.len() });
+                    }
+                }
+                Load::Pressure { surface: s, .. } | Load::HeatFlux { surface: s, .. } | Load::Film { surface: s, .. } => surface(s)?,
+                Load::Gravity { elements, .. } => {
+                    if !self.element_sets.contains_key(elements) {
+                        return Err(FeModelError::Name(format!("step {}: element set {elements} is not defined", step.name)));
+                    }
+                }
+            }
         }
         Ok(())
     }

@@ -6,6 +6,7 @@
 
 use super::model::FeModel;
 use super::step::{Analysis, Bc, Load, Step};
+use crate::core::ids::NONE;
 use crate::core::union_find::UnionFind;
 use glam::DVec3;
 
@@ -42,11 +43,11 @@ pub fn free_pieces(m: &FeModel, step: &Step) -> Vec<FreePiece> {
             }
         }
     }
-    let mut piece_of = vec![u32::MAX; nn];
+    let mut piece_of = vec![NONE; nn];
     let mut pieces: Vec<(usize, u32)> = Vec::new(); // (elements, first node)
     for e in 0..m.element_count() {
         let r = uf.find(m.element(e)[0]) as usize;
-        if piece_of[r] == u32::MAX {
+        if piece_of[r] == NONE {
             piece_of[r] = pieces.len() as u32;
             pieces.push((0, m.element(e)[0]));
         }

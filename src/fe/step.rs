@@ -1,7 +1,6 @@
 //! Analysis steps and what they hold: boundary conditions and loads, on the model's named
 //! node sets, element sets and surfaces.
 
-use super::model::{FeModel, FeModelError};
 use glam::DVec3;
 use serde::Serialize;
 
@@ -105,39 +104,4 @@ pub struct Step {
     pub bcs: Vec<Bc>,
     /// Loads.
     pub loads: Vec<Load>,
-}
-
-impl Step {
-    /// Checks that every set and surface the step names is defined in `m`.
-    pub(crate) fn check_names(&self, m: &FeModel) -> Result<(), FeModelError> {
-        let node_set = |s: &String| if m.node_sets.contains_key(s) { Ok(()) } else { Err(FeModelError::Name(format!("step {}: node set {s} is not defined", self.name))) };
-        let surface = |s: &String| if m.surfaces.contains_key(s) { Ok(()) } else { Err(FeModelError::Name(format!("step {}: surface {s} is not defined", self.name))) };
-        for bc in &self.bcs {
-            match bc {
-                Bc::Fixed { nodes, dofs } => {
-                    node_set(nodes)?;
-                    if dofs.is_empty() || dofs.iter().any(|d| !(1..=3).contains(d)) {
-                        return Err(FeModelError::Name(format!("step {}: fixed dofs {dofs:?} on {nodes} (1 to 3)", self.name)));
-                    }
-                }
-                Bc::Displacement { nodes, .. } | Bc::Temperature { nodes, .. } => node_set(nodes)?,
-            }
-        }
-        for load in &self.loads {
-            match load {
-                Load::Nodal { forces, .. } => {
-                    if let Some(&(v, _)) = forces.iter().find(|(v, _)| *v as usize >= m.nodes.len()) {
-                        return Err(FeModelError::Node { what: format!("step {}: a nodal force", self.name), node: v, nodes: m.nodes.len() });
-                    }
-                }
-                Load::Pressure { surface: s, .. } | Load::HeatFlux { surface: s, .. } | Load::Film { surface: s, .. } => surface(s)?,
-                Load::Gravity { elements, .. } => {
-                    if !m.element_sets.contains_key(elements) {
-                        return Err(FeModelError::Name(format!("step {}: element set {elements} is not defined", self.name)));
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
 }

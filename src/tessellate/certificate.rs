@@ -206,7 +206,7 @@ pub struct Certificate {
     pub open_solids: Vec<crate::cad::brep::Hole>,
     /// Closed shells the file oriented inside out (an outer shell enclosing negative volume, a
     /// void positive), turned before this certificate was made ([`super::orient`]).
-    pub reoriented: Vec<super::orient::Reoriented>,
+    pub reoriented: Vec<Reoriented>,
     /// Time spent, seconds.
     pub seconds: f64,
 }
@@ -220,6 +220,19 @@ impl Certificate {
         let any_solid = self.shells.iter().any(|x| x.solid);
         self.closed && self.manifold && self.oriented && self.open_solids.is_empty() && self.shells.iter().filter(|x| x.solid || !any_solid).all(|x| x.brep_closed)
     }
+}
+
+/// A shell group turned ([`super::orient::turn_inside_out_shells`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Reoriented {
+    /// Its B-rep shells (STEP `#id`s).
+    pub brep_shells: Vec<EntityRef>,
+    /// A void of a solid (it should enclose negative volume).
+    pub void: bool,
+    /// Its faces.
+    pub faces: usize,
+    /// The volume its triangles enclosed as the file oriented them, mm³.
+    pub volume_as_written: f64,
 }
 
 /// Faces joined by shared (non-degenerate) edges: the group index of every face.
@@ -276,7 +289,7 @@ fn face_curvature(model: &Model, f: usize, uv: &[[DVec2; 3]]) -> f64 {
     if !(lo.is_finite() && hi.is_finite()) {
         return 0.0;
     }
-    super::face_mesh::surface_scales(model.surface(model.faces[f].surface), lo, hi).2
+    super::surface_scales::surface_scales(model.surface(model.faces[f].surface), lo, hi).2
 }
 
 /// Checks `t`, the tessellation of `model` (see the module docs).

@@ -29,6 +29,7 @@
 //! parts: points in the tip made more slivers there, not fewer).
 
 use super::edge_points::EdgePoints;
+use super::edge_strip::EdgeStrip;
 use crate::cad::brep::{Coedge, Model};
 use crate::core::SizeField;
 use glam::DVec3;
@@ -73,19 +74,6 @@ const REACH: f64 = 0.45;
 /// 2, 3, 4 and 8 gave the same meshes of the Pawl, t20_data and wing_fuselage, 16 left the
 /// Pawl's corners out.
 const OPENS: f64 = 4.0;
-
-/// What the strips ask of one edge.
-#[derive(Clone, Debug, Default)]
-pub struct EdgeStrip {
-    /// Curve parameters of the strips' points on the edge.
-    pub params: Vec<f64>,
-    /// Parameter intervals the strips cover (from a corner, or from where a strip enters the
-    /// edge, to its last point on it): the size spaces only the rest.
-    pub covered: Vec<(f64, f64)>,
-    /// Of those, the tips: from a corner to the strip's first point, where only the chord's
-    /// points go.
-    pub tips: Vec<(f64, f64)>,
-}
 
 /// The strips of a model: per edge, what they ask of it, and the sizes at their points for
 /// the size field.

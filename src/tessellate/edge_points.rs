@@ -1,7 +1,7 @@
 //! Discretisation of B-rep edges: each edge once, shared by the faces that use it.
 
 use crate::cad::brep::{Edge, Model};
-use super::corner_strips::EdgeStrip;
+use super::edge_strip::EdgeStrip;
 use crate::core::SizeField;
 use glam::DVec3;
 

@@ -5,43 +5,20 @@
 
 use super::TessellateOptions;
 use super::edge_points::EdgePoints;
+use super::face_error::FaceError;
 use super::improve::Point;
 use super::face_vertices::FaceVertices;
+use super::surface_scales::surface_bends;
+use super::uv_cdt::{V, constraint_parity};
 use super::uv_loops::uv_loops;
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
 use crate::core::cdt;
+use crate::core::ids::NONE;
 use crate::core::{FaceId, SizeField};
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use spade::handles::FixedVertexHandle;
-use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
-
-/// A vertex of the parameter-domain triangulation.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct V {
-    /// Position in scaled `(u, v)`.
-    pub(super) p: Point2<f64>,
-    /// Global vertex index, or `None` for an interior point not yet lifted.
-    pub(super) id: Option<u32>,
-    /// Position in `(u, v)`.
-    pub(super) uv: DVec2,
-    /// The point in 3D.
-    pub(super) p3: DVec3,
-}
-
-/// A point spade's refinement inserts: lifted by [`super::sizing::lift_new`] once refinement is done.
-impl From<Point2<f64>> for V {
-    fn from(p: Point2<f64>) -> V {
-        V { p, id: None, uv: DVec2::NAN, p3: DVec3::NAN }
-    }
-}
-
-impl HasPosition for V {
-    type Scalar = f64;
-    fn position(&self) -> Point2<f64> {
-        self.p
-    }
-}
+use spade::{ConstrainedDelaunayTriangulation, Triangulation};
 
 /// Even-odd test of `p` against all loops.
 fn inside(loops: &[Vec<DVec2>], p: DVec2) -> bool {
@@ -61,46 +38,6 @@ fn inside(loops: &[Vec<DVec2>], p: DVec2) -> bool {
     odd
 }
 
-/// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` and the largest normal curvature-like term, over a
-/// sample grid of the box `lo..hi`.
-pub(super) fn surface_scales(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, f64) {
-    let (su, sv, [ku, kv]) = surface_bends(surf, lo, hi);
-    (su, sv, ku.max(kv))
-}
-
-/// Mean speeds `|∂S/∂u|`, `|∂S/∂v|` and the largest normal curvature-like terms along each
-/// scaled parameter, over a sample grid of the box `lo..hi`: `[max(k_uu, k_uv), max(k_vv,
-/// k_uv)]` (a cylinder bends along `u` only: its `v` term is zero).
-pub(super) fn surface_bends(surf: &Surface, lo: DVec2, hi: DVec2) -> (f64, f64, [f64; 2]) {
-    let n = 6;
-    let (mut su, mut sv, mut cnt) = (0.0, 0.0, 0.0);
-    let mut samples = Vec::new();
-    for i in 0..=n {
-        for j in 0..=n {
-            let u = lo.x + (hi.x - lo.x) * i as f64 / n as f64;
-            let v = lo.y + (hi.y - lo.y) * j as f64 / n as f64;
-            let d = surf.derivs(u, v);
-            su += d.du.length();
-            sv += d.dv.length();
-            cnt += 1.0;
-            samples.push(d);
-        }
-    }
-    let (su, sv) = ((su / cnt).max(1e-300), (sv / cnt).max(1e-300));
-    // second derivatives against the scaled parameters, normal part only (tangential parts
-    // do not bend the surface)
-    let (mut ku, mut kv): (f64, f64) = (0.0, 0.0);
-    for d in &samples {
-        let Some(nrm) = d.normal() else { continue };
-        let kuu = d.duu.dot(nrm).abs() / (su * su);
-        let kvv = d.dvv.dot(nrm).abs() / (sv * sv);
-        let kuv = d.duv.dot(nrm).abs() / (su * sv);
-        ku = ku.max(kuu).max(kuv);
-        kv = kv.max(kvv).max(kuv);
-    }
-    (su, sv, [ku, kv])
-}
-
 /// One face's triangulation: 3D triangles and the same triangles in the face's parameter
 /// domain, with the boundary segments, for quadrature over the exact surface
 /// ([`super::quadrature`]).
@@ -116,38 +53,6 @@ pub struct FaceMesh {
     /// Boundary segments of the parameter-domain triangulation: `(a, b)` global vertex
     /// indices and their `(u, v)`, directed with the face on the left in `(u, v)`.
     pub boundary: Vec<([u32; 2], [DVec2; 2])>,
-}
-
-/// Why a face could not be meshed.
-#[derive(Clone, Debug, PartialEq)]
-pub enum FaceError {
-    /// Boundary segments cross or touch in parameter space: those segments, as the global
-    /// vertex ids of their ends (the tessellator splits the edge segments among them and
-    /// meshes again).
-    Crossing(Vec<[u32; 2]>),
-    /// Any other reason, in words.
-    Other(String),
-}
-
-impl From<String> for FaceError {
-    fn from(s: String) -> FaceError {
-        FaceError::Other(s)
-    }
-}
-
-impl From<&str> for FaceError {
-    fn from(s: &str) -> FaceError {
-        FaceError::Other(s.to_string())
-    }
-}
-
-impl std::fmt::Display for FaceError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            FaceError::Crossing(segs) => write!(f, "boundary segments cross in parameter space ({} segments)", segs.len()),
-            FaceError::Other(s) => f.write_str(s),
-        }
-    }
 }
 
 /// The triangles of one face, with global vertex indices (new interior vertices appended to
@@ -166,7 +71,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
         hi = hi.max(*p);
     }
     if !(lo.is_finite() && hi.is_finite()) {
-        return Err("parameters of the boundary are not finite".into());
+        return Err(FaceError::NonFiniteParameters);
     }
     let (su, sv, [ku, kv]) = surface_bends(surf, lo, hi);
     // interior grid steps: from the largest bend, or on a cylinder without a size field along
@@ -203,7 +108,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
     for (l, sl) in loops.iter().zip(&scaled) {
         let mut hs = Vec::with_capacity(l.len());
         for ((uv, id), s) in l.iter().zip(sl) {
-            let h = cdt::insert(&mut tri, *s, |p| V { p, id: Some(*id), uv: *uv, p3: vertices[*id as usize] }).map_err(|e| format!("cannot insert a boundary point: {e}"))?;
+            let h = cdt::insert(&mut tri, *s, |p| V { p, id: Some(*id), uv: *uv, p3: vertices[*id as usize] }).map_err(|e| FaceError::Insert { point: "boundary point", reason: e.to_string() })?;
             hs.push(h);
         }
         handles.push(hs);
@@ -241,7 +146,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
                     // splits constraints through inserted points) or make slivers
                     if inside(&scaled, s) && clear.far(s, 0.3 * cell.min_element()) {
                         let uv = DVec2::new(s.x / su, s.y / sv);
-                        cdt::insert(&mut tri, s, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| format!("cannot insert an interior point: {e}"))?;
+                        cdt::insert(&mut tri, s, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| FaceError::Insert { point: "interior point", reason: e.to_string() })?;
                     }
                 }
             }
@@ -289,7 +194,7 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
     // lift: boundary points have their global index, the others get one
     let ids: Vec<u32> = pts.iter().zip(&removed).map(|(p, &gone)| match p.id {
         Some(id) => id,
-        None if gone => u32::MAX,
+        None if gone => NONE,
         None => vertices.push(p.p3),
     }).collect();
     let mut out = FaceMesh::default();
@@ -302,69 +207,26 @@ pub fn mesh_face(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max
         if a == b || b == cc || a == cc {
             // a triangle collapsed in 3D (along a pole line): zero area, but part of the domain
             out.uv.push(uv);
-            out.triangles.push([u32::MAX; 3]);
+            out.triangles.push([NONE; 3]);
             continue;
         }
         out.uv.push(uv);
         out.triangles.push(if face.same_sense { [a, b, cc] } else { [a, cc, b] });
     }
     // collapsed triangles: kept in the domain for quadrature only
-    let keep: Vec<bool> = out.triangles.iter().map(|t| t[0] != u32::MAX).collect();
+    let keep: Vec<bool> = out.triangles.iter().map(|t| t[0] != NONE).collect();
     let domain_only: Vec<[DVec2; 3]> = out.uv.iter().zip(&keep).filter(|(_, k)| !**k).map(|(u, _)| *u).collect();
     let mut k = 0;
-    out.triangles.retain(|t| t[0] != u32::MAX);
+    out.triangles.retain(|t| t[0] != NONE);
     out.uv.retain(|_| {
         k += 1;
         keep[k - 1]
     });
     out.uv.extend(domain_only);
     if out.triangles.is_empty() {
-        return Err("no triangle inside the face's loops".into());
+        return Err(FaceError::NoTriangle);
     }
     Ok(out)
-}
-
-/// Per face index (outer face included): true when an odd number of constraint edges
-/// separates it from the outer face. A 0-1 breadth-first search over face adjacency.
-pub(super) fn constraint_parity(cdt: &ConstrainedDelaunayTriangulation<V>) -> Vec<bool> {
-    let n = cdt.num_all_faces();
-    let mut depth = vec![usize::MAX; n];
-    let mut queue = std::collections::VecDeque::new();
-    let outer = cdt.outer_face().fix().index();
-    depth[outer] = 0;
-    // the outer face has no adjacent_edges list of three: seed from the convex hull
-    for e in cdt.convex_hull() {
-        for f in [e.face(), e.rev().face()] {
-            if let Some(inner) = f.as_inner() {
-                let d = usize::from(e.is_constraint_edge());
-                let k = inner.fix().index();
-                if d < depth[k] {
-                    depth[k] = d;
-                    if d == 0 { queue.push_front(k) } else { queue.push_back(k) }
-                }
-            }
-        }
-    }
-    let faces: Vec<_> = cdt.inner_faces().collect();
-    let mut by_index = vec![None; n];
-    for (k, f) in faces.iter().enumerate() {
-        by_index[f.fix().index()] = Some(k);
-    }
-    while let Some(k) = queue.pop_front() {
-        let Some(fi) = by_index[k] else { continue };
-        let f = faces[fi];
-        for e in f.adjacent_edges() {
-            let Some(nb) = e.rev().face().as_inner() else { continue };
-            let j = nb.fix().index();
-            let step = usize::from(e.is_constraint_edge());
-            let d = depth[k] + step;
-            if d < depth[j] {
-                depth[j] = d;
-                if step == 0 { queue.push_front(j) } else { queue.push_back(j) }
-            }
-        }
-    }
-    depth.into_iter().map(|d| d != usize::MAX && d % 2 == 1).collect()
 }
 
 /// Boundary segments bucketed on the interior grid's cells, for the distance test of grid

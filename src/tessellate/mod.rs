@@ -31,6 +31,8 @@ pub mod corner_strips;
 mod brep_topology;
 mod crossings;
 pub mod edge_points;
+pub mod edge_strip;
+pub mod face_error;
 pub mod face_mesh;
 mod face_vertices;
 mod flat_ears;
@@ -43,7 +45,10 @@ pub mod reached;
 mod improve;
 mod refine;
 mod sizing;
+mod surface_scales;
+mod uv_cdt;
 mod uv_loops;
+mod uv_polygon;
 mod volume_chord;
 
 #[cfg(test)]
@@ -228,7 +233,7 @@ fn tessellate_chords(model: &Model, opts: &TessellateOptions, size: Option<&dyn 
         }
     }
     let max_straight = (8.0 * tol * model_size).sqrt() / 4.0;
-    let discretise = |size: Option<&dyn SizeField>, strips: &[corner_strips::EdgeStrip], vertices: &mut Vec<DVec3>| -> Vec<EdgePoints> {
+    let discretise = |size: Option<&dyn SizeField>, strips: &[edge_strip::EdgeStrip], vertices: &mut Vec<DVec3>| -> Vec<EdgePoints> {
         model
             .edges
             .iter()
@@ -315,7 +320,7 @@ fn split_digons(model: &Model, edges: &mut [EdgePoints], vertices: &mut Vec<DVec
 /// edge points) its own ids were counted after.
 #[derive(Clone)]
 struct FaceResult {
-    mesh: Result<face_mesh::FaceMesh, face_mesh::FaceError>,
+    mesh: Result<face_mesh::FaceMesh, face_error::FaceError>,
     own: Vec<DVec3>,
     shared: usize,
 }
@@ -405,7 +410,7 @@ fn mesh_faces(
                 out.domains.push(Some(FaceDomain { triangles: start..out.triangles.len(), uv: fm.uv, boundary: fm.boundary }));
             }
             Err(why) => {
-                if let face_mesh::FaceError::Crossing(segs) = &why {
+                if let face_error::FaceError::Crossing(segs) = &why {
                     for &[a, b] in segs {
                         let (a, b) = (id(a), id(b));
                         if let Some(&(e, k)) = segment.get(&(a.min(b), a.max(b))) {

@@ -8,22 +8,8 @@
 //! group whose triangles do not close is left as it is (its certificate fails anyway).
 
 use super::Tessellation;
-use super::certificate::{Certificate, face_groups};
-use crate::cad::brep::{EntityRef, Model};
-use serde::Serialize;
-
-/// A shell group turned.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Reoriented {
-    /// Its B-rep shells (STEP `#id`s).
-    pub brep_shells: Vec<EntityRef>,
-    /// A void of a solid (it should enclose negative volume).
-    pub void: bool,
-    /// Its faces.
-    pub faces: usize,
-    /// The volume its triangles enclosed as the file oriented them, mm³.
-    pub volume_as_written: f64,
-}
+use super::certificate::{Certificate, Reoriented, face_groups};
+use crate::cad::brep::Model;
 
 /// The shell groups of `c` that close and enclose volume of the wrong sign; turns them in
 /// `model` and `t` (`c` must be the certificate of `t`). Returns what was turned.

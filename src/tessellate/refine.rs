@@ -6,7 +6,8 @@
 //! segment, so the edges shared with other faces keep their points.
 
 use super::TessellateOptions;
-use super::face_mesh::{V, constraint_parity};
+use super::face_error::FaceError;
+use super::uv_cdt::{V, constraint_parity};
 use crate::cad::geom::Surface;
 use glam::{DVec2, DVec3};
 use crate::core::cdt;
@@ -60,7 +61,7 @@ pub(super) fn deviation(surf: &Surface, p: [DVec3; 3], uv: [DVec2; 3], free_edge
 /// interior grid follows the largest curvature of the face's box, this follows the surface
 /// where the grid is too coarse (speeds varying over the face, grids capped at
 /// `max_grid`) and removes long triangles across curved directions.
-pub(super) fn refine(tri: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surface, tol: f64, opts: &TessellateOptions) -> Result<(), String> {
+pub(super) fn refine(tri: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surface, tol: f64, opts: &TessellateOptions) -> Result<(), FaceError> {
     let cos_max = (2.0 * opts.max_angle_deg).to_radians().cos();
     let mut added = 0;
     for _ in 0..REFINE_ROUNDS {
@@ -90,7 +91,7 @@ pub(super) fn refine(tri: &mut ConstrainedDelaunayTriangulation<V>, surf: &Surfa
         }
         added += new_points.len();
         for (c, uv) in new_points {
-            cdt::insert(tri, c, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| format!("cannot insert a refinement point: {e}"))?;
+            cdt::insert(tri, c, |p| V { p, id: None, uv, p3: surf.point(uv.x, uv.y) }).map_err(|e| FaceError::Insert { point: "refinement point", reason: e.to_string() })?;
         }
         if added > REFINE_POINTS {
             break;

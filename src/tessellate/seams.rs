@@ -1,7 +1,7 @@
 //! Loop points at seams and poles of a face's parameter domain: seam points put on their
 //! neighbours' side, pole points recognised and opened (split out of `face_mesh.rs`).
 
-use super::uv_loops::UvLoop;
+use super::uv_polygon::UvLoop;
 use crate::cad::geom::Surface;
 use glam::DVec2;
 
@@ -108,7 +108,7 @@ pub(super) fn unwrap_through_poles(surf: &Surface, pts: &mut UvLoop, per: f64, f
                 pt.0.x += shift;
             }
             let poly: Vec<DVec2> = open_poles(surf, c).iter().map(|p| p.0).collect();
-            super::uv_loops::signed_area(&poly)
+            super::uv_polygon::signed_area(&poly)
         };
         // a polygon that retraces itself sums to rounding: a millionth of the period's strip
         let (v_lo, v_hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.0.y), hi.max(p.0.y)));

@@ -2,7 +2,7 @@
 //! along the edge, as Gmsh spaces its 1D meshes), and faces refined until their triangles are
 //! of the local size and well shaped. What a volume mesher wants as its boundary.
 
-use super::face_mesh::{V, constraint_parity};
+use super::uv_cdt::{V, constraint_parity};
 use crate::cad::geom::Surface;
 use crate::core::SizeField;
 use glam::{DVec2, DVec3};

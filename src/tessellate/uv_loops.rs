@@ -5,17 +5,15 @@
 //! gives.
 
 use super::edge_points::EdgePoints;
-use super::face_mesh::surface_scales;
+use super::face_error::FaceError;
+use super::surface_scales::surface_scales;
 use super::face_vertices::FaceVertices;
 use super::seams::{is_pole, open_poles, seam_sides, unwrap_through_poles};
 use crate::cad::brep::Model;
 use crate::cad::geom::Surface;
 use crate::core::{FaceId, SizeField};
+use super::uv_polygon::{UvLoop, signed_area};
 use glam::DVec2;
-
-/// A loop in parameter space: `(u, v)` and global vertex index per point (not repeated at
-/// the end).
-pub(super) type UvLoop = Vec<(DVec2, u32)>;
 
 /// A loop in `(u, v)` and, when it goes once around a surface periodic in `u` (closed edges
 /// without a seam), the `u` shift from its start to its end.
@@ -27,7 +25,7 @@ struct Mapped {
 }
 
 /// The loops of face `fid` in `(u, v)`.
-fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVertices) -> Result<Vec<Mapped>, String> {
+fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVertices) -> Result<Vec<Mapped>, FaceError> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let dom = surf.domain();
@@ -58,7 +56,7 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
             }
         }
         if pts.len() < 2 {
-            return Err(format!("loop {} has fewer than two points", lp.source));
+            return Err(FaceError::LoopTooShort { edge_loop: lp.source });
         }
         // a surface closed but not periodic (a B-spline whose first and last rows of control
         // points coincide): seam points have two parameters, and inversion returns either
@@ -76,7 +74,7 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
                 let n = pts.len();
                 if (0..n).any(|i| (pts[(i + 1) % n].0[axis] - pts[i].0[axis]).abs() > 0.5 * len) {
                     let name = if axis == 0 { "u" } else { "v" };
-                    return Err(format!("loop {} goes once around a closed B-spline surface in {name} (across its seam): not supported yet", lp.source));
+                    return Err(FaceError::AcrossSeam { edge_loop: lp.source, direction: name });
                 }
             }
         }
@@ -123,7 +121,7 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
             let gap = end - pts[0].0;
             let wraps = |g: f64, per: Option<f64>| per.is_some_and(|p| (g.abs() - p).abs() < 0.25 * p);
             if wraps(gap.y, dom.v_period) {
-                return Err(format!("loop {} goes once around the surface in v: not supported yet", lp.source));
+                return Err(FaceError::AroundInV { edge_loop: lp.source });
             }
             if wraps(gap.x, dom.u_period) {
                 wrap = Some(gap.x.signum() * dom.u_period.unwrap_or(0.0));
@@ -139,11 +137,11 @@ fn map_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], vertices: &FaceVe
 /// (poles) a single vertex, so the mesh closes on itself.
 /// `shift` moves its corner: its seam where no loop of the face crosses it (zero for a face
 /// without loops).
-fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, shift: DVec2, vertices: &mut FaceVertices) -> Result<UvLoop, String> {
+fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, shift: DVec2, vertices: &mut FaceVertices) -> Result<UvLoop, FaceError> {
     let surf = model.surface(model.face(fid).surface);
     let dom = surf.domain();
     if !(dom.u.is_bounded() && dom.v.is_bounded()) {
-        return Err("a face without edge loops on an unbounded surface".into());
+        return Err(FaceError::UnboundedWithoutLoops);
     }
     let (lo, hi) = (DVec2::new(dom.u.min, dom.v.min) + shift, DVec2::new(dom.u.max, dom.v.max) + shift);
     let (su, sv, k) = surface_scales(surf, lo, hi);
@@ -206,7 +204,7 @@ fn domain_rectangle(model: &Model, fid: FaceId, tol: f64, shift: DVec2, vertices
 /// # Errors
 /// When the loops cover every `u` (or every `v` on a torus), so that no place for the seam
 /// avoids them.
-fn enclosing_rectangle(model: &Model, fid: FaceId, plain: &mut [Mapped], tol: f64, vertices: &mut FaceVertices) -> Result<Option<UvLoop>, String> {
+fn enclosing_rectangle(model: &Model, fid: FaceId, plain: &mut [Mapped], tol: f64, vertices: &mut FaceVertices) -> Result<Option<UvLoop>, FaceError> {
     let surf = model.surface(model.face(fid).surface);
     let dom = surf.domain();
     let Some(u_period) = dom.u_period else { return Ok(None) };
@@ -231,7 +229,7 @@ fn enclosing_rectangle(model: &Model, fid: FaceId, plain: &mut [Mapped], tol: f6
         let spans: Vec<(f64, f64)> = plain.iter().map(|m| span(m, axis)).collect();
         let Some(seam) = free_parameter(&spans, period) else {
             let name = if axis == 0 { "u" } else { "v" };
-            return Err(format!("the face's loops are all holes and cover every {name} of its closed surface: not supported yet"));
+            return Err(FaceError::HolesCoverClosed { direction: name });
         };
         start[axis] = seam;
         for (m, &(lo, _)) in plain.iter_mut().zip(&spans) {
@@ -307,11 +305,6 @@ fn iso_points(surf: &Surface, a: DVec2, b: DVec2, tol: f64, max_straight: f64, s
     ts[1..ts.len() - 1].iter().map(|&t| at(t)).collect()
 }
 
-/// Signed area of a polygon (positive counter-clockwise).
-pub(super) fn signed_area(p: &[DVec2]) -> f64 {
-    let n = p.len();
-    (0..n).map(|i| p[i].perp_dot(p[(i + 1) % n])).sum::<f64>() / 2.0
-}
 
 /// Closed polygons in `(u, v)` for the face: loops as they are, and loops that go around a
 /// periodic surface joined into one polygon by a cut between them (two such loops: a band
@@ -319,7 +312,7 @@ pub(super) fn signed_area(p: &[DVec2]) -> f64 {
 /// its apex, a spherical cap). The cut runs between existing boundary vertices, so no vertex
 /// is added on an edge and the surface stays watertight.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut FaceVertices) -> Result<Vec<UvLoop>, String> {
+pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f64, max_straight: f64, size: Option<&dyn SizeField>, vertices: &mut FaceVertices) -> Result<Vec<UvLoop>, FaceError> {
     let face = model.face(fid);
     let surf = model.surface(face.surface);
     let dom = surf.domain();
@@ -442,7 +435,7 @@ pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f6
                 }
             }
             let Some((vp, pole)) = chosen else {
-                return Err("a loop goes once around a periodic surface that has no pole on the face's side: not supported yet".into());
+                return Err(FaceError::NoPoleOnSide);
             };
             // the pole vertex: an existing vertex there, else a new one
             let pid = match model.vertices.iter().position(|v| (v.point - pole).length() <= 1e-9 * (1.0 + pole.length())) {
@@ -469,7 +462,7 @@ pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f6
             poly.extend(cut.iter().rev().copied());
             loops.push(poly);
         }
-        n => return Err(format!("{n} loops go around a periodic surface: not supported yet")),
+        n => return Err(FaceError::ManyAround { loops: n }),
     }
     let outer_mean = loops.first().map(|l| l.iter().fold(DVec2::ZERO, |s, (p, _)| s + *p) / l.len() as f64);
     for m in plain {

@@ -10,15 +10,19 @@
 
 mod append;
 mod edge_flags;
+mod entity_ref;
 mod face_table;
 mod model;
 mod sew;
+mod sew_report;
 mod summary;
 mod validate;
 
-pub use model::{Coedge, Dropped, Edge, EntityRef, Face, Loop, Model, Shell, Solid, Units, Vertex};
+pub use entity_ref::EntityRef;
+pub use model::{Coedge, Dropped, Edge, Face, Loop, Model, Shell, Solid, Units, Vertex};
 pub use edge_flags::DEGENERATE_RELATIVE;
 pub use face_table::{FaceEntry, face_table_of_names};
-pub use sew::{EdgeSplit, Hole, SEW_RELATIVE, SewReport};
+pub use sew::SEW_RELATIVE;
+pub use sew_report::{EdgeSplit, Hole, SewReport};
 pub use summary::Summary;
 pub use validate::VERTEX_ON_CURVE_RELATIVE;

@@ -1,21 +1,10 @@
 //! The arena types of the B-rep.
 
+use super::entity_ref::EntityRef;
 use crate::cad::geom::{Curve, Interval, Surface};
 use crate::core::FaceId;
 use glam::DVec3;
 use serde::Serialize;
-use std::fmt;
-
-/// The STEP instance an item came from (`#id`), for messages and reports.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
-#[serde(transparent)]
-pub struct EntityRef(pub u64);
-
-impl fmt::Display for EntityRef {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "#{}", self.0)
-    }
-}
 
 /// A point of the model.
 #[derive(Clone, Debug)]
@@ -182,7 +171,7 @@ pub struct Model {
     pub notes: Vec<String>,
     /// What sewing did to the open shells of a surface model ([`Model::sew`]); `None` when
     /// the model has no open shell.
-    pub sewing: Option<super::sew::SewReport>,
+    pub sewing: Option<super::sew_report::SewReport>,
 }
 
 impl Model {

@@ -14,7 +14,7 @@ pub struct Summary {
     /// Shells bounding no solid (a surface model's).
     pub surface_model_shells: usize,
     /// What sewing the open shells did, if the model has any.
-    pub sewing: Option<super::sew::SewReport>,
+    pub sewing: Option<super::sew_report::SewReport>,
     /// Faces.
     pub faces: usize,
     /// Edges.

@@ -4,6 +4,8 @@
 //! algorithms A2.1–A2.3: the non-zero basis functions of one span and their first two
 //! derivatives are computed together in O(p²).
 
+use super::spline_error::SplineError;
+
 /// Largest degree accepted (OpenCASCADE's limit too).
 pub const MAX_DEGREE: usize = 25;
 
@@ -11,17 +13,17 @@ const M: usize = MAX_DEGREE + 1;
 
 /// Checks control points (finite) and their weights (as many, positive, finite); returns the
 /// weights to keep: `None` when there are none or all are equal (the spline is polynomial).
-pub fn check_points_weights(points: &[glam::DVec3], weights: Option<Vec<f64>>) -> Result<Option<Vec<f64>>, String> {
+pub fn check_points_weights(points: &[glam::DVec3], weights: Option<Vec<f64>>) -> Result<Option<Vec<f64>>, SplineError> {
     if let Some(w) = &weights {
         if w.len() != points.len() {
-            return Err(format!("{} weights for {} control points", w.len(), points.len()));
+            return Err(SplineError::WeightCount { weights: w.len(), points: points.len() });
         }
-        if let Some(x) = w.iter().find(|&&x| !(x > 0.0 && x.is_finite())) {
-            return Err(format!("weight {x} is not positive"));
+        if let Some(index) = w.iter().position(|&x| !(x > 0.0 && x.is_finite())) {
+            return Err(SplineError::Weight { index, weight: w[index] });
         }
     }
-    if points.iter().any(|p| !p.is_finite()) {
-        return Err("a control point is not finite".into());
+    if let Some(index) = points.iter().position(|p| !p.is_finite()) {
+        return Err(SplineError::PointNotFinite { index });
     }
     Ok(weights.filter(|w| w.iter().any(|&x| x != w[0])))
 }
@@ -29,47 +31,43 @@ pub fn check_points_weights(points: &[glam::DVec3], weights: Option<Vec<f64>>) -
 /// Checks a knot vector (with repeated knots written out) for `n` control points of degree
 /// `degree`: length `n + degree + 1`, finite, non-decreasing, no knot repeated more than
 /// `degree + 1` times, and a non-empty domain `[knots[degree], knots[n]]`.
-pub fn check_knots(degree: usize, knots: &[f64], n: usize) -> Result<(), String> {
+pub fn check_knots(degree: usize, knots: &[f64], n: usize) -> Result<(), SplineError> {
     if degree == 0 || degree > MAX_DEGREE {
-        return Err(format!("degree {degree} is outside 1..={MAX_DEGREE}"));
+        return Err(SplineError::Degree { degree });
     }
     if n < degree + 1 {
-        return Err(format!("{n} control points are too few for degree {degree} (at least {})", degree + 1));
+        return Err(SplineError::TooFewPoints { points: n, degree });
     }
     if knots.len() != n + degree + 1 {
-        return Err(format!(
-            "{} knots (with multiplicities) for {n} control points of degree {degree}; expected {}",
-            knots.len(),
-            n + degree + 1
-        ));
+        return Err(SplineError::KnotCount { knots: knots.len(), points: n, degree });
     }
-    if let Some(k) = knots.iter().find(|k| !k.is_finite()) {
-        return Err(format!("knot {k} is not finite"));
+    if let Some(index) = knots.iter().position(|k| !k.is_finite()) {
+        return Err(SplineError::KnotNotFinite { index, knot: knots[index] });
     }
     let mut run = 1;
     for i in 1..knots.len() {
         if knots[i] < knots[i - 1] {
-            return Err(format!("knots decrease at index {i} ({} after {})", knots[i], knots[i - 1]));
+            return Err(SplineError::KnotsDecrease { index: i, knot: knots[i], previous: knots[i - 1] });
         }
         run = if knots[i] == knots[i - 1] { run + 1 } else { 1 };
         if run > degree + 1 {
-            return Err(format!("knot {} is repeated more than degree + 1 = {} times", knots[i], degree + 1));
+            return Err(SplineError::KnotRepeated { index: i, knot: knots[i], degree });
         }
     }
     if !(knots[degree] < knots[n]) {
-        return Err("the knot vector's domain is empty".into());
+        return Err(SplineError::EmptyDomain);
     }
     Ok(())
 }
 
 /// Expands knot values and multiplicities (STEP's form) into the full knot vector.
-pub fn expand_knots(values: &[f64], multiplicities: &[i64]) -> Result<Vec<f64>, String> {
+pub fn expand_knots(values: &[f64], multiplicities: &[i64]) -> Result<Vec<f64>, SplineError> {
     if values.len() != multiplicities.len() {
-        return Err(format!("{} knot values but {} multiplicities", values.len(), multiplicities.len()));
+        return Err(SplineError::MultiplicityCount { values: values.len(), multiplicities: multiplicities.len() });
     }
     let total: i64 = multiplicities.iter().map(|&m| m.max(0)).sum();
     if multiplicities.iter().any(|&m| m < 1) || total > 10_000_000 {
-        return Err("knot multiplicities must be positive (and not absurdly large)".into());
+        return Err(SplineError::Multiplicities { index: multiplicities.iter().position(|&m| m < 1) });
     }
     let mut out = Vec::with_capacity(total as usize);
     for (&k, &m) in values.iter().zip(multiplicities) {
@@ -248,12 +246,19 @@ mod tests {
     #[test]
     fn knot_checks() {
         assert!(check_knots(2, &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], 3).is_ok());
-        assert!(check_knots(2, &[0.0, 0.0, 1.0, 0.5, 1.0, 1.0], 3).unwrap_err().contains("decrease"));
-        assert!(check_knots(2, &[0.0, 0.0, 0.0, 1.0, 1.0], 3).unwrap_err().contains("expected 6"));
-        assert!(check_knots(0, &[0.0, 1.0], 1).is_err());
-        assert!(check_knots(1, &[0.0, 0.0, 0.0, 0.0], 2).unwrap_err().contains("repeated"));
+        let decrease = check_knots(2, &[0.0, 0.0, 1.0, 0.5, 1.0, 1.0], 3).unwrap_err();
+        assert_eq!(decrease, SplineError::KnotsDecrease { index: 3, knot: 0.5, previous: 1.0 });
+        assert_eq!(decrease.to_string(), "knots decrease at index 3 (0.5 after 1)");
+        let count = check_knots(2, &[0.0, 0.0, 0.0, 1.0, 1.0], 3).unwrap_err();
+        assert_eq!(count, SplineError::KnotCount { knots: 5, points: 3, degree: 2 });
+        assert!(count.to_string().contains("expected 6"));
+        assert_eq!(check_knots(0, &[0.0, 1.0], 1), Err(SplineError::Degree { degree: 0 }));
+        assert_eq!(check_knots(0, &[0.0, 1.0], 1).unwrap_err().to_string(), "degree 0 is outside 1..=25");
+        let repeated = check_knots(1, &[0.0, 0.0, 0.0, 0.0], 2).unwrap_err();
+        assert!(matches!(repeated, SplineError::KnotRepeated { index: 2, degree: 1, .. }));
+        assert!(repeated.to_string().contains("repeated"));
         assert_eq!(expand_knots(&[0.0, 1.0], &[2, 2]).unwrap(), vec![0.0, 0.0, 1.0, 1.0]);
-        assert!(expand_knots(&[0.0], &[0]).is_err());
+        assert_eq!(expand_knots(&[0.0], &[0]), Err(SplineError::Multiplicities { index: Some(0) }));
         assert_eq!(span_count(&[0.0, 0.0, 0.5, 1.0, 1.0], 1, 3), 2);
     }
 }

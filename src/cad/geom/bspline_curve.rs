@@ -2,6 +2,7 @@
 //! instance with `RATIONAL_B_SPLINE_CURVE`), evaluated exactly by Cox–de Boor.
 
 use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, check_points_weights, find_span, span_count};
+use super::spline_error::SplineError;
 use super::derivs::CurveDerivs;
 use super::domain::{CurveDomain, Interval};
 use super::frame::Rigid;
@@ -22,7 +23,7 @@ pub struct BSplineCurve {
 impl BSplineCurve {
     /// A checked B-spline curve. `knots` is the full vector (multiplicities written out);
     /// `weights`, if given, must be positive and as many as the points.
-    pub fn new(degree: usize, knots: Vec<f64>, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<BSplineCurve, String> {
+    pub fn new(degree: usize, knots: Vec<f64>, points: Vec<DVec3>, weights: Option<Vec<f64>>) -> Result<BSplineCurve, SplineError> {
         check_knots(degree, &knots, points.len())?;
         // all weights equal: polynomial
         let weights = check_points_weights(&points, weights)?;
@@ -198,7 +199,7 @@ mod tests {
     #[test]
     fn rejects_bad_data() {
         let p = vec![DVec3::ZERO, DVec3::X];
-        assert!(BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], p.clone(), Some(vec![1.0, 0.0])).unwrap_err().contains("not positive"));
+        assert!(BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], p.clone(), Some(vec![1.0, 0.0])).unwrap_err().to_string().contains("not positive"));
         assert!(BSplineCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], p.clone(), Some(vec![1.0])).is_err());
         assert!(BSplineCurve::new(1, vec![0.0, 1.0, 0.0, 1.0], p, None).is_err());
     }

@@ -2,6 +2,7 @@
 //! complex instance with `RATIONAL_B_SPLINE_SURFACE`), evaluated exactly by Cox–de Boor.
 
 use super::basis::{MAX_DEGREE, basis_derivatives, check_knots, check_points_weights, find_span};
+use super::spline_error::SplineError;
 use super::derivs::SurfaceDerivs;
 use super::domain::{Interval, SurfaceDomain};
 use super::frame::Rigid;
@@ -36,12 +37,12 @@ impl BSplineSurface {
         nv: usize,
         points: Vec<DVec3>,
         weights: Option<Vec<f64>>,
-    ) -> Result<BSplineSurface, String> {
+    ) -> Result<BSplineSurface, SplineError> {
         if nu.checked_mul(nv) != Some(points.len()) {
-            return Err(format!("{} control points do not form a {nu} × {nv} grid", points.len()));
+            return Err(SplineError::Grid { points: points.len(), nu, nv });
         }
-        check_knots(degree_u, &knots_u, nu).map_err(|e| format!("u: {e}"))?;
-        check_knots(degree_v, &knots_v, nv).map_err(|e| format!("v: {e}"))?;
+        check_knots(degree_u, &knots_u, nu).map_err(|e| SplineError::Direction { direction: "u", error: Box::new(e) })?;
+        check_knots(degree_v, &knots_v, nv).map_err(|e| SplineError::Direction { direction: "v", error: Box::new(e) })?;
         // all weights equal: polynomial
         let weights = check_points_weights(&points, weights)?;
         Ok(BSplineSurface { degree: [degree_u, degree_v], knots_u, knots_v, nu, nv, points, weights, samples: OnceLock::new(), dom: OnceLock::new() })

@@ -12,7 +12,7 @@ use super::line::Line;
 use super::newton::{CurveSamples, even_samples, refine_curve, refine_curve_within, span_samples};
 use super::offset_curve::OffsetCurve;
 use super::polyline::Polyline;
-use super::replica::CurveReplica;
+use super::curve_replica::CurveReplica;
 use glam::DVec3;
 use std::fmt;
 

@@ -11,7 +11,7 @@ use super::frame::Rigid;
 use super::newton::{refine_surface, refine_surface_within};
 use super::offset::Offset;
 use super::plane::Plane;
-use super::replica::SurfaceReplica;
+use super::surface_replica::SurfaceReplica;
 use super::revolution::Revolution;
 use super::sphere::Sphere;
 use super::torus::{Torus, TorusPart};

@@ -83,7 +83,7 @@ fn knots_of(k: &[f64]) -> Vec<f64> {
 fn rational(degree: usize, knots: &[f64], hom: &[Vector4]) -> Result<BSplineCurve, String> {
     let points = hom.iter().map(|h| DVec3::new(h.x / h.w, h.y / h.w, h.z / h.w)).collect();
     let weights = hom.iter().map(|h| h.w).collect();
-    BSplineCurve::new(degree, knots_of(knots), points, Some(weights))
+    BSplineCurve::new(degree, knots_of(knots), points, Some(weights)).map_err(|e| e.to_string())
 }
 
 /// Converts a truck curve; `tol` is the distance within which a sampled shape is accepted.
@@ -104,7 +104,7 @@ pub(super) fn curve(c: &truck_modeling::Curve, tol: f64) -> Result<ConvertedCurv
                 return Ok(c);
             }
             let points = b.control_points().iter().map(|p| p3(*p)).collect();
-            let curve = BSplineCurve::new(b.degree(), knots_of(b.knot_vec()), points, None)?;
+            let curve = BSplineCurve::new(b.degree(), knots_of(b.knot_vec()), points, None).map_err(|e| e.to_string())?;
             Ok(ConvertedCurve { curve: Curve::BSpline(curve), range: Interval::new(t0, t1) })
         }
         T::NurbsCurve(n) => {
@@ -154,7 +154,7 @@ pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, 
             let (nu, nv) = (cp.len(), cp.first().map_or(0, Vec::len));
             let points = cp.iter().flatten().map(|p| p3(*p)).collect();
             let (du, dv) = b.degrees();
-            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, None)?))
+            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, None).map_err(|e| e.to_string())?))
         }
         T::NurbsSurface(n) => {
             let (u, v) = n.try_range_tuple();
@@ -168,7 +168,7 @@ pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, 
             let points = cp.iter().flatten().map(|h| DVec3::new(h.x / h.w, h.y / h.w, h.z / h.w)).collect();
             let weights = cp.iter().flatten().map(|h| h.w).collect();
             let (du, dv) = n.degrees();
-            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, Some(weights))?))
+            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, Some(weights)).map_err(|e| e.to_string())?))
         }
     }
 }

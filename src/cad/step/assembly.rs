@@ -239,7 +239,7 @@ impl Converter<'_> {
                     self.surface_model(item)
                 }
                 "MAPPED_ITEM" => self.mapped_item(g, item),
-                k if super::tessellated::is_tessellated(k) => self.tessellated_item(item, units),
+                k if super::read_tessellated::is_tessellated(k) => self.tessellated_item(item, units),
                 "AXIS2_PLACEMENT_3D" | "AXIS2_PLACEMENT_2D" | "AXIS1_PLACEMENT" | "CARTESIAN_POINT" | "DIRECTION" => Ok(()),
                 _ => {
                     self.report(Dropped {

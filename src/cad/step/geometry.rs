@@ -240,10 +240,10 @@ impl Converter<'_> {
         let knots = if off == 1 && e.has("B_SPLINE_CURVE_WITH_KNOTS") {
             let m = base.i64s(6)?;
             let k = base.f64s(7)?;
-            expand_knots(&k, &m).map_err(|w| drop_entity(e, w))?
+            expand_knots(&k, &m).map_err(|w| drop_entity(e, w.to_string()))?
         } else if let Some(r) = e.record("B_SPLINE_CURVE_WITH_KNOTS").filter(|_| off == 0) {
             let a = Args { e, params: &r.params };
-            expand_knots(&a.f64s(1)?, &a.i64s(0)?).map_err(|w| drop_entity(e, w))?
+            expand_knots(&a.f64s(1)?, &a.i64s(0)?).map_err(|w| drop_entity(e, w.to_string()))?
         } else {
             implicit_knots(e, degree, points.len())?
         };
@@ -251,7 +251,7 @@ impl Converter<'_> {
             Some(r) => Some(Args { e, params: &r.params }.f64s(0)?),
             None => None,
         };
-        BSplineCurve::new(degree, knots, points, weights).map_err(|w| drop_entity(e, w))
+        BSplineCurve::new(degree, knots, points, weights).map_err(|w| drop_entity(e, w.to_string()))
     }
 
     /// A surface moved into place, cached per instance; its index in the model.
@@ -433,7 +433,7 @@ impl Converter<'_> {
             }
             None => None,
         };
-        BSplineSurface::new(du as usize, dv as usize, ku, kv, nu, nv, points, weights).map_err(|w| drop_entity(e, w))
+        BSplineSurface::new(du as usize, dv as usize, ku, kv, nu, nv, points, weights).map_err(|w| drop_entity(e, w.to_string()))
     }
 }
 

@@ -33,6 +33,7 @@ pub mod param;
 pub mod parser;
 pub mod table;
 pub mod tessellated;
+mod read_tessellated;
 mod topology;
 pub mod units;
 mod write_geometry;

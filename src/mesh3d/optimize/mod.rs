@@ -82,6 +82,7 @@ mod search;
 mod slide;
 mod smooth;
 mod star;
+mod vertex_slide;
 mod work;
 
 #[cfg(test)]

@@ -14,12 +14,13 @@ use crate::mesh::tet_mesh::{TET_FACES, sorted3};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
 use crate::mesh::{Element, MeshError, TetMesh};
 use crate::mesh3d::optimize::measure::{Judged, Targets};
-use crate::mesh3d::optimize::slide::{Fan, Slide};
+use crate::mesh3d::optimize::vertex_slide::{Fan, Slide};
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// The most tets the working mesh can hold (neighbour codes pack `tet << 2 | face`).
-pub(crate) const MAX_TETS: usize = (u32::MAX >> 2) as usize;
+/// The most tets the working mesh can hold: neighbour codes pack `tet << 2 | face`, and every
+/// code stays below [`NONE`].
+pub(crate) const MAX_TETS: usize = (NONE >> 2) as usize;
 
 /// The working mesh; `'g` is the life of the boundary's geometry, if it has one.
 pub(crate) struct Work<'g> {

@@ -2,8 +2,9 @@
 //! circumcentres inserted with flips around them, each kept only when the smallest angle of
 //! the triangles it changed grows.
 
-use super::{DEAD, FLIP_GAIN, FLIP_SWEEPS, GOOD_DEG, Point, SPLIT_RATIO, Undo, Work};
+use super::{FLIP_GAIN, FLIP_SWEEPS, GOOD_DEG, Point, SPLIT_RATIO, Undo, Work};
 use crate::core::cdt;
+use crate::core::ids::NONE;
 use crate::core::predicates::{Sign, orient2d};
 use glam::DVec2;
 
@@ -34,7 +35,7 @@ impl Work<'_> {
                 break;
             }
             let tri = self.tris[t as usize];
-            if tri == DEAD || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) || self.angle(tri) >= good {
+            if tri == [NONE; 3] || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) || self.angle(tri) >= good {
                 continue;
             }
             if add(self, t, tri) {

@@ -26,6 +26,7 @@ use super::refine::deviation;
 use crate::cad::geom::Surface;
 use crate::core::SizeField;
 use crate::core::cdt;
+use crate::core::ids::NONE;
 use crate::core::predicates::{Sign, orient2d};
 use glam::{DVec2, DVec3};
 use rustc_hash::FxHashSet;
@@ -62,8 +63,6 @@ const FLIP_GAIN: f64 = 1e-9;
 /// The least gain of a move in the shape measure: about 0.01° at 30° (smoothing creeps
 /// otherwise).
 const MOVE_GAIN: f64 = 1e-4;
-/// A removed triangle.
-const DEAD: [u32; 3] = [u32::MAX; 3];
 
 /// What the caller gets back: which points are still used.
 pub(super) struct Improved {
@@ -95,12 +94,13 @@ pub(super) fn improve(pts: &mut Vec<Point>, tris: &mut Vec<[u32; 3]>, boundary: 
         }
     }
     let removed = w.removed;
-    tris.retain(|t| *t != DEAD);
+    tris.retain(|t| *t != [NONE; 3]);
     Improved { removed }
 }
 
 struct Work<'a> {
     pts: &'a mut Vec<Point>,
+    /// The triangles; a removed one is `[NONE; 3]`.
     tris: &'a mut Vec<[u32; 3]>,
     /// Per point, the live triangles that use it.
     star: Vec<Vec<u32>>,
@@ -228,7 +228,7 @@ impl<'a> Work<'a> {
     fn touch(&mut self, ts: &[u32]) {
         for &t in ts {
             let tri = self.tris[t as usize];
-            if tri != DEAD {
+            if tri != [NONE; 3] {
                 for i in tri {
                     self.dirty[i as usize] = true;
                 }
@@ -362,7 +362,7 @@ impl<'a> Work<'a> {
             for i in tri {
                 self.star[i as usize].retain(|&x| x != t);
             }
-            self.tris[t as usize] = DEAD;
+            self.tris[t as usize] = [NONE; 3];
         }
         for (t, nt) in changed {
             self.tris[t as usize] = nt;
@@ -380,7 +380,7 @@ impl<'a> Work<'a> {
         for t in 0..self.tris.len() as u32 {
             for i in 0..3 {
                 let tri = self.tris[t as usize];
-                if tri == DEAD || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) {
+                if tri == [NONE; 3] || !self.real(tri) || !tri.iter().any(|&v| self.active[v as usize]) {
                     break;
                 }
                 if self.try_flip(t, tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]) {
