@@ -8,7 +8,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use fepre::cad::step;
-use fepre::core::size_field::UniformSize;
+use fepre::core::UniformSize;
 use fepre::tessellate::{TessellateOptions, tessellate, tessellate_sized};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -67,7 +67,7 @@ fn build_parts(c: &mut Criterion) {
     g.bench_function("build_bracket", |b| b.iter(|| fepre::cad::parts::Bracket::default().build().expect("default bracket")));
     g.bench_function("write_step_flange", |b| {
         let m = fepre::cad::parts::Flange::default().build().expect("default flange");
-        b.iter(|| step::writer::to_string(black_box(&m), "flange").expect("writable").len())
+        b.iter(|| step::to_string(black_box(&m), "flange").expect("writable").len())
     });
     g.finish();
 }

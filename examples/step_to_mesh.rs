@@ -3,8 +3,8 @@
 //!
 //! `cargo run --release --example step_to_mesh -- cad_fixtures/bracket.step target/bracket.msh`
 
-use fepre::attributes::density::FaceSize;
-use fepre::attributes::values::Positive;
+use fepre::attributes::FaceSize;
+use fepre::attributes::Positive;
 use fepre::attributes::{Density, Selector};
 use fepre::pipeline::run::{Plan, run_plan};
 use fepre::pipeline::{Part, PipelineError};

@@ -8,7 +8,7 @@ mod common;
 use common::corpus_file;
 use fepre::attributes::Density;
 use fepre::cad::brep::Model;
-use fepre::core::size_field::UniformSize;
+use fepre::core::UniformSize;
 use fepre::core::{FaceId, RegionId};
 use fepre::io::{MeshData, ReadOptions, read};
 use fepre::mesh::{TetMesh, TriSurface};

@@ -10,12 +10,12 @@
 mod common;
 
 use common::tools::{python_with, require};
-use fepre::attributes::values::Positive;
+use fepre::attributes::Positive;
 use fepre::attributes::{Density, Selector};
 use fepre::core::{FaceId, RegionId};
-use fepre::deck::nastran::{NastranOptions, NastranSummary, write_nastran};
-use fepre::fe::element::face_corners_outward;
-use fepre::fe::loads::consistent_forces;
+use fepre::deck::{NastranOptions, NastranSummary, write_nastran};
+use fepre::fe::face_corners_outward;
+use fepre::fe::consistent_forces;
 use fepre::fe::{Analysis, Bc, BoundaryGeometry, BrepGeometry, ElementKind, FeModel, Load, Material, Section, Step, build_model};
 use fepre::mesh::TetMesh;
 use fepre::pipeline::Part;

@@ -2,11 +2,11 @@
 //! tets, and curvature sizing puts the asked number of segments per radian on circular edges
 //! while the surface stays within the asked chord.
 
-use fepre::attributes::density::{DistanceSize, Fraction};
-use fepre::attributes::values::{NonNegative, Positive};
+use fepre::attributes::{DistanceSize, Fraction};
+use fepre::attributes::{NonNegative, Positive};
 use fepre::attributes::{Density, Selector};
 use fepre::cad::geom::Curve;
-use fepre::cad::parts::bracket::Bracket;
+use fepre::cad::parts::Bracket;
 use fepre::mesh3d::mesher::MeshOptions;
 use fepre::pipeline::Part;
 use fepre::pipeline::run::Plan;

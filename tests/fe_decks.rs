@@ -14,7 +14,7 @@ use common::tools;
 use fepre::cad::parts::Block;
 use fepre::pipeline::job::JobFile;
 use fepre::pipeline::run::carry_out;
-use fepre::quality::tetrahedron::tet_measures;
+use fepre::quality::tet_measures;
 use glam::DVec3;
 use std::path::Path;
 use std::process::Command;

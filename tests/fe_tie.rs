@@ -92,7 +92,7 @@ fn touching_blocks_meshed_differently_get_one_tie_slave_the_finer_side() {
     for s in [&t.slave, &t.master] {
         for f in &fe.surfaces[s] {
             let el = fe.element(f.element as usize);
-            for k in fepre::fe::element::ABAQUS_FACES[f.face as usize] {
+            for k in fepre::fe::ABAQUS_FACES[f.face as usize] {
                 assert!((fe.nodes[el[k] as usize].x - HALF).abs() < 1e-9, "{s}: a face off the contact plane");
             }
         }
@@ -103,7 +103,7 @@ fn touching_blocks_meshed_differently_get_one_tie_slave_the_finer_side() {
     assert_eq!(ties.len(), 1, "{ties:?}");
     assert!(ties[0].starts_with(&format!("*TIE, NAME={}, POSITION TOLERANCE=", t.name)), "{}", ties[0]);
     let at = deck.find("*TIE").unwrap();
-    assert!(deck.contains(&format!("*TIE, NAME={}, POSITION TOLERANCE={}\n{}, {}\n", t.name, fepre::deck::inp::num(t.tolerance), t.slave, t.master)));
+    assert!(deck.contains(&format!("*TIE, NAME={}, POSITION TOLERANCE={}\n{}, {}\n", t.name, fepre::deck::inp_number(t.tolerance), t.slave, t.master)));
     assert!(deck.rfind("*SURFACE").unwrap() < at && at < deck.find("*STEP").unwrap());
 }
 

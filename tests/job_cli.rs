@@ -2,7 +2,7 @@
 //! its line and write nothing, `--check` lists what selectors select, and the output does not
 //! depend on the thread count.
 
-use fepre::attributes::selector::point_triangle_distance;
+use fepre::core::point_triangle_distance;
 use fepre::io::{MeshData, ReadOptions, read};
 use fepre::mesh::TetMesh;
 use glam::DVec3;

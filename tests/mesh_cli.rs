@@ -85,7 +85,7 @@ fn meshes_the_bundled_step_bracket_the_readme_runs() {
     let fepre::io::MeshData::Volume(m) = loaded.mesh else { panic!("not a tet mesh") };
     assert_eq!(m.validate(), Ok(()));
     // the analytic volume of the default bracket, to the tessellation's chord
-    let analytic = fepre::cad::parts::bracket::Bracket::default().volume();
+    let analytic = fepre::cad::parts::Bracket::default().volume();
     assert!((m.volume() - analytic).abs() < 0.005 * analytic, "volume {} vs {analytic}", m.volume());
     let model = fepre::cad::step::read(std::path::Path::new("cad_fixtures/bracket.step")).unwrap();
     let tags: std::collections::BTreeSet<u32> = m.face_tags.iter().map(|t| t.0).collect();

@@ -8,7 +8,7 @@ mod common;
 use common::tools::{require, run_ok, tetgen};
 use common::{corpus_file, in_ci, shared_data, shared_dir};
 use fepre::core::FaceId;
-use fepre::core::size_field::UniformSize;
+use fepre::core::UniformSize;
 use fepre::io::{MeshData, ReadOptions, WriteOptions, read, write};
 use fepre::mesh::{TetMesh, TriSurface};
 use fepre::mesh3d::mesher::{MeshOptions, RegionSeed, Seeds, mesh_surface};

@@ -31,7 +31,7 @@ fn mesh_at(name: &str, div: Option<f64>, grading: Grading) -> Option<(f64, fepre
     let path = common::corpus_file(name)?;
     let mut part = Part::open(&path).unwrap();
     let mut density = fepre::attributes::Density::default();
-    density.size = div.and_then(|div| fepre::attributes::values::Positive::new(part.diagonal() / div));
+    density.size = div.and_then(|div| fepre::attributes::Positive::new(part.diagonal() / div));
     let octree = OctreeOptions { grading, ..OctreeOptions::default() };
     let plan = Plan { unit: 1.0, density, method: Method::Octree, octree, ..Plan::default() };
     let report = run_plan(&mut part, &plan, false).unwrap();
@@ -220,7 +220,7 @@ fn boundary_at(name: &str, div: f64, grading: Grading) -> Option<(Vec<[[u64; 3];
     let path = common::corpus_file(name)?;
     let mut part = Part::open(&path).unwrap();
     let mut density = fepre::attributes::Density::default();
-    density.size = fepre::attributes::values::Positive::new(part.diagonal() / div);
+    density.size = fepre::attributes::Positive::new(part.diagonal() / div);
     let octree = OctreeOptions { grading, ..OctreeOptions::default() };
     let plan = Plan { unit: 1.0, density, method: Method::Octree, octree, ..Plan::default() };
     let report = run_plan(&mut part, &plan, false).unwrap();
@@ -330,7 +330,7 @@ fn assembly_meshes_solid_by_solid() {
     // at a quarter of that resolution the thinner solids are left out, named
     let mut part = Part::open(&path).unwrap();
     let mut density = fepre::attributes::Density::default();
-    density.size = fepre::attributes::values::Positive::new(part.diagonal() / 25.0);
+    density.size = fepre::attributes::Positive::new(part.diagonal() / 25.0);
     let plan = Plan { unit: 1.0, density, method: Method::Octree, ..Plan::default() };
     let report = run_plan(&mut part, &plan, false).unwrap();
     let o = report.octree.unwrap();

@@ -463,7 +463,7 @@ fn replicas_and_offset_curves_survive_our_writer() {
     let cases = [("scaled_replica", scaled_replica_file(), HALF_DISC, ["CURVE_REPLICA(", "SURFACE_REPLICA("]), ("offset_curve_3d", offset, offset_exact, ["OFFSET_CURVE_3D(", "OFFSET_CURVE_3D("])];
     for (name, text, exact, entities) in cases {
         let model = fepre::cad::step::read_bytes(std::path::Path::new(name), text.as_bytes()).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let written = fepre::cad::step::writer::to_string(&model, name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let written = fepre::cad::step::to_string(&model, name).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(entities.iter().all(|e| written.contains(e)), "{name}: {entities:?} not written");
         assert!(!entities[0].contains("REPLICA") || written.contains("CARTESIAN_TRANSFORMATION_OPERATOR_3D('','','',"), "{name}: no operator");
         agrees_with_exact("step_entities_rewritten", &format!("{name}_rewritten"), &written, exact);

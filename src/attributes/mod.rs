@@ -1,14 +1,15 @@
 //! Layer 5: attributes attached to CAD faces through selectors. Today: selectors
-//! ([`selector`]) evaluated on a part's face catalogue ([`catalogue`]), and density
-//! ([`density`]), the one size field from CAD face to tet. Boundary conditions, loads and
+//! (`selector`) evaluated on a part's face catalogue (`catalogue`), and density
+//! (`density`), the one size field from CAD face to tet. Boundary conditions, loads and
 //! materials will join them.
 
-pub mod catalogue;
-pub mod density;
-pub mod selector;
+pub(crate) mod catalogue;
+pub(crate) mod density;
+pub(crate) mod selector;
 mod source_tree;
-pub mod values;
+pub(crate) mod values;
 
 pub use catalogue::{FaceCatalogue, FaceInfo, FaceShape};
-pub use density::{Density, DensityError, DensityField};
-pub use selector::{SelectError, Selection, Selector};
+pub use density::{BoxSize, DEFAULT_GRADING, Density, DensityError, DensityField, DistanceSize, FaceSize, Fraction, Grading, PointSize, RegionSizes};
+pub use selector::{Colour, CylinderSelector, Extreme, PlaneSelector, SelectError, Selection, Selector, SolidRef, glob};
+pub use values::{BoxSpec, Direction, NonNegative, Positive};

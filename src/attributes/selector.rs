@@ -21,7 +21,7 @@ use crate::core::FaceId;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
-pub use crate::core::closest::{closest_point_on_triangle, point_triangle_distance};
+pub(crate) use crate::core::closest::point_triangle_distance;
 
 /// One way of choosing faces.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

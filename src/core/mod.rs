@@ -2,20 +2,20 @@
 //! relative to the model's size, the [`SizeField`] trait and the [`BoundaryGeometry`] trait.
 //! Nothing here knows about meshes or files.
 
-pub mod aabb;
-pub mod array_map;
-pub mod boundary_geometry;
-pub mod bucket_sort;
-pub mod bvh;
-pub mod closest;
+pub(crate) mod aabb;
+pub(crate) mod array_map;
+pub(crate) mod boundary_geometry;
+pub(crate) mod bucket_sort;
+pub(crate) mod bvh;
+pub(crate) mod closest;
 pub(crate) mod cdt;
-pub mod ids;
-pub mod intersection;
+pub(crate) mod ids;
+pub(crate) mod intersection;
 pub mod predicates;
-pub mod size_field;
-pub mod spatial_order;
-pub mod tag_names;
-pub mod tolerance;
+pub(crate) mod size_field;
+pub(crate) mod spatial_order;
+pub(crate) mod tag_names;
+pub(crate) mod tolerance;
 pub(crate) mod union_find;
 
 pub use aabb::Aabb;
@@ -25,3 +25,6 @@ pub use predicates::Sign;
 pub use size_field::SizeField;
 pub use tag_names::{FaceNames, RegionNames, TagNames};
 pub use tolerance::Tolerance;
+pub use intersection::{SegmentCrossing, segment_crosses_triangle, segment_meets_triangle, segments_meet_2d, triangles_meet};
+pub use closest::{closest_point_on_triangle, point_triangle_distance};
+pub use size_field::UniformSize;

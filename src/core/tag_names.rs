@@ -93,7 +93,7 @@ impl<T: Copy + Ord> TagNames<T> {
 
     /// The names to write for `tags`, unique: each tag (sorted, once) gets `name(tag, its
     /// name here)`, where the writer cleans the name for its format and picks a fallback for
-    /// tags without one (`None`: the tag is written unnamed); then [`make_unique`] in tag
+    /// tags without one (`None`: the tag is written unnamed); then `make_unique` in tag
     /// order. Clean before, not after: cleaning can make two names equal.
     pub fn unique(&self, tags: impl IntoIterator<Item = T>, name: impl Fn(T, Option<&str>) -> Option<String>) -> BTreeMap<T, String> {
         let mut tags: Vec<T> = tags.into_iter().collect();

@@ -26,7 +26,7 @@
 //! are not written. Fixed dofs (and displacements of 0) merge; a dof both held at 0 and
 //! displaced, or displaced by two values, is an error.
 
-pub mod field;
+pub(crate) mod field;
 
 mod plan;
 

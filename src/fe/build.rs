@@ -53,7 +53,7 @@ pub struct Built {
 impl Built {
     /// Adds to the model an element-face surface of CAD face `face`: its element faces on
     /// the outer boundary ([`Built::outer_faces`]), named after `base` (upper case, valid in a
-    /// deck, at most [`MAX_NAME`] characters, made unique without regard to case). Returns the
+    /// deck, at most `MAX_NAME` characters, made unique without regard to case). Returns the
     /// name and the number of element faces, or `None` (and adds nothing) where the face has
     /// no element face on the outer boundary.
     pub fn add_face_surface(&mut self, face: FaceId, base: &str) -> Option<(String, usize)> {

@@ -4,18 +4,19 @@
 //! materials, sections and steps with boundary conditions and loads. The
 //! deck writers (`deck/`) write it; nothing here knows a file format.
 
-pub mod build;
-pub mod element;
-pub mod geometry;
-pub mod jacobian;
-pub mod loads;
-pub mod model;
-pub mod quadratic;
-pub mod restraint;
-pub mod step;
+pub(crate) mod build;
+pub(crate) mod element;
+pub(crate) mod geometry;
+pub(crate) mod jacobian;
+pub(crate) mod loads;
+pub(crate) mod model;
+pub(crate) mod quadratic;
+pub(crate) mod restraint;
+pub(crate) mod step;
 
 pub use build::{Built, GroupSets, build_model};
-pub use element::ElementKind;
+pub use element::{ABAQUS_FACE_MIDS, ABAQUS_FACES, ElementKind, TET_EDGES, face_corners_outward, face_nodes_outward_quadratic};
+pub use loads::{consistent_forces, surface_area};
 pub use geometry::{BoundaryGeometry, BrepGeometry};
 pub use model::{CurvingReport, ElementFace, FeModel, FeModelError, Material, Section, Tie};
 pub use step::{Analysis, Bc, Load, Step};

@@ -164,7 +164,7 @@ impl FeModel {
     }
 
     /// Checks the model: lengths, indices, every element's Jacobian positive at its check
-    /// points ([`super::jacobian`]), sets and surfaces in range, sections naming defined
+    /// points (`super::jacobian`), sets and surfaces in range, sections naming defined
     /// materials and sets, ties between two different, defined, non-empty surfaces with a
     /// positive tolerance and unique names, step items naming defined sets and surfaces, names
     /// valid in Abaqus and Nastran decks.

@@ -21,29 +21,29 @@
 //! fields); [`vtu::write_grid_with_data`] writes FE results (linear or quadratic tets with
 //! point and cell arrays) for ParaView.
 //!
-//! Tags follow [`crate::core::ids`] (0 untagged, made-up tags from 1). Writers that write tag
+//! Tags follow `crate::core::ids` (0 untagged, made-up tags from 1). Writers that write tag
 //! names (MSH physical names, OBJ groups, ASCII STL solids) make them unique first
 //! ([`crate::core::TagNames::unique`]): the first keeps its name, later ones get `.2`, `.3`.
 
-pub mod atomic;
-pub mod common;
-pub mod error;
-pub mod ccx_dat;
+pub(crate) mod atomic;
+pub(crate) mod common;
+pub(crate) mod error;
+pub(crate) mod ccx_dat;
 pub mod frd;
-pub mod gltf;
-pub mod medit;
-pub mod msh;
-pub mod obj;
-pub mod off;
-pub mod polygon;
+pub(crate) mod gltf;
+pub(crate) mod medit;
+pub(crate) mod msh;
+pub(crate) mod obj;
+pub(crate) mod off;
+pub(crate) mod polygon;
 pub(crate) mod point_lines;
-pub mod stl;
-pub mod tetgen;
+pub(crate) mod stl;
+pub(crate) mod tetgen;
 #[cfg(test)]
 pub(crate) mod test_meshes;
-pub mod text;
+pub(crate) mod text;
 pub mod vtu;
-pub mod xyz;
+pub(crate) mod xyz;
 
 pub use error::{IoError, Location};
 

@@ -84,15 +84,6 @@ impl<'a> Tokens<'a> {
         Some(std::str::from_utf8(&self.data[start..self.pos]).unwrap_or("\u{fffd}"))
     }
 
-    /// The next token without consuming it.
-    pub fn peek(&mut self) -> Option<&'a str> {
-        let (pos, line, tl) = (self.pos, self.cursor_line, self.token_line);
-        let t = self.next();
-        self.pos = pos;
-        self.cursor_line = line;
-        self.token_line = tl;
-        t
-    }
 
     /// True if only whitespace and comments remain.
     pub fn at_end(&mut self) -> bool {

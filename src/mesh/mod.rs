@@ -4,15 +4,15 @@
 //! Containers hold flat arrays (`f64` coordinates, `u32` indices) and parallel tag arrays;
 //! adjacency is derived on demand, never stored.
 
-pub mod caps;
-pub mod narrow;
-pub mod error;
-pub mod planar_mesh;
+pub(crate) mod caps;
+pub(crate) mod narrow;
+pub(crate) mod error;
+pub(crate) mod planar_mesh;
 pub mod shapes;
-pub mod tet_mesh;
+pub(crate) mod tet_mesh;
 pub mod topology;
-pub mod tri_surface;
-pub mod weld;
+pub(crate) mod tri_surface;
+pub(crate) mod weld;
 
 pub use error::{Element, MeshError};
 pub use planar_mesh::PlanarMesh;

@@ -13,7 +13,7 @@ use glam::DVec2;
 /// - `quads`: #Q × 4, strictly convex and counter-clockwise; `quad_tags`: #Q region tags.
 /// - `region_names`: names of region tags where known.
 ///
-/// Tags follow [`crate::core::ids`]: 0 is untagged, made-up tags start at 1.
+/// Tags follow `crate::core::ids`: 0 is untagged, made-up tags start at 1.
 ///
 /// A valid mesh is conforming: every edge is shared by at most two elements, which traverse it
 /// in opposite directions.

@@ -23,7 +23,7 @@ pub const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 
 /// - `face_names`, `region_names`: names of tags where known (not necessarily unique: writers
 ///   make them so).
 ///
-/// Tag 0 is untagged; see [`crate::core::ids`] for the convention.
+/// Tag 0 is untagged; see `crate::core::ids` for the convention.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TetMesh {
     /// Vertex positions.

@@ -10,7 +10,7 @@ use glam::DVec3;
 /// - `triangles`: #T × 3 vertex indices; for a closed, outward-oriented surface the vertices
 ///   of every triangle turn counter-clockwise seen from outside.
 /// - `face_tags`: #T tags, the CAD face (or group, primitive, facet marker) of each triangle;
-///   `FaceId(0)` is untagged, made-up tags start at 1 (see [`crate::core::ids`]).
+///   `FaceId(0)` is untagged, made-up tags start at 1 (see `crate::core::ids`).
 /// - `face_names`: names of tags where the source had them (OBJ group names, glTF node/mesh
 ///   names, STEP face names); not necessarily unique, writers make them so.
 ///

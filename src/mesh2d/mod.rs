@@ -3,8 +3,8 @@
 //!
 //! - [`quadtree`]: the lecture's quadtree mesher (Yerry and Shephard's modified quadtree,
 //!   2:1 balanced, templates inside, cut quadrants at the boundary);
-//! - [`face`]: the planar faces of a tagged surface (a CAD part's tessellation) as domains
+//! - `face`: the planar faces of a tagged surface (a CAD part's tessellation) as domains
 //!   in their planes' coordinates, and the way back to 3D.
 
-pub mod face;
+pub(crate) mod face;
 pub mod quadtree;

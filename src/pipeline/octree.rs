@@ -1,6 +1,6 @@
 //! The octree path of a part (isosurface stuffing, [`crate::mesh3d::octree`]): its solids one
 //! by one, each at the cell the size gives or, where the job gives no size, at its own cell
-//! chosen to hold its volume ([`crate::mesh3d::octree::resolve`]).
+//! chosen to hold its volume (`crate::mesh3d::octree::resolve`).
 //!
 //! Stage: the pipeline's volume mesh with `method = "octree"`. Input: the part's certified
 //! surface (or the surface read), the size field, the octree options, and whether to choose
@@ -25,7 +25,7 @@ impl Part {
     /// solids has each meshed on its own (its own winding number, its own region, tag and
     /// name), and the faces where solids touch are listed in [`Part::contacts`]. With
     /// `resolve`, each solid's cell shrinks from `size`'s until its mesh holds its volume
-    /// ([`crate::mesh3d::octree::resolve`]); the tries are in the report.
+    /// (`crate::mesh3d::octree::resolve`); the tries are in the report.
     ///
     /// # Errors
     /// A failed certificate; [`PipelineError::Octree`] (a size too fine for the box, nothing

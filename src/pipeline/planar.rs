@@ -3,7 +3,7 @@
 //! Reads and tessellates the file ([`super::tessellate_file`]: the tessellation's edges on a
 //! face's boundary are the discretised CAD edges), takes the faces whose B-rep surface is a
 //! plane, makes each a domain in its plane's frame (vertices within the tessellation's chord
-//! tolerance of the plane: the file's edge curves on a plane are only that planar) ([`crate::mesh2d::face`]), meshes it with
+//! tolerance of the plane: the file's edge curves on a plane are only that planar) (`crate::mesh2d::face`), meshes it with
 //! [`crate::mesh2d::quadtree`] at a uniform size, checks it, and lifts the meshes back to
 //! one tagged 3D surface (boundary vertices are the tessellation's own, so the faces meet
 //! where they meet in the part). A face that fails is listed with its STEP `#id`; a face

@@ -47,7 +47,7 @@ pub struct MeshSummary {
     /// Tets with a dihedral angle under 1°.
     pub tets_under_1_deg: usize,
     /// Of the tets under 5°, those that touch no input angle under 5° (see
-    /// [`crate::quality::worst_tet::touches_angle_below`]): the ones the input does not explain.
+    /// `crate::quality::worst_tet::touches_angle_below`): the ones the input does not explain.
     pub tets_under_5_deg_unexplained: usize,
     /// Of the tets under 1°, those that touch no input angle under 1°.
     pub tets_under_1_deg_unexplained: usize,
@@ -63,13 +63,13 @@ pub struct MeshSummary {
     pub tets_under_bound_unexplained: usize,
     /// Of the tets under 10° that touch no input angle under 10°, those that lie between the
     /// two sides of one, off its vertex or edge (a thin wedge, a sliver face, a knife edge:
-    /// [`crate::quality::between_sides`]). Counted apart: they are in
+    /// `crate::quality::between_sides`). Counted apart: they are in
     /// `tets_under_10_deg_unexplained` too.
     pub tets_under_10_deg_between_sides: usize,
     /// Likewise of `tets_under_bound_unexplained`.
     pub tets_under_bound_between_sides: usize,
     /// Near-degenerate tets (volume-length ratio under
-    /// [`crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH`]).
+    /// `crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH`).
     pub near_degenerate: usize,
     /// Refinement stopped at its budget before every tet met the radius-edge bound.
     pub refinement_stopped: bool,

@@ -50,7 +50,7 @@ pub struct TetQualityReport {
     /// no dihedral angles in the histogram and count with min 0° / max 180°. Flat slivers of
     /// nearly coplanar points are not counted here: see [`TetQualityReport::near_degenerate`].
     pub degenerate: usize,
-    /// Near-degenerate tets: volume-length ratio below [`NEAR_DEGENERATE_VOLUME_LENGTH`]
+    /// Near-degenerate tets: volume-length ratio below `NEAR_DEGENERATE_VOLUME_LENGTH`
     /// (the exactly degenerate ones included).
     pub near_degenerate: usize,
     /// Smallest dihedral angle of the mesh (degrees).
@@ -71,7 +71,7 @@ pub struct TetQualityReport {
     pub tets_min_dihedral_below_10: usize,
     /// Tets with a dihedral angle below 20°.
     pub tets_min_dihedral_below_20: usize,
-    /// Tets with radius-edge ratio above [`RADIUS_EDGE_SQRT2`] (1.414).
+    /// Tets with radius-edge ratio above `RADIUS_EDGE_SQRT2` (1.414).
     pub tets_radius_edge_over_sqrt2: usize,
     /// Tets with radius-edge ratio above 2.
     pub tets_radius_edge_over_2: usize,
@@ -93,7 +93,7 @@ pub struct TetQualityReport {
     pub edge_ratio: Stats,
     /// Signed tet volume.
     pub tet_volume: Stats,
-    /// All six dihedral angles of every non-degenerate tet, over [`DIHEDRAL_EDGES`].
+    /// All six dihedral angles of every non-degenerate tet, over `DIHEDRAL_EDGES`.
     pub dihedral_histogram: Histogram,
 }
 
@@ -252,7 +252,7 @@ impl TetAcc {
 /// assert!((r.max_dihedral_deg - 90.0).abs() < 1e-12);
 /// ```
 /// A mesh summary that needs only the extremes and a few counts gets them in a leaner pass:
-/// [`crate::quality::extremes::tet_mesh_extremes`].
+/// `crate::quality::extremes::tet_mesh_extremes`.
 pub fn tet_mesh_quality(m: &TetMesh) -> TetQualityReport {
     let bins = CosineBins::new(&DIHEDRAL_EDGES);
     let acc = chunked_reduce(

@@ -106,7 +106,7 @@ fn outward_normals(p: &[DVec3; 4]) -> [DVec3; 4] {
     })
 }
 
-/// The six dihedral angles in degrees, at the edges in [`TET_EDGES`] order, or `None` for a
+/// The six dihedral angles in degrees, at the edges in `TET_EDGES` order, or `None` for a
 /// degenerate tet (zero determinant, zero edge or zero face normal).
 ///
 /// The angle at edge `(i, j)` is the one between the two faces containing that edge, i.e. the
@@ -149,7 +149,7 @@ pub fn dihedral_from_cosine(c: f64) -> f64 {
 }
 
 /// Smallest and largest dihedral angle in degrees; `(0, 180)` for a degenerate tet. Two arc
-/// cosines, of the extreme cosines ([`dihedral_from_cosine`] is non-decreasing): bitwise the
+/// cosines, of the extreme cosines (`dihedral_from_cosine` is non-decreasing): bitwise the
 /// extremes of [`tet_dihedral_angles`].
 pub fn tet_min_max_dihedral(p: &[DVec3; 4]) -> (f64, f64) {
     match tet_extreme_dihedral_cosines(p) {

@@ -188,11 +188,6 @@ impl BoundaryIndex {
         BoundaryIndex { features, sides: SideTags::new(mesh), extents }
     }
 
-    /// Feature edges of the boundary.
-    pub fn feature_edges(&self) -> usize {
-        self.features.len()
-    }
-
     /// Where tet `t` of `mesh` sits: the nearest face and feature edge, and the smallest of
     /// `angles` (those under `bound` degrees, smallest first) that it touches, else the
     /// smallest between whose sides it lies (seen under `bound`), else the nearest within its
@@ -401,7 +396,7 @@ mod tests {
         let surface = crate::mesh::TriSurface { vertices, triangles: boundary, face_tags, ..Default::default() };
         let angles = small_input_angles(&surface, 10.0, true);
         let index = BoundaryIndex::new(&mesh);
-        assert_eq!(index.feature_edges(), 6);
+        assert_eq!(index.features.len(), 6);
         let names = |f: FaceId| match f.0 {
             3 => Some("side_a".to_string()),
             5 => Some("side_c".to_string()),

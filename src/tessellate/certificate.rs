@@ -35,9 +35,9 @@
 //!   edges shrunk to points: each loop's coedges without its seam and degenerate coedges fall
 //!   into runs, one patch boundary loop each (a cylinder cut by its seam: one trim loop, two
 //!   patch loops; a whole sphere: none).
-//! - **Volume and area against the B-rep's own values** ([`super::quadrature`]), with
+//! - **Volume and area against the B-rep's own values** (`super::quadrature`), with
 //!   tolerances made of the deviation each face *reached*, `δ_f`, measured
-//!   ([`super::reached`]), not of the chord asked for. Every point of the mesh is within
+//!   (`super::reached`), not of the chord asked for. Every point of the mesh is within
 //!   about `δ_f` of face `f`, so the enclosed volumes differ by at most the band
 //!   `B = Σ_f A_f δ_f` over the group's faces; and a certificate says the volume is right, so
 //!   the tolerance never exceeds [`VOLUME_RELATIVE`] of it:
@@ -189,7 +189,7 @@ pub struct Certificate {
     pub area_matches: bool,
     /// The model-wide chord tolerance asked for, mm.
     pub chord: f64,
-    /// The largest deviation reached on any face, measured ([`super::reached`]), mm.
+    /// The largest deviation reached on any face, measured (`super::reached`), mm.
     pub deviation: f64,
     /// Total enclosed volume of the closed groups: triangles, B-rep, tolerance, mm³.
     pub volume: [f64; 3],

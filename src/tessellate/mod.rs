@@ -1,9 +1,9 @@
 //! Layer 4: B-rep → watertight tagged triangle surface.
 //!
-//! Stages: every edge is discretised once ([`edge_points`]: chord and angle criteria relative
+//! Stages: every edge is discretised once (`edge_points`: chord and angle criteria relative
 //! to the model size), so two faces sharing an edge share its points and the surface is
 //! watertight by construction; every face is then meshed in its parameter domain
-//! ([`face_mesh`]): its loops are mapped to `(u, v)` (periodic parameters unwrapped along the
+//! (`face_mesh`): its loops are mapped to `(u, v)` (periodic parameters unwrapped along the
 //! loop, so seams and closed edges become the two sides of a rectangle), a grid of interior
 //! points is added where the surface curves (spacing from the chord tolerance and the
 //! surface's second derivatives; points near a boundary segment are skipped, since spade
@@ -27,21 +27,21 @@
 //! never left out silently. The result is meant to be checked with [`crate::mesh::topology`].
 
 pub mod certificate;
-pub mod corner_strips;
+pub(crate) mod corner_strips;
 mod brep_topology;
 mod crossings;
-pub mod edge_points;
-pub mod edge_strip;
-pub mod face_error;
-pub mod face_mesh;
+pub(crate) mod edge_points;
+pub(crate) mod edge_strip;
+pub(crate) mod face_error;
+pub(crate) mod face_mesh;
 mod face_vertices;
 mod flat_ears;
-pub mod orient;
+pub(crate) mod orient;
 mod seams;
 mod feature_size;
 mod proximity;
-pub mod quadrature;
-pub mod reached;
+pub(crate) mod quadrature;
+pub(crate) mod reached;
 mod improve;
 mod refine;
 mod sizing;
@@ -131,7 +131,7 @@ pub struct FailedFace {
 pub struct FaceDomain {
     /// The face's triangles in [`Tessellation::surface`]: `triangles.start..triangles.end`.
     pub triangles: std::ops::Range<usize>,
-    /// The triangles in `(u, v)` and the boundary segments (see [`face_mesh::FaceMesh`]).
+    /// The triangles in `(u, v)` and the boundary segments (see `face_mesh::FaceMesh`).
     pub uv: Vec<[glam::DVec2; 3]>,
     /// Boundary segments, face on the left in `(u, v)`: global vertex ids and `(u, v)`.
     pub boundary: Vec<([u32; 2], [glam::DVec2; 2])>,
@@ -154,7 +154,7 @@ pub struct Tessellation {
     /// and thin solids ([`TessellateOptions::volume_relative`]).
     pub face_chords: Vec<f64>,
     /// Per face (index `FaceId - 1`), the B-rep's own area and volume term over its domain
-    /// ([`quadrature::surface_integrals`] about the centre of the model's bounds) where the
+    /// (`quadrature::surface_integrals` about the centre of the model's bounds) where the
     /// volume check computed them for this tessellation; the certificate computes the rest.
     pub quadrature: Vec<Option<quadrature::FaceIntegrals>>,
 }

@@ -2,39 +2,39 @@
 //! use, each evaluable (`point`, derivatives, normal) with its natural parameter domain and an
 //! inverse (`project`) that the tessellator maps edge points into face parameter space with.
 //!
-//! B-splines are evaluated by our own Cox–de Boor code ([`basis`]) rather than
+//! B-splines are evaluated by our own Cox–de Boor code (`basis`) rather than
 //! `truck-geometry`: it works on `glam` types like the rest of fepre, gives the second
 //! derivatives Newton projection needs, and keeps the rational case exact without a
 //! homogeneous-vector layer; the whole of it is a few hundred lines with tests against hand
 //! values.
 
-pub mod basis;
-pub mod bspline_curve;
-pub mod bspline_surface;
-pub mod circle;
-pub mod conic;
-pub mod cone;
-pub mod curve;
-pub mod curve_replica;
-pub mod cylinder;
-pub mod derivs;
-pub mod domain;
-pub mod ellipse;
-pub mod extrusion;
-pub mod frame;
-pub mod line;
-pub mod newton;
-pub mod offset;
-pub mod offset_curve;
-pub mod plane;
-pub mod polyline;
-pub mod revolution;
-pub mod similarity;
-pub mod sphere;
-pub mod spline_error;
-pub mod surface;
-pub mod surface_replica;
-pub mod torus;
+pub(crate) mod basis;
+pub(crate) mod bspline_curve;
+pub(crate) mod bspline_surface;
+pub(crate) mod circle;
+pub(crate) mod conic;
+pub(crate) mod cone;
+pub(crate) mod curve;
+pub(crate) mod curve_replica;
+pub(crate) mod cylinder;
+pub(crate) mod derivs;
+pub(crate) mod domain;
+pub(crate) mod ellipse;
+pub(crate) mod extrusion;
+pub(crate) mod frame;
+pub(crate) mod line;
+pub(crate) mod newton;
+pub(crate) mod offset;
+pub(crate) mod offset_curve;
+pub(crate) mod plane;
+pub(crate) mod polyline;
+pub(crate) mod revolution;
+pub(crate) mod similarity;
+pub(crate) mod sphere;
+pub(crate) mod spline_error;
+pub(crate) mod surface;
+pub(crate) mod surface_replica;
+pub(crate) mod torus;
 
 #[cfg(test)]
 mod tests;

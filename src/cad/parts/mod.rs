@@ -1,25 +1,25 @@
 //! Parametric parts built in code with truck-modeling and converted into our [`Model`]: an
-//! L-shaped bracket with a filleted inner corner and holes ([`bracket`]), a flange with a bore
-//! and bolt holes ([`flange`]), a 90° pipe elbow ([`elbow`]), a block with an optional hole
-//! ([`block`]) and a tube or a sector of one ([`tube`]); the last two are the analytic checks'
+//! L-shaped bracket with a filleted inner corner and holes (`bracket`), a flange with a bore
+//! and bolt holes (`flange`), a 90° pipe elbow (`elbow`), a block with an optional hole
+//! (`block`) and a tube or a sector of one (`tube`); the last two are the analytic checks'
 //! parts (cantilever, plate with a hole, slab, thick-walled cylinder).
 //!
 //! Each part has a parameter struct in millimetres with sensible defaults, a `build` that
 //! sweeps its profile with truck (`tsweep`, `rsweep`; no booleans) and converts the solid
-//! ([`truck_topology`], `truck_geometry.rs`: truck's rational arcs and swept surfaces become
+//! (`truck_topology`, `truck_geometry.rs`: truck's rational arcs and swept surfaces become
 //! exact circles, planes, cylinders and tori), and a `volume` computed from the parameters.
 //! Every face is named (`bottom`, `top`, `hole_1`, ...) so that boundary conditions can be
 //! attached to named faces; a name may cover several faces (truck builds a full hole from two
 //! half cylinders, and both are `hole_1`).
 
-pub mod block;
-pub mod bracket;
-pub mod elbow;
-pub mod flange;
+pub(crate) mod block;
+pub(crate) mod bracket;
+pub(crate) mod elbow;
+pub(crate) mod flange;
 mod sketch;
 mod truck_geometry;
-pub mod truck_topology;
-pub mod tube;
+pub(crate) mod truck_topology;
+pub(crate) mod tube;
 
 pub use block::Block;
 pub use bracket::Bracket;

@@ -1,22 +1,22 @@
 //! STEP (ISO 10303-21) import: a reader of our own, tolerant of what real AP203, AP214 and
 //! AP242 files contain, and the conversion of their B-rep entities into a [`Model`].
 //!
-//! Stages: [`parser`] turns bytes into a [`StepFile`] (`#id → records`, with line numbers;
+//! Stages: `parser` turns bytes into a [`StepFile`] (`#id → records`, with line numbers;
 //! every reference checked), then the converter walks the shape representations
 //! (`assembly`), expanding assembly instances with their placements, converting solids,
 //! shells and faces (`topology`) and their geometry (`geometry`) into millimetres
-//! ([`units`]).
+//! (`units`).
 //!
 //! Why not `truck-stepio`: its tokenizer rejects valid files of the corpus (empty lists in
 //! AP242), it drops unsupported entities silently, ignores assembly placements and units,
 //! and its types are not our `geom` types; a reader of our own is a few hundred lines and
 //! reports every item it leaves out ([`Model::dropped`]).
 //!
-//! The other way, [`writer`] writes a [`Model`] as an AP214 file (millimetres, named faces,
+//! The other way, `writer` writes a [`Model`] as an AP214 file (millimetres, named faces,
 //! deterministic bytes) that this reader and OpenCASCADE read back.
 //!
 //! AP242 files may carry tessellated geometry only (`TESSELLATED_SOLID` of
-//! `TRIANGULATED_FACE`s, ...): [`read_shape`] reads it ([`tessellated`]) into a tagged
+//! `TRIANGULATED_FACE`s, ...): [`read_shape`] reads it (`tessellated`) into a tagged
 //! triangle surface, a face per tag, when the file has no B-rep; a file with both gives the
 //! B-rep and lists the tessellated items as dropped. [`write_tessellated`] writes such a file.
 //!
@@ -27,18 +27,18 @@
 mod assembly;
 mod colour;
 mod convert;
-pub mod error;
+pub(crate) mod error;
 mod geometry;
-pub mod param;
-pub mod parser;
-pub mod table;
-pub mod tessellated;
+pub(crate) mod param;
+pub(crate) mod parser;
+pub(crate) mod table;
+pub(crate) mod tessellated;
 mod read_tessellated;
 mod topology;
-pub mod units;
+pub(crate) mod units;
 mod write_geometry;
-pub mod write_tessellated;
-pub mod writer;
+pub(crate) mod write_tessellated;
+pub(crate) mod writer;
 
 #[cfg(test)]
 mod tests;
@@ -48,7 +48,7 @@ pub use param::Param;
 pub use table::{Entity, Record, StepFile};
 pub use tessellated::{Tessellated, TessellatedFace, TessellatedSolid};
 pub use write_tessellated::{tessellated_to_string, write_tessellated};
-pub use writer::{StepWriteError, write};
+pub use writer::{StepWriteError, to_string, write};
 
 use crate::cad::brep::{Dropped, Model};
 use std::path::Path;

@@ -25,7 +25,7 @@
 //!   surface); nesting of closed shells is decided with exact ray parity, and a shell inside
 //!   an odd number of closed shells is a cavity, outward when its volume is negative.
 //! - Degeneracy (zero area) and self-intersection are decided exactly
-//!   ([`crate::core::intersection`]); degenerate triangles are not tested for intersection.
+//!   (`crate::core::intersection`); degenerate triangles are not tested for intersection.
 //! - Every result is deterministic: the same input gives the same report for any number of
 //!   threads. Flat sorted arrays, no hash maps; about linear time plus the intersection pass.
 

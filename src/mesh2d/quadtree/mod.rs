@@ -3,18 +3,18 @@
 //! quadrants split by templates, boundary quadrants cut and triangulated conformingly.
 //!
 //! Stages, one file each:
-//! 1. [`domain`]: the input, a polygon with holes whose segments carry tags, checked exactly;
-//! 2. [`tree`]: the quadtree, refined until each quadrant is no larger than the size at its
+//! 1. `domain`: the input, a polygon with holes whose segments carry tags, checked exactly;
+//! 2. `tree`: the quadtree, refined until each quadrant is no larger than the size at its
 //!    centre and around boundary features (two segments that share no point within a
 //!    quadrant's clearance, two boundary points in one quadrant);
-//! 3. [`balance`]: 2:1 balance across sides, and [`balance::check_balance`];
-//! 4. [`templates`]: interior quadrants (inside, no segment within `clearance · size`) to
+//! 3. `balance`: 2:1 balance across sides, and [`balance::check_balance`];
+//! 4. `templates`: interior quadrants (inside, no segment within `clearance · size`) to
 //!    triangles by the 2:1 templates (every angle 45° or 90°), or to squares where they have
 //!    no hanging node and quadrilaterals are asked for;
-//! 5. [`band`]: the rest of the domain (the boundary quadrants, cut by the boundary) by a
+//! 5. `band`: the rest of the domain (the boundary quadrants, cut by the boundary) by a
 //!    constrained Delaunay triangulation of the segment pieces, the kept lattice points and
 //!    the interface to the templates, refined by spade to 25° with constraints kept;
-//! 6. [`check`]: conformity, the boundary kept, angles.
+//! 6. `check`: conformity, the boundary kept, angles.
 //!
 //! # The size
 //! A plain closure `h(p)` on the plane's coordinates (for a CAD face, the caller lifts `p`
@@ -31,12 +31,12 @@
 //!   are in `docs/benchmarks.md`).
 //! - Deterministic: the same input gives the same mesh (node order, fixed maps).
 
-pub mod balance;
-pub mod band;
-pub mod check;
-pub mod domain;
-pub mod templates;
-pub mod tree;
+pub(crate) mod balance;
+pub(crate) mod band;
+pub(crate) mod check;
+pub(crate) mod domain;
+pub(crate) mod templates;
+pub(crate) mod tree;
 mod vertices;
 
 #[cfg(test)]

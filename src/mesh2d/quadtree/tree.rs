@@ -152,7 +152,7 @@ impl Quadtree {
         }
     }
 
-    /// The node across side `dir` (see [`DIRECTIONS`]) of quadrant `i`: at its level (which
+    /// The node across side `dir` (see `DIRECTIONS`) of quadrant `i`: at its level (which
     /// may have children: finer neighbours) or a coarser leaf; `None` past the root.
     pub fn neighbour(&self, i: u32, dir: usize) -> Option<u32> {
         let q = &self.nodes[i as usize];

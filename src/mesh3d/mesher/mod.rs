@@ -83,7 +83,7 @@ pub struct MeshOptions {
     /// `keep_surface`; in an assembly, never on faces in contact with another solid.
     pub slide_boundary: bool,
     /// Strips of the input narrower than this length are closed up before meshing
-    /// ([`crate::mesh::narrow::collapse_narrow`]: a sliver face, a step between two faces
+    /// (`crate::mesh::narrow::collapse_narrow`: a sliver face, a step between two faces
     /// that almost meet). `None`: [`NARROW_SHARE`] of the input's diagonal; `Some(0.0)`: off
     /// (as with `keep_surface`, which keeps the input as it is).
     pub narrow_tolerance: Option<f64>,
@@ -235,7 +235,7 @@ pub struct MeshReport {
     /// Which budget stopped refinement early, when one did.
     pub refinement_stop: Option<RefinementStop>,
     /// Input triangles that were caps (flat, a vertex on their long side), each repaired with
-    /// its neighbour ([`crate::mesh::caps::repair_caps`]).
+    /// its neighbour (`crate::mesh::caps::repair_caps`).
     pub input_caps_repaired: usize,
     /// The narrow strips closed up before meshing, where there were any
     /// ([`MeshOptions::narrow_tolerance`]).

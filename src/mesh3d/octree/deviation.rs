@@ -94,7 +94,7 @@ pub struct Deviation {
 /// Measures the deviation of `mesh`'s boundary from `surface`; see the module docs. Also
 /// returns, per boundary triangle, the input triangle nearest to its centroid (the first
 /// sample of that triangle; ties to the lower index): the tags come from it.
-/// `features` are the input's [`feature_edges_with_triangles`] at `feature_angle_deg`
+/// `features` are the input's `feature_edges_with_triangles` at `feature_angle_deg`
 /// (made once by the caller, which snaps to them too).
 pub fn deviation(surface: &TriSurface, surface_bvh: &Bvh, mesh: &TetMesh, h: f64, feature_angle_deg: f64, features: &[Feature], buried: Option<&Buried>) -> (Deviation, Vec<Option<u32>>) {
     let bnd = TriSurface::with_single_tag(mesh.vertices.clone(), mesh.boundary.clone(), crate::core::FaceId(1));

@@ -52,7 +52,7 @@ impl Lattice {
     ///
     /// # Errors
     /// A message when `h` is not positive and finite, the box is empty, or the lattice would
-    /// have more than [`MAX_VERTICES`] vertices.
+    /// have more than `MAX_VERTICES` vertices.
     pub fn covering(bbox: &Aabb, h: f64) -> Result<Lattice, String> {
         if !(h.is_finite() && h > 0.0) {
             return Err(format!("cell size {h} is not a positive number"));

@@ -56,15 +56,15 @@
 //!   anything.
 
 mod buried;
-pub mod coarsen;
+pub(crate) mod coarsen;
 mod cut;
 mod deviation;
 mod graded;
 mod lattice;
 mod merge;
-pub mod resolve;
+pub(crate) mod resolve;
 mod rows;
-pub mod snap;
+pub(crate) mod snap;
 mod stencil;
 mod tags;
 mod winding;
@@ -226,7 +226,7 @@ pub struct OctreeReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub input_crossings: Option<usize>,
     /// Where no size was given: the cell sizes tried, coarsest first, the last the one
-    /// meshed ([`resolve`]; solid by solid in an assembly); empty when the cell came from a
+    /// meshed (`resolve`; solid by solid in an assembly); empty when the cell came from a
     /// size.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub cell_tries: Vec<CellTry>,
@@ -241,7 +241,7 @@ pub struct OctreeReport {
     pub stage_seconds: Vec<(String, f64)>,
 }
 
-/// One cell size tried while choosing the default cell ([`resolve`]).
+/// One cell size tried while choosing the default cell (`resolve`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct CellTry {
     /// The solid (region tag) of an assembly meshed solid by solid; `None` otherwise.

@@ -187,7 +187,7 @@ impl<'a> Winding<'a> {
     }
 
     /// The winding number at `q`, nodes farther than `beta` times their radius taken as
-    /// dipoles (smaller is faster and coarser: [`FAR_BETA`] for points far from every
+    /// dipoles (smaller is faster and coarser: `FAR_BETA` for points far from every
     /// triangle, where only the sign is wanted and it is far from one half).
     pub fn at_with(&self, q: DVec3, beta: f64) -> f64 {
         let Some(root) = self.bvh.root() else { return 0.0 };

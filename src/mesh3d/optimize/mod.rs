@@ -186,7 +186,7 @@ pub struct OptimizeOptions {
     /// vertices where they are.
     pub pinned_faces: Vec<FaceId>,
     /// Once every tet meets the targets, the tets within this share above the smallest-angle
-    /// target are worked on as if it were that much higher (see [`POLISH_TRIES`]); `0`: off.
+    /// target are worked on as if it were that much higher (see `POLISH_TRIES`); `0`: off.
     pub polish: f64,
     /// Where tets under `below` degrees are left, the tets around them are worked on once more
     /// toward a smallest angle of `target` degrees ([`Focus`]); `None`: off.
@@ -619,9 +619,9 @@ pub fn optimize(mesh: &mut TetMesh, opts: &OptimizeOptions) -> Result<OptimizeRe
 
 /// [`optimize`], told where the input explains a tet: `angles` gives the input's angles under
 /// [`Focus::below_deg`]
-/// ([`small_input_angles`](crate::quality::input_angles::small_input_angles) of the surface
+/// (`small_input_angles` of the surface
 /// meshed). A tet that touches one
-/// ([`touches_angle_below`](crate::quality::worst_tet::touches_angle_below)) is explained by
+/// (`touches_angle_below`) is explained by
 /// the input, and does not keep [`Focus`]'s repeats going on its own. `angles` is called at
 /// most once, and only where the focus phase leaves tets under its bound. `geometry`, where
 /// the boundary approximates one (a B-rep whose face ids are the boundary's tags), lets

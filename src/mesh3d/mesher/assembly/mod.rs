@@ -111,7 +111,7 @@ pub(crate) struct Pair {
 ///
 /// `gap`: surfaces of different solids closer than this touch; a solid reaching deeper than
 /// this into another overlaps it (for a certified tessellation, a few times its chord
-/// deviation: see [`overlap`]).
+/// deviation: see `overlap`).
 ///
 /// # Errors
 /// [`MeshingError::Overlap`] where two solids' interiors overlap; [`MeshingError::InSolid`]
