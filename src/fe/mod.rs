@@ -13,9 +13,11 @@ pub mod model;
 pub mod quadratic;
 pub mod restraint;
 pub mod step;
+pub mod ties;
 
 pub use build::{Built, GroupSets, build_model};
 pub use element::ElementKind;
 pub use geometry::{BoundaryGeometry, BrepGeometry};
 pub use model::{CurvingReport, ElementFace, FeModel, FeModelError, Material, Section, Tie};
 pub use step::{Analysis, Bc, Load, Step};
+pub use ties::{TieSummary, tie_contacts};
