@@ -13,7 +13,7 @@ use fepre::core::{FaceId, RegionId};
 use fepre::io::{MeshData, ReadOptions, read};
 use fepre::mesh::{TetMesh, TriSurface};
 use fepre::mesh3d::mesher::{MeshOptions, MeshingError, SolidInfo, Solids, assembly_contacts, mesh_solids};
-use fepre::pipeline::assembly::{ContactReport, gap_of, solids_of};
+use fepre::pipeline::assembly::ContactReport;
 use fepre::pipeline::run::{Plan, run_plan};
 use fepre::pipeline::{Part, PipelineError};
 use glam::DVec3;
@@ -88,9 +88,10 @@ fn mesh_part(s: TriSurface, opts: MeshOptions) -> Result<Part, PipelineError> {
     Ok(part)
 }
 
-fn only_contact(part: &Part) -> &ContactReport {
-    assert_eq!(part.contacts.len(), 1, "{:?}", part.contacts);
-    &part.contacts[0]
+fn only_contact(part: &Part) -> ContactReport {
+    let contacts = part.contact_reports();
+    assert_eq!(contacts.len(), 1, "{contacts:?}");
+    contacts[0].clone()
 }
 
 #[test]
@@ -302,8 +303,8 @@ fn corpus_part(name: &str) -> Option<(Part, Solids, f64)> {
     let tess = plan.tessellate_options(&part);
     part.tessellate(&field, &tess).unwrap();
     let s = part.surface.clone().unwrap();
-    let solids = solids_of(&part, &s);
-    let gap = gap_of(&part);
+    let solids = part.surface_solids(&s);
+    let gap = part.gap();
     Some((part, solids, gap))
 }
 

@@ -23,7 +23,8 @@
 //! ```
 
 use super::catalogue::FaceCatalogue;
-use super::selector::{SelectError, Selection};
+use super::groups::Groups;
+use super::selector::SelectError;
 use super::source_tree::{Source, SourceTree};
 use super::values::{BoxSpec, NonNegative, Positive};
 use crate::core::{Aabb, SizeField};
@@ -183,7 +184,7 @@ impl DensityField {
     ///
     /// # Errors
     /// A selector that fails or selects nothing, `min > max`, a box with `min > max`.
-    pub fn build(density: &Density, selection: &mut Selection<'_>, cat: &FaceCatalogue, unit: f64, default_size: f64) -> Result<DensityField, DensityError> {
+    pub fn build(density: &Density, groups: &Groups, cat: &FaceCatalogue, unit: f64, default_size: f64) -> Result<DensityField, DensityError> {
         let len = |p: Positive| p.get() * unit;
         let global = density.size.map_or(default_size, len);
         let min = density.min.map_or(0.0, len);
@@ -193,25 +194,23 @@ impl DensityField {
         }
         let slope = density.grading.map_or(DEFAULT_GRADING, |g| g.0) - 1.0;
         let mut items = Vec::new();
-        let add_faces = |sel: &std::collections::BTreeSet<crate::core::FaceId>, h: f64, g: f64, cap: f64, items: &mut Vec<Source>| {
+        let add_faces = |sel: &[crate::core::FaceId], h: f64, g: f64, cap: f64, items: &mut Vec<Source>| {
             for tri in cat.triangles_of(sel) {
                 items.push(Source { tri, h, slope: g, cap });
             }
         };
         for f in &density.face {
-            let sel = selection.faces(&f.faces)?;
-            add_faces(&sel, len(f.size), slope, f64::INFINITY, &mut items);
+            add_faces(groups.faces(&f.faces)?, len(f.size), slope, f64::INFINITY, &mut items);
         }
         for d in &density.distance {
-            let sel = selection.faces(&d.faces)?;
             let g = d.growth.map_or(slope, |g| g.get().min(slope.max(0.0)));
-            add_faces(&sel, len(d.size), g, d.max.map_or(f64::INFINITY, len), &mut items);
+            add_faces(groups.faces(&d.faces)?, len(d.size), g, d.max.map_or(f64::INFINITY, len), &mut items);
         }
         if let Some(n) = density.curvature {
             for info in &cat.faces {
                 if info.min_radius.is_finite() {
                     let h = info.min_radius / n.get();
-                    add_faces(&std::iter::once(info.id).collect(), h, slope, f64::INFINITY, &mut items);
+                    add_faces(&[info.id], h, slope, f64::INFINITY, &mut items);
                 }
             }
             for (pts, r) in &cat.curved_edges {

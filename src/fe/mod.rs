@@ -13,6 +13,7 @@ pub(crate) mod model;
 pub(crate) mod quadratic;
 pub(crate) mod restraint;
 pub(crate) mod step;
+pub(crate) mod ties;
 
 pub use build::{Built, GroupSets, build_model};
 pub use element::{ABAQUS_FACE_MIDS, ABAQUS_FACES, ElementKind, TET_EDGES, face_corners_outward, face_nodes_outward_quadratic};
@@ -20,3 +21,4 @@ pub use loads::{consistent_forces, surface_area};
 pub use geometry::{BoundaryGeometry, BrepGeometry};
 pub use model::{CurvingReport, ElementFace, FeModel, FeModelError, Material, Section, Tie};
 pub use step::{Analysis, Bc, Load, Step};
+pub use ties::{TieSummary, tie_contacts};

@@ -140,10 +140,37 @@ pub enum MeshData {
 impl MeshData {
     /// A word for messages: "surface", "tetrahedral mesh" or "point set".
     pub fn kind(&self) -> &'static str {
+        self.as_ref().kind()
+    }
+
+    /// The mesh, borrowed (what [`write_ref`] takes).
+    pub fn as_ref(&self) -> MeshRef<'_> {
         match self {
-            MeshData::Surface(_) => "surface",
-            MeshData::Volume(_) => "tetrahedral mesh",
-            MeshData::Points(_) => "point set",
+            MeshData::Surface(s) => MeshRef::Surface(s),
+            MeshData::Volume(m) => MeshRef::Volume(m),
+            MeshData::Points(p) => MeshRef::Points(p),
+        }
+    }
+}
+
+/// A mesh to write, borrowed: a writer needs no copy of what it writes.
+#[derive(Clone, Copy, Debug)]
+pub enum MeshRef<'a> {
+    /// A triangle surface.
+    Surface(&'a TriSurface),
+    /// A tetrahedral mesh.
+    Volume(&'a TetMesh),
+    /// A point set.
+    Points(&'a [DVec3]),
+}
+
+impl MeshRef<'_> {
+    /// A word for messages: "surface", "tetrahedral mesh" or "point set".
+    pub fn kind(&self) -> &'static str {
+        match self {
+            MeshRef::Surface(_) => "surface",
+            MeshRef::Volume(_) => "tetrahedral mesh",
+            MeshRef::Points(_) => "point set",
         }
     }
 }
@@ -309,6 +336,14 @@ pub fn read_points(path: &Path) -> Result<Vec<DVec3>, IoError> {
 /// [`IoError::NotRepresentable`] where the format cannot hold the data (tetrahedra to STL),
 /// [`IoError::Write`] for file-system failures. On error no file is left at `path`.
 pub fn write(path: &Path, mesh: &MeshData, options: &WriteOptions) -> Result<(), IoError> {
+    write_ref(path, mesh.as_ref(), options)
+}
+
+/// [`write`] of a borrowed mesh.
+///
+/// # Errors
+/// As [`write`].
+pub fn write_ref(path: &Path, mesh: MeshRef<'_>, options: &WriteOptions) -> Result<(), IoError> {
     let Some(format) = Format::from_path(path).filter(|f| f.can_write()) else {
         return Err(IoError::UnknownFormat {
             path: path.to_path_buf(),
@@ -318,19 +353,19 @@ pub fn write(path: &Path, mesh: &MeshData, options: &WriteOptions) -> Result<(),
     };
     let not = |what: &str| IoError::NotRepresentable { path: path.to_path_buf(), format: format.name(), what: what.to_string() };
     match (format, mesh) {
-        (Format::Stl, MeshData::Surface(s)) => stl::write(path, s, options),
-        (Format::Obj, MeshData::Surface(s)) => obj::write(path, s),
-        (Format::Off, MeshData::Surface(s)) => off::write(path, s),
-        (Format::Medit, MeshData::Surface(s)) => medit::write_surface(path, s),
-        (Format::Medit, MeshData::Volume(m)) => medit::write_volume(path, m),
-        (Format::TetGen, MeshData::Surface(s)) => tetgen::write_surface(path, s),
-        (Format::TetGen, MeshData::Volume(m)) => tetgen::write_volume(path, m),
-        (Format::TetGen, MeshData::Points(p)) => tetgen::write_points(path, p),
-        (Format::Msh, MeshData::Surface(s)) => msh::write_surface(path, s),
-        (Format::Msh, MeshData::Volume(m)) => msh::write_volume(path, m),
-        (Format::Vtu, MeshData::Surface(s)) => vtu::write_surface(path, s, options),
-        (Format::Vtu, MeshData::Volume(m)) => vtu::write_volume(path, m, options),
-        (Format::Stl | Format::Obj | Format::Off, MeshData::Volume(_)) => {
+        (Format::Stl, MeshRef::Surface(s)) => stl::write(path, s, options),
+        (Format::Obj, MeshRef::Surface(s)) => obj::write(path, s),
+        (Format::Off, MeshRef::Surface(s)) => off::write(path, s),
+        (Format::Medit, MeshRef::Surface(s)) => medit::write_surface(path, s),
+        (Format::Medit, MeshRef::Volume(m)) => medit::write_volume(path, m),
+        (Format::TetGen, MeshRef::Surface(s)) => tetgen::write_surface(path, s),
+        (Format::TetGen, MeshRef::Volume(m)) => tetgen::write_volume(path, m),
+        (Format::TetGen, MeshRef::Points(p)) => tetgen::write_points(path, p),
+        (Format::Msh, MeshRef::Surface(s)) => msh::write_surface(path, s),
+        (Format::Msh, MeshRef::Volume(m)) => msh::write_volume(path, m),
+        (Format::Vtu, MeshRef::Surface(s)) => vtu::write_surface(path, s, options),
+        (Format::Vtu, MeshRef::Volume(m)) => vtu::write_volume(path, m, options),
+        (Format::Stl | Format::Obj | Format::Off, MeshRef::Volume(_)) => {
             Err(not("a tetrahedral mesh (write its boundary with a surface format, or use .mesh, .msh, .vtu, .node)"))
         }
         (_, m) => Err(not(&format!("a {}", m.kind()))),

@@ -21,7 +21,7 @@
 //! of the first entity whose elements use it, surfaces before volumes.
 
 mod read;
-mod write;
+pub(crate) mod write;
 
 use crate::io::{IoError, Loaded};
 use crate::mesh::{TetMesh, TriSurface};
@@ -41,7 +41,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
 /// # Errors
 /// [`IoError::Write`].
 pub fn write_surface(path: &Path, s: &TriSurface) -> Result<(), IoError> {
-    write::write(path, &write::Parts::surface(s))
+    write::write(path, &write::Layout::surface(s))
 }
 
 /// Writes a tet mesh as ASCII MSH 4.1: a surface entity per boundary face tag and a volume
@@ -50,7 +50,7 @@ pub fn write_surface(path: &Path, s: &TriSurface) -> Result<(), IoError> {
 /// # Errors
 /// [`IoError::Write`].
 pub fn write_volume(path: &Path, m: &TetMesh) -> Result<(), IoError> {
-    write::write(path, &write::Parts::volume(m))
+    write::write(path, &write::Layout::volume(m))
 }
 
 #[cfg(test)]

@@ -10,7 +10,6 @@
 //! others, meeting none of them), numbered in the order of the shells; a surface with region
 //! seeds or holes (a `.poly` file) is meshed as one, its regions given by the seeds.
 
-use super::part::Part;
 use crate::cad::brep::{EntityRef, FaceEntry, Model};
 use crate::core::FaceId;
 use crate::mesh::TriSurface;
@@ -60,20 +59,24 @@ pub struct ContactReport {
     pub shared_area: f64,
 }
 
-/// The solids of `surface`, the surface to mesh of `part`.
-pub fn solids_of(part: &Part, surface: &TriSurface) -> Solids {
-    match &part.model {
+/// The solids of `surface`, a part's surface to mesh: by the solids of `model` (a CAD part);
+/// for a surface mesh by its shells, or one solid where it is `seeded` (holes, region seeds
+/// or region sizes: a `.poly` file).
+pub fn solids_of(model: Option<&Model>, seeded: bool, surface: &TriSurface) -> Solids {
+    match model {
         Some(m) => cad_solids(m, surface),
-        None if part.seeds.holes.is_empty() && part.seeds.regions.is_empty() && part.region_sizes.is_empty() => shell_solids(surface),
+        None if !seeded => shell_solids(surface),
         None => one_solid(surface),
     }
 }
 
-/// The gap within which `part`'s solids touch.
-pub fn gap_of(part: &Part) -> f64 {
-    match &part.certified {
-        Some(c) if part.model.is_some() => GAP_CHORDS * c.tessellation.chord,
-        _ => GAP_RELATIVE * part.diagonal(),
+/// The gap within which a part's solids touch: [`GAP_CHORDS`] times `chord`, the chord
+/// deviation of a CAD part's certified tessellation; otherwise [`GAP_RELATIVE`] of the
+/// part's `diagonal`.
+pub fn gap_of(chord: Option<f64>, diagonal: f64) -> f64 {
+    match chord {
+        Some(c) => GAP_CHORDS * c,
+        None => GAP_RELATIVE * diagonal,
     }
 }
 
@@ -156,12 +159,12 @@ fn shell_solids(surface: &TriSurface) -> Solids {
 }
 
 /// The mesher's contacts with the names and STEP `#id`s of the face table.
-pub fn contact_reports(contacts: &[Contact], faces: &[FaceEntry], solids: &Solids) -> Vec<ContactReport> {
+pub fn contact_reports(contacts: &[Contact], faces: &[FaceEntry], solids: &[SolidInfo]) -> Vec<ContactReport> {
     let side = |solid: crate::core::RegionId, face: FaceId| {
         let entry = faces.iter().find(|e| e.face == face);
         ContactSide {
             solid: solid.0,
-            solid_name: solids.solids.iter().find(|s| s.tag == solid).and_then(|s| s.name.clone()),
+            solid_name: solids.iter().find(|s| s.tag == solid).and_then(|s| s.name.clone()),
             face,
             face_name: entry.and_then(|e| e.name.clone()),
             step_id: entry.and_then(|e| e.step_id),

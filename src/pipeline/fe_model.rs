@@ -1,19 +1,19 @@
 //! The FE model of a job: the part's tet mesh as C3D4 or C3D10 elements (boundary mid nodes
 //! on the CAD geometry), a node set and an element-face surface per selector, a tie for each
-//! contact of an assembly's solids without shared nodes ([`super::fe_ties`], unless
+//! contact of an assembly's solids without shared nodes ([`crate::fe::ties`], unless
 //! `[model] tie = false`), the materials and sections, and the steps with their boundary conditions and loads. Everything a solver
 //! would refuse, or solve into nonsense, is an error naming the job's key and line: a
 //! selector that is not defined, faces between two solids used as a boundary, a solid
 //! without a material, a material without what a step needs, a step that leaves a piece
 //! free to move.
 
-use super::assembly::gap_of;
-use super::fe_ties::{TIE_TOLERANCE_GAPS, TieSummary, tie_contacts};
+use crate::fe::ties::{TIE_TOLERANCE_GAPS, TieSummary, tie_contacts};
 use super::job::JobFile;
 use super::job_fe::{ElementChoice, SolidRef, StepKind, StepSpec};
 use super::part::Part;
 use super::PipelineError;
-use crate::core::{FaceId, RegionId};
+use crate::attributes::Groups;
+use crate::core::RegionId;
 use crate::fe::loads::consistent_forces;
 use crate::fe::model::deck_name;
 use crate::fe::restraint::free_pieces;
@@ -73,12 +73,12 @@ pub fn wants_fe(jf: &JobFile) -> bool {
     !jf.job.step.is_empty() || jf.job.output.iter().any(|o| o.kind() == super::job::OutputKind::Deck)
 }
 
-/// Builds the FE model of a meshed `part` as job `jf` describes it; `selected` holds each
+/// Builds the FE model of a meshed `part` as job `jf` describes it; `groups` holds each
 /// selector's faces, `unit` the part units per job unit (coordinates are written in job units).
 ///
 /// # Errors
 /// [`PipelineError::Job`] naming the key and line of what is wrong (module docs).
-pub fn build_fe(jf: &JobFile, part: &Part, selected: &BTreeMap<String, Vec<FaceId>>, unit: f64) -> Result<(FeModel, FeSummary), PipelineError> {
+pub fn build_fe(jf: &JobFile, part: &Part, groups: &Groups, unit: f64) -> Result<(FeModel, FeSummary), PipelineError> {
     let job = &jf.job;
     let Some(mesh) = part.mesh.as_ref() else {
         return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh to build an FE model from".into() });
@@ -88,8 +88,8 @@ pub fn build_fe(jf: &JobFile, part: &Part, selected: &BTreeMap<String, Vec<FaceI
         ElementChoice::C3D10 => ElementKind::C3D10,
     };
     let geometry = part.model.as_ref().map(BrepGeometry::new);
-    let mut built = build_model(mesh, selected, kind, geometry.as_ref().map(|g| g as &dyn crate::fe::BoundaryGeometry), 1.0 / unit);
-    let ties = if job.model.tie { tie_contacts(&mut built, &part.contacts, TIE_TOLERANCE_GAPS * gap_of(part) / unit) } else { Vec::new() };
+    let mut built = build_model(mesh, groups.as_map(), kind, geometry.as_ref().map(|g| g as &dyn crate::fe::BoundaryGeometry), 1.0 / unit);
+    let ties = if job.model.tie { tie_contacts(&mut built, &part.contacts, TIE_TOLERANCE_GAPS * part.gap() / unit) } else { Vec::new() };
     let mut m = built.model;
     // materials, under deck names unique without regard to case
     let mut material_name: BTreeMap<&str, String> = BTreeMap::new();
@@ -153,7 +153,7 @@ pub fn build_fe(jf: &JobFile, part: &Part, selected: &BTreeMap<String, Vec<FaceI
     // steps
     let mut steps = Vec::new();
     for (k, spec) in job.step.iter().enumerate() {
-        let (step, summary) = build_step(jf, &m, &built.groups, selected, spec, k)?;
+        let (step, summary) = build_step(jf, &m, &built.groups, groups, spec, k)?;
         check_materials(jf, &m, spec, &step)?;
         let free = free_pieces(&m, &step);
         if let Some(f) = free.first() {
@@ -188,7 +188,7 @@ fn find_region(regions: &[(RegionId, String)], mesh: &crate::mesh::TetMesh, s: &
 }
 
 /// One `[[step]]` as a [`Step`].
-fn build_step(jf: &JobFile, m: &FeModel, groups: &BTreeMap<String, GroupSets>, selected: &BTreeMap<String, Vec<FaceId>>, spec: &Spanned<StepSpec>, k: usize) -> Result<(Step, StepSummary), PipelineError> {
+fn build_step(jf: &JobFile, m: &FeModel, sets: &BTreeMap<String, GroupSets>, groups: &Groups, spec: &Spanned<StepSpec>, k: usize) -> Result<(Step, StepSummary), PipelineError> {
     let s = spec.get_ref();
     let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
     let analysis = match s.kind {
@@ -209,8 +209,8 @@ fn build_step(jf: &JobFile, m: &FeModel, groups: &BTreeMap<String, GroupSets>, s
     // the sets of a selector used as a boundary
     let group = |key: &str, faces: &Spanned<String>| -> Result<&GroupSets, PipelineError> {
         let sel = faces.get_ref();
-        let Some(g) = groups.get(sel) else {
-            let known: Vec<&str> = selected.keys().map(String::as_str).collect();
+        let Some(g) = sets.get(sel) else {
+            let known: Vec<&str> = groups.as_map().keys().map(String::as_str).collect();
             return Err(jf.error_at(faces.span().start, format!("key `{key}`: selector `{sel}` is not defined under [selectors] (defined: {})", list_or_none(&known))));
         };
         if g.interface_faces > 0 {

@@ -16,13 +16,14 @@
 //! ```
 
 pub mod assembly;
+pub mod default_size;
 mod error;
 pub mod fe_model;
-pub mod fe_ties;
 pub mod job;
 pub mod job_fe;
 pub mod octree;
 pub mod part;
+pub mod plan;
 pub mod planar;
 pub mod run;
 pub mod solve;

@@ -7,12 +7,11 @@
 //! the cell. Output: the tet mesh, the contacts between solids and the [`OctreeReport`] in
 //! the [`Part`].
 
-use super::assembly::{contact_reports, gap_of, solids_of};
 use super::PipelineError;
 use super::part::Part;
 use crate::core::{RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{MeshReport, MeshingError, assembly_contacts, merge_solids, solid_surfaces};
+use crate::mesh3d::mesher::{Contact, MeshReport, MeshingError, SolidInfo, assembly_contacts, merge_solids, solid_surfaces};
 use crate::mesh3d::octree::{EmptySolid, OctreeError, OctreeOptions, OctreeReport, Resolve, mesh_octree, mesh_octree_resolved};
 use crate::tessellate::TessellateOptions;
 use std::time::Instant;
@@ -39,9 +38,10 @@ impl Part {
             return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
         };
         let t0 = Instant::now();
-        let (mesh, report, contacts) = self.octree_solids(surface, size, opts, resolve)?;
+        let (mesh, report, contacts, solids) = self.octree_solids(surface, size, opts, resolve)?;
         if self.model.is_some() && report.solids > 1 {
             self.contacts = contacts;
+            self.solids = solids;
         }
         self.seconds.mesh = t0.elapsed().as_secs_f64();
         self.mesh_report = Some(MeshReport {
@@ -58,9 +58,10 @@ impl Part {
 
     /// Meshes the part's solids (one by one in an assembly), each at the cell `size` gives
     /// or, with `resolve`, at its own cell chosen to hold its volume.
+    /// With the mesh and report: the contacts between the solids and the solids they name.
     #[allow(clippy::type_complexity)]
-    fn octree_solids(&self, surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions, resolve: Option<Resolve>) -> Result<(TetMesh, OctreeReport, Vec<super::assembly::ContactReport>), PipelineError> {
-        let solids = solids_of(self, surface);
+    fn octree_solids(&self, surface: &TriSurface, size: &dyn SizeField, opts: &OctreeOptions, resolve: Option<Resolve>) -> Result<(TetMesh, OctreeReport, Vec<Contact>, Vec<SolidInfo>), PipelineError> {
+        let solids = self.surface_solids(surface);
         let octree_error = |source| PipelineError::Octree { path: self.path.clone(), source };
         let mesh_one = |one: &TriSurface| match resolve {
             Some(r) => mesh_octree_resolved(one, size, opts, r),
@@ -69,7 +70,7 @@ impl Part {
         if self.model.is_some() && solids.solids.len() > 1 {
             // solids that overlap cannot share a conforming mesh, but each has its own
             // winding number: meshed one by one, the overlap said (it is in both)
-            let (mut contacts, overlap) = match assembly_contacts(surface, &solids, gap_of(self)) {
+            let (mut contacts, overlap) = match assembly_contacts(surface, &solids, self.gap()) {
                 Ok(c) => (c, None),
                 Err(e @ MeshingError::Overlap { .. }) => (Vec::new(), Some(self.meshing_error(e).to_string())),
                 Err(source) => return Err(self.meshing_error(source)),
@@ -102,7 +103,6 @@ impl Part {
                 }
             }
             let mesh = merge_solids(meshes, &solids, &mut contacts);
-            let contacts = contact_reports(&contacts, &self.face_table(), &solids);
             let Some(mut report) = OctreeReport::merged(&reports) else {
                 // every solid is empty: the first one's error
                 let (k, e) = first_empty.ok_or_else(|| PipelineError::Usage { path: self.path.clone(), message: "no solid to mesh".into() })?;
@@ -113,7 +113,7 @@ impl Part {
             report.input_volume += empty.iter().map(|e| e.volume).sum::<f64>();
             report.empty_solids = empty;
             report.overlap = overlap;
-            Ok((mesh, report, contacts))
+            Ok((mesh, report, contacts, solids.solids))
         } else {
             // a closed surface whose triangles face inward (a negative volume) has winding
             // number −1 inside: meshed turned outward, and said (an open one's volume has no
@@ -133,7 +133,7 @@ impl Part {
                     mesh.region_names.insert(RegionId(1), name.clone());
                 }
             }
-            Ok((mesh, report, Vec::new()))
+            Ok((mesh, report, Vec::new(), Vec::new()))
         }
     }
 }

@@ -2,15 +2,17 @@
 //! catalogue, the certified tessellation, the tet mesh, and every stage's report.
 
 use super::PipelineError;
+use super::default_size::default_size;
+use super::job::Method;
 use crate::attributes::density::RegionSizes;
-use crate::attributes::{Density, DensityField, FaceCatalogue, Selection, Selector};
+use crate::attributes::{Density, DensityField, FaceCatalogue, Groups, Selector};
 use crate::cad::brep::{Dropped, FaceEntry, Model, face_table_of_names};
 use crate::cad::step;
 use crate::core::{BoundaryGeometry, RegionId, SizeField};
 use crate::fe::BrepGeometry;
-use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
+use crate::io::{self, Format, MeshData, MeshRef, ReadOptions, WriteOptions};
 use crate::mesh::{TetMesh, TriSurface};
-use crate::mesh3d::mesher::{Abandon, Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, Solids, mesh_solids_on, mesh_surface_on};
+use crate::mesh3d::mesher::{Abandon, Contact, MeshOptions, MeshReport, MeshingError, RegionSeed, Seeds, SolidInfo, Solids, mesh_solids_on, mesh_surface_on};
 use super::assembly::{ContactReport, GAP_CHORDS, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
@@ -20,9 +22,6 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Instant;
-
-/// Without a size, a CAD part's elements are about its diagonal over this.
-pub const DEFAULT_DIVISIONS: f64 = 25.0;
 
 /// The largest chord deviation (a fraction of the diagonal) of the tessellation a CAD part is
 /// meshed from, where the job gives none: the size governs, this bounds how far the boundary
@@ -97,8 +96,11 @@ pub struct Part {
     /// What the octree mesher did (method octree).
     pub octree_report: Option<crate::mesh3d::octree::OctreeReport>,
     /// Faces of different solids that touch (a part of several solids), with the area over
-    /// which they touch and how much of it the mesh shares.
-    pub contacts: Vec<ContactReport>,
+    /// which they touch and how much of it the mesh shares: the mesher's, which the FE model's
+    /// ties take ([`Part::contact_reports`] names them for reports).
+    pub contacts: Vec<Contact>,
+    /// The solids `contacts` name: region tag and name.
+    pub solids: Vec<SolidInfo>,
     /// Seconds per stage.
     pub seconds: StageSeconds,
     /// A STEP file of tessellated geometry only: its faces and solids (its triangles are
@@ -172,11 +174,33 @@ impl Part {
             mesh_report: None,
             octree_report: None,
             contacts: Vec::new(),
+            solids: Vec::new(),
             seconds: StageSeconds::default(),
             tessellated: None,
             open_surface_faces: 0,
             catalogue: OnceLock::new(),
         }
+    }
+
+    /// The solids of `surface`, the part's surface to mesh ([`solids_of`]).
+    pub fn surface_solids(&self, surface: &TriSurface) -> Solids {
+        let seeded = !(self.seeds.holes.is_empty() && self.seeds.regions.is_empty() && self.region_sizes.is_empty());
+        solids_of(self.model.as_ref(), seeded, surface)
+    }
+
+    /// The contacts between the part's solids, with the names and STEP `#id`s of the face
+    /// table.
+    pub fn contact_reports(&self) -> Vec<ContactReport> {
+        if self.contacts.is_empty() {
+            return Vec::new();
+        }
+        contact_reports(&self.contacts, &self.face_table(), &self.solids)
+    }
+
+    /// The gap within which the part's solids touch ([`gap_of`]).
+    pub fn gap(&self) -> f64 {
+        let chord = self.certified.as_ref().filter(|_| self.model.is_some()).map(|c| c.tessellation.chord);
+        gap_of(chord, self.diagonal())
     }
 
     /// True for a B-rep part.
@@ -191,13 +215,6 @@ impl Part {
             (None, Some(s)) if s.bbox().diagonal() > 0.0 => s.bbox().diagonal(),
             _ => 1.0,
         }
-    }
-
-    /// The global size where the job gives none: a CAD part's diagonal over
-    /// [`DEFAULT_DIVISIONS`]; for a surface mesh the diagonal itself (no size: as coarse as
-    /// quality allows).
-    pub fn default_size(&self) -> f64 {
-        if self.is_cad() { self.diagonal() / DEFAULT_DIVISIONS } else { self.diagonal() }
     }
 
     /// The default chord deviation of a CAD part's tessellation for meshing, a fraction of
@@ -248,14 +265,31 @@ impl Part {
         self.is_cad() || self.tessellated.is_some()
     }
 
-    /// The size field of `density` on this part, its lengths times `unit`.
+    /// Evaluates every selector of `selectors` on this part, once ([`Groups::evaluate`]).
+    ///
+    /// # Errors
+    /// [`PipelineError::Select`]: the first selector that fails or selects nothing.
+    pub fn groups(&self, selectors: &BTreeMap<String, Selector>) -> Result<Groups, PipelineError> {
+        Groups::evaluate(selectors, self.catalogue()).map_err(|source| PipelineError::Select { path: self.path.clone(), source })
+    }
+
+    /// The size field of `density` on this part, its lengths times `unit`, the faces of its
+    /// entries those `groups` gives; `default_size` the global size where the density gives
+    /// none ([`super::default_size`]).
+    ///
+    /// # Errors
+    /// A selector the density names that `groups` lacks; an inconsistent density.
+    pub fn size_field(&self, density: &Density, groups: &Groups, unit: f64, default_size: f64) -> Result<DensityField, PipelineError> {
+        DensityField::build(density, groups, self.catalogue(), unit, default_size).map_err(|source| PipelineError::Density { path: self.path.clone(), source })
+    }
+
+    /// [`Part::size_field`] with `selectors` evaluated and the Delaunay mesher's default size.
     ///
     /// # Errors
     /// A selector that fails or selects nothing; an inconsistent density.
     pub fn density_field(&self, density: &Density, selectors: &BTreeMap<String, Selector>, unit: f64) -> Result<DensityField, PipelineError> {
-        let cat = self.catalogue();
-        let mut sel = Selection::new(selectors, cat);
-        DensityField::build(density, &mut sel, cat, unit, self.default_size()).map_err(|source| PipelineError::Density { path: self.path.clone(), source })
+        let groups = self.groups(selectors)?;
+        self.size_field(density, &groups, unit, default_size(self.diagonal(), self.is_cad(), Method::Delaunay).global)
     }
 
     /// Tessellates a CAD part to `size` and certifies the result; the certified surface becomes
@@ -381,7 +415,7 @@ impl Part {
         let t0 = Instant::now();
         let (mut result, before) = match speculative {
             Some((meshed, seconds)) => (meshed, seconds),
-            None => (self.mesh_once(surface, field, &opts, gap_of(self)), 0.0),
+            None => (self.mesh_once(surface, field, &opts, self.gap()), 0.0),
         };
         if self.is_cad() && matches!(&result, Err(e) if is_recovery(e)) {
             // a sized tessellation whose edges recovery cannot take (pieces of faces nearer
@@ -391,7 +425,7 @@ impl Part {
                 // the model's shells are turned already (by the first tessellation)
                 let (chords, _) = certified_tessellation(&mut model.clone(), tess, None, &mesh_checks());
                 if chords.certificate.passed {
-                    let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true), gap_of(self));
+                    let retry = self.mesh_once(&solids_only(model, &chords.tessellation.surface).0, field, &opts.clone().with_presize(true), self.gap());
                     if retry.is_ok() {
                         self.surface = Some(solids_only(model, &chords.tessellation.surface).0);
                         self.certified = Some(chords);
@@ -402,7 +436,8 @@ impl Part {
         }
         let (mut mesh, report, solids, contacts) = result.map_err(|source| self.meshing_error(source))?;
         if let Some(contacts) = contacts {
-            self.contacts = contact_reports(&contacts, &self.face_table(), &solids);
+            self.contacts = contacts;
+            self.solids = solids.solids.clone();
         }
         if let [solid] = &solids.solids[..] {
             // one solid: its name names the region it is
@@ -420,7 +455,7 @@ impl Part {
     /// Meshes `surface` (the part's solids in it, each on its own when there are several,
     /// touching within `gap`).
     fn mesh_once(&self, surface: &TriSurface, field: &dyn SizeField, opts: &MeshOptions, gap: f64) -> Meshed {
-        let solids = solids_of(self, surface);
+        let solids = self.surface_solids(surface);
         // a CAD part's boundary vertices slide on its curved faces and edges, back onto them
         let brep = self.model.as_ref().map(BrepGeometry::new);
         let geometry = brep.as_ref().map(|g| g as &dyn BoundaryGeometry);
@@ -473,10 +508,10 @@ impl Part {
     pub fn write(&self, out: &Path) -> Result<(), PipelineError> {
         match (Format::from_path(out), &self.mesh, &self.surface) {
             (Some(Format::Medit | Format::TetGen | Format::Vtu | Format::Msh), Some(mesh), _) => {
-                io::write(out, &MeshData::Volume(mesh.clone()), &WriteOptions::default())?;
+                io::write_ref(out, MeshRef::Volume(mesh), &WriteOptions::default())?;
             }
             (Some(Format::Stl | Format::Obj | Format::Off | Format::Vtu | Format::Msh), _, Some(surface)) => {
-                io::write(out, &MeshData::Surface(surface.clone()), &WriteOptions::default())?;
+                io::write_ref(out, MeshRef::Surface(surface), &WriteOptions::default())?;
             }
             _ => return Err(PipelineError::Usage { path: out.to_path_buf(), message: "tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh".into() }),
         }

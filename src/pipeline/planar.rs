@@ -9,7 +9,9 @@
 //! where they meet in the part). A face that fails is listed with its STEP `#id`; a face
 //! asked for by number that is missing, not planar or fails is an error.
 
-use super::part::{tessellate_file, DEFAULT_DIVISIONS};
+use super::default_size::default_size;
+use super::job::Method;
+use super::part::tessellate_file;
 use super::PipelineError;
 use crate::cad::brep::{EntityRef, Model};
 use crate::cad::geom::Surface;
@@ -77,7 +79,7 @@ pub struct PlanarFaces {
 }
 
 /// Meshes the chosen planar faces of the STEP file `path` at the uniform size `size`
-/// (`None`: the part's diagonal over [`DEFAULT_DIVISIONS`]).
+/// (`None`: a CAD part's default, [`default_size`]).
 ///
 /// # Errors
 /// The file cannot be read; a face asked for is missing, not planar or cannot be meshed.
@@ -87,7 +89,7 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
     let t1 = Instant::now();
     let tess = certified.tessellation;
     let surface = &tess.surface;
-    let size = size.unwrap_or(model.size() / DEFAULT_DIVISIONS);
+    let size = size.unwrap_or_else(|| default_size(model.size(), true, Method::Delaunay).global);
     let is_plane = |f: FaceId| model.try_face(f).is_some_and(|face| matches!(model.surface(face.surface), Surface::Plane(_)));
     let planar_faces = model.face_ids().filter(|&f| is_plane(f)).count();
     let faces: Vec<FaceId> = match choice {

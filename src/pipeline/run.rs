@@ -3,55 +3,20 @@
 //! outputs written. `fepre run job.toml` and `fepre mesh` both come here.
 
 use super::job::{DeckFormat, JobFile, OutputKind};
-use super::part::{MESH_MAX_ANGLE_DEG, Part};
+use super::part::Part;
 use super::PipelineError;
+use super::assembly::contact_reports;
+use super::default_size::default_size;
 use super::summary::summarise;
-use crate::attributes::{Density, SelectError, Selection, Selector};
+use crate::attributes::Groups;
 use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
-use crate::mesh3d::mesher::{MeshOptions, MeshReport};
-use crate::tessellate::TessellateOptions;
+use crate::mesh3d::mesher::MeshReport;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-/// What to do with a part.
-#[derive(Clone, Debug, Default)]
-pub struct Plan {
-    /// Named selectors.
-    pub selectors: BTreeMap<String, Selector>,
-    /// The density (lengths in `unit`s).
-    pub density: Density,
-    /// Part units per density unit.
-    pub unit: f64,
-    /// The volume meshing method.
-    pub method: super::job::Method,
-    /// Volume mesher options (Delaunay).
-    pub mesh: MeshOptions,
-    /// Octree mesher options (`method` octree).
-    pub octree: crate::mesh3d::octree::OctreeOptions,
-    /// Smallest dihedral angle every tet must have (degrees), or the run fails. `None`: the
-    /// run fails on a tet under 1° that touches no input angle under 1°.
-    pub require_min_dihedral: Option<f64>,
-    /// Largest radius-edge ratio every tet must have, or the run fails.
-    pub require_max_radius_edge: Option<f64>,
-    /// Largest relative difference between the mesh's volume and the CAD solids' (a CAD part),
-    /// or the run fails.
-    pub require_volume_error: Option<f64>,
-}
-
-impl Plan {
-    /// The tessellation options of a CAD part: the density's deviation (default
-    /// [`Part::mesh_deviation`]) and at least 8 segments per circle.
-    pub fn tessellate_options(&self, part: &Part) -> TessellateOptions {
-        // the deviation and the sizes as asked: no finer chords on solids that lose volume
-        // (on a slender part at a coarse size they made needles and millions of tets); the
-        // mesh summary says what a solid loses, and `--require-volume-error` demands less
-        let deviation = self.density.deviation.map_or_else(|| part.mesh_deviation(), |d| d.0);
-        TessellateOptions::default().with_chord_relative(deviation).with_max_angle_deg(MESH_MAX_ANGLE_DEG).with_volume_relative(0.0)
-    }
-}
-
+pub use super::plan::Plan;
 pub use super::summary::MeshSummary;
 
 /// What a run did.
@@ -85,19 +50,6 @@ pub struct RunReport {
     pub octree: Option<crate::mesh3d::octree::OctreeReport>,
 }
 
-/// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
-///
-/// # Errors
-/// The first selector that fails.
-pub fn evaluate_selectors(part: &Part, selectors: &BTreeMap<String, Selector>) -> Result<BTreeMap<String, Vec<FaceId>>, SelectError> {
-    let mut sel = Selection::new(selectors, part.catalogue());
-    let mut out = BTreeMap::new();
-    for name in selectors.keys() {
-        out.insert(name.clone(), sel.faces(name)?.into_iter().collect());
-    }
-    Ok(out)
-}
-
 /// Runs `plan` on `part`: selectors, size field, tessellation and certificate (CAD), volume
 /// mesh, requirements. With `check_only`, stops after the selectors and the size field.
 ///
@@ -118,27 +70,21 @@ pub fn run_plan_to(part: &mut Part, plan: &Plan, out: &Path) -> Result<RunReport
 }
 
 fn run_plan_writing(part: &mut Part, plan: &Plan, check_only: bool, out: Option<&Path>) -> Result<RunReport, PipelineError> {
-    let selected = evaluate_selectors(part, &plan.selectors).map_err(|source| PipelineError::Select { path: part.path.clone(), source })?;
+    let groups = part.groups(&plan.selectors)?;
+    run_groups(part, plan, &groups, check_only, out)
+}
+
+/// [`run_plan`] with the selectors evaluated already (`groups`).
+fn run_groups(part: &mut Part, plan: &Plan, groups: &Groups, check_only: bool, out: Option<&Path>) -> Result<RunReport, PipelineError> {
     let octree = plan.method == super::job::Method::Octree;
-    let density_octree;
-    let density = if octree && !part.is_cad() && plan.density.size.is_none() {
-        // a surface mesh has no default size (the Delaunay mesher goes as coarse as quality
-        // allows); a lattice needs one
-        density_octree = crate::attributes::Density {
-            size: crate::attributes::values::Positive::new(part.diagonal() / super::part::DEFAULT_DIVISIONS / plan.unit),
-            ..plan.density.clone()
-        };
-        &density_octree
-    } else {
-        &plan.density
-    };
-    let field = part.density_field(density, &plan.selectors, plan.unit)?;
-    let mut report = RunReport { input: part.path.display().to_string(), face_table: part.face_table(), selectors: selected, global_size: field.global(), ..RunReport::default() };
+    let no_size = default_size(part.diagonal(), part.is_cad(), plan.method);
+    let field = part.size_field(&plan.density, groups, plan.unit, no_size.global)?;
+    let mut report = RunReport { input: part.path.display().to_string(), face_table: part.face_table(), selectors: groups.as_map().clone(), global_size: field.global(), ..RunReport::default() };
     if check_only {
         return Ok(report);
     }
     let tess = plan.tessellate_options(part);
-    let result = if octree { part.mesh_octree(&field, &tess, &plan.octree, plan.density.size.is_none().then_some(crate::mesh3d::octree::RESOLVE)).map(|_| ()) } else { part.mesh(&field, &tess, &plan.mesh).map(|_| ()) };
+    let result = if octree { part.mesh_octree(&field, &tess, &plan.octree, if plan.density.size.is_none() { no_size.resolve } else { None }).map(|_| ()) } else { part.mesh(&field, &tess, &plan.mesh).map(|_| ()) };
     report.certificate_passed = part.certified.as_ref().map(|c| c.certificate.passed);
     result?;
     report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());
@@ -154,7 +100,7 @@ fn run_plan_writing(part: &mut Part, plan: &Plan, check_only: bool, out: Option<
     );
     report.mesh = Some(summarised.summary.clone());
     report.mesher = Some(r);
-    report.contacts = part.contacts.clone();
+    report.contacts = contact_reports(&part.contacts, &report.face_table, &part.solids);
     report.seconds = part.seconds.clone();
     report.octree = part.octree_report.clone();
     summarised.check(&part.path, mesh, plan, &report.face_table)?;
@@ -208,7 +154,8 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
         require_volume_error: job.require.volume_error.map(|r| r.get()),
     };
-    let mut report = match run_plan(&mut part, &plan, check_only) {
+    let run = part.groups(&plan.selectors).and_then(|groups| run_groups(&mut part, &plan, &groups, check_only, None).map(|r| (r, groups)));
+    let (mut report, groups) = match run {
         Ok(r) => r,
         Err(PipelineError::Select { source, .. }) | Err(PipelineError::Density { source: crate::attributes::DensityError::Select(source), .. }) => return Err(jf.select_error(&source)),
         Err(e) => return Err(e),
@@ -217,7 +164,7 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         return Ok(JobOutcome { report, part, fe: None });
     }
     let fe = if super::fe_model::wants_fe(jf) {
-        let (model, summary) = super::fe_model::build_fe(jf, &part, &report.selectors, unit)?;
+        let (model, summary) = super::fe_model::build_fe(jf, &part, &groups, unit)?;
         report.fe = Some(summary);
         Some(model)
     } else {
@@ -230,8 +177,9 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
             OutputKind::Report => reports.push(path.clone()),
             OutputKind::Mesh => part.write(&path)?,
             OutputKind::Surface => {
-                let s = part.surface.clone().unwrap_or_default();
-                crate::io::write(&path, &crate::io::MeshData::Surface(s), &crate::io::WriteOptions::default())?;
+                let none = crate::mesh::TriSurface::default();
+                let s = part.surface.as_ref().unwrap_or(&none);
+                crate::io::write_ref(&path, crate::io::MeshRef::Surface(s), &crate::io::WriteOptions::default())?;
             }
             OutputKind::Deck => {
                 let Some(m) = fe.as_ref() else { continue };

@@ -7,7 +7,7 @@
 //! naming the same place.
 
 use super::PipelineError;
-use super::run::Plan;
+use super::plan::Plan;
 use crate::cad::brep::FaceEntry;
 use crate::core::FaceId;
 use crate::mesh::{TetMesh, TriSurface};

@@ -1,4 +1,4 @@
-//! Ties between the solids of an assembly: for each contact ([`ContactReport`]) whose faces
+//! Ties between the solids of an assembly: for each contact the mesher found ([`Contact`]) whose faces
 //! touch over more than a tiny fraction of their area without sharing nodes, an element-face
 //! surface on each of the two CAD faces (their element faces on the outer boundary of the
 //! mesh; where the mesh is conforming the faces are inside it and need no tie) and a `*TIE`
@@ -12,8 +12,8 @@
 //! the nodes the earlier ties left; slave nodes farther than the tolerance from their master
 //! (which CalculiX would leave free) are not counted as tied.
 //!
-//! The position tolerance is [`TIE_TOLERANCE_GAPS`] times the part's assembly gap
-//! ([`super::assembly::gap_of`]): the mesher calls two faces in contact where their
+//! The position tolerance is [`TIE_TOLERANCE_GAPS`] times the part's assembly gap (the
+//! pipeline's `assembly::gap_of`): the mesher calls two faces in contact where their
 //! triangles come within the gap, three chord deviations of the certified tessellation for a
 //! STEP part (each tessellation lies within one chord of the B-rep, so two tessellations of one
 //! curved contact are at most two chords apart; C3D10 mid nodes on the CAD face only bring
@@ -22,13 +22,13 @@
 //! face, is not tied. A multiple of the element size would reach that far past the edge of a
 //! contact and tie nodes that only face the other solid across a clearance.
 
-use super::assembly::ContactReport;
+use super::loads::face_nodes;
+use super::{Built, FeModel, Tie};
 use crate::core::bvh::Bvh;
 use crate::core::{Aabb, FaceId};
-use crate::fe::loads::face_nodes;
-use crate::fe::{Built, FeModel, Tie};
-use serde::Serialize;
+use crate::mesh3d::mesher::Contact;
 use glam::DVec3;
+use serde::Serialize;
 use std::collections::BTreeSet;
 
 /// A contact is tied where its area without shared nodes (`area - shared_area`) is more than
@@ -70,7 +70,7 @@ pub struct TieSummary {
 /// the contact's solid `a`) and `TIEk_B`, the tie `TIEk`, k from 1 (made unique against the
 /// model's other names). A contact either of whose faces has no element face on the outer
 /// boundary gets no tie (its mesh is conforming there).
-pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f64) -> Vec<TieSummary> {
+pub fn tie_contacts(built: &mut Built, contacts: &[Contact], tolerance: f64) -> Vec<TieSummary> {
     // the pairs of surfaces, slave first
     type Side = ((u32, FaceId), String, usize);
     let mut pairs: Vec<(String, f64, Side, Side)> = Vec::new();
@@ -80,14 +80,14 @@ pub fn tie_contacts(built: &mut Built, contacts: &[ContactReport], tolerance: f6
             continue;
         }
         let count = |f: FaceId| built.outer_faces.get(&f).map_or(0, Vec::len);
-        if count(c.a.face) == 0 || count(c.b.face) == 0 {
+        if count(c.face_a) == 0 || count(c.face_b) == 0 {
             continue;
         }
         let name = built.take_name(&format!("TIE{}", pairs.len() + 1));
-        let Some((sa, na)) = built.add_face_surface(c.a.face, &format!("{name}_A")) else { continue };
-        let Some((sb, nb)) = built.add_face_surface(c.b.face, &format!("{name}_B")) else { continue };
-        let a = ((c.a.solid, c.a.face), sa, na);
-        let b = ((c.b.solid, c.b.face), sb, nb);
+        let Some((sa, na)) = built.add_face_surface(c.face_a, &format!("{name}_A")) else { continue };
+        let Some((sb, nb)) = built.add_face_surface(c.face_b, &format!("{name}_B")) else { continue };
+        let a = ((c.solid_a.0, c.face_a), sa, na);
+        let b = ((c.solid_b.0, c.face_b), sb, nb);
         // the finer mesh is the slave; on equal counts, side b
         let (slave, master) = if na > nb { (a, b) } else { (b, a) };
         pairs.push((name, open, slave, master));
@@ -183,22 +183,19 @@ fn surface_nodes(m: &FeModel, name: &str) -> BTreeSet<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::RegionId;
     use crate::fe::{ElementKind, build_model};
-    use crate::pipeline::assembly::ContactSide;
     use std::collections::BTreeMap;
 
-    fn side(solid: u32, face: u32) -> ContactSide {
-        ContactSide { solid, solid_name: None, face: FaceId(face), face_name: None, step_id: None }
+    fn contact(area: f64, shared_area: f64) -> Contact {
+        Contact { solid_a: RegionId(1), face_a: FaceId(10), solid_b: RegionId(2), face_b: FaceId(20), area, shared_area }
     }
 
     #[test]
     fn a_non_conforming_contact_gets_a_tie_and_a_conforming_one_none() {
         let mesh = crate::io::test_meshes::touching_tets();
         let mut built = build_model(&mesh, &BTreeMap::new(), ElementKind::C3D10, None, 1.0);
-        let contacts = vec![
-            ContactReport { a: side(1, 10), b: side(2, 20), area: 0.5, shared_area: 0.5 },
-            ContactReport { a: side(1, 10), b: side(2, 20), area: 0.5, shared_area: 0.0 },
-        ];
+        let contacts = vec![contact(0.5, 0.5), contact(0.5, 0.0)];
         let ties = tie_contacts(&mut built, &contacts, 0.25);
         assert_eq!(ties.len(), 1, "{ties:?}");
         let t = &ties[0];
