@@ -9,6 +9,7 @@ pub mod bucket_sort;
 pub mod bvh;
 pub mod closest;
 pub(crate) mod cdt;
+pub(crate) mod error_json;
 pub mod ids;
 pub mod intersection;
 pub mod predicates;

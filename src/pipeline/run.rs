@@ -143,7 +143,7 @@ fn run_plan_writing(part: &mut Part, plan: &Plan, check_only: bool, out: Option<
     result?;
     report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());
     let Some(mesh) = part.mesh.as_ref() else {
-        return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh was made".into() });
+        return Err(PipelineError::Usage { path: part.path.clone(), problem: crate::pipeline::UsageProblem::NoTetMesh });
     };
     let r = part.mesh_report.clone().unwrap_or_default();
     let cad_volume = part.certified.as_ref().map(|c| c.certificate.volume[1]);

@@ -43,6 +43,11 @@ pub(crate) enum Inserted {
     Refused,
 }
 
+/// Why [`Tetra::new`] made no tetrahedralization: the points span no tetrahedron.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the surface vertices span no tetrahedron (all coplanar)")]
+pub(crate) struct Flat;
+
 /// A growing, possibly constrained, Delaunay tetrahedralization.
 pub(crate) struct Tetra {
     /// Points (input vertices first, then Steiner points); ties broken by index.
@@ -76,14 +81,14 @@ impl Tetra {
     /// The Delaunay tetrahedralization of `points` (all distinct, spanning a tetrahedron).
     ///
     /// # Errors
-    /// A message when the points span no tetrahedron or some coincide (the caller checked the
-    /// surface, so this is a bug or degenerate input it could not see).
+    /// [`Flat`] when the points span no tetrahedron (the caller checked the surface, so this
+    /// is degenerate input it could not see).
     /// `ranks` orders the points for the symbolic perturbation (a permutation of `0..n`).
-    pub fn new(points: Vec<DVec3>, ranks: Vec<u32>, seed: u64) -> Result<Self, String> {
+    pub fn new(points: Vec<DVec3>, ranks: Vec<u32>, seed: u64) -> Result<Self, Flat> {
         let n = points.len();
         let order = brio_order(&points, seed);
         let k = FloatKernel { ids: ranks, points };
-        let first = first_tet(&k, &order).ok_or("the surface vertices span no tetrahedron (all coplanar)")?;
+        let first = first_tet(&k, &order).ok_or(Flat)?;
         let mut tr = Tetra {
             k,
             tets: Vec::with_capacity(n * 8 + 64),
