@@ -291,3 +291,24 @@ pub enum SolverProblem {
         log: PathBuf,
     },
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn errors_name_their_entities_in_text_and_json() {
+        let e = PipelineError::Planar { path: "p.step".into(), problem: PlanarProblem::NoSuchFace { face: FaceId(9), faces: 4 } };
+        assert_eq!(e.to_string(), "p.step: face 9 does not exist (the part has 4 faces)");
+        assert_eq!(serde_json::to_value(&e).unwrap(), json!({"Planar": {"path": "p.step", "problem": {"NoSuchFace": {"face": 9, "faces": 4}}}}));
+        let e = PipelineError::Usage { path: "m.xyz".into(), problem: UsageProblem::OutputFormat };
+        assert_eq!(e.to_string(), "m.xyz: tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh");
+        assert_eq!(serde_json::to_value(&e).unwrap(), json!({"Usage": {"path": "m.xyz", "problem": "OutputFormat"}}));
+        // a foreign error inside is written as its message
+        let e = PipelineError::Io(IoError::Read { path: "m.stl".into(), source: std::io::Error::other("gone") });
+        assert_eq!(serde_json::to_value(&e).unwrap(), json!({"Io": {"Read": {"path": "m.stl", "source": "gone"}}}));
+        let e = PipelineError::Solver { path: "ccx".into(), problem: SolverProblem::CannotRun { why: "no such file".into() } };
+        assert_eq!(e.to_string(), "ccx: cannot run: no such file");
+    }
+}
