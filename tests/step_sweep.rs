@@ -130,7 +130,7 @@ fn every_certified_sweep_file_meshes_with_an_honest_report() {
                 return (solids, triangles, Outcome::Skipped);
             }
             match run_plan(&mut part, &plan, false) {
-                Err(PipelineError::Certificate { message, .. }) => (solids, triangles, Outcome::NotCertified(message)),
+                Err(e @ PipelineError::Certificate { .. }) => (solids, triangles, Outcome::NotCertified(e.to_string())),
                 Err(e) => (solids, triangles, Outcome::Failed(e.to_string())),
                 Ok(report) => {
                     let (Some(mesh), Some(m)) = (part.mesh.as_ref(), report.mesh.as_ref()) else {

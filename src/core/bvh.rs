@@ -76,12 +76,12 @@ impl Bvh {
     const TASK_DEPTH: u32 = 6;
 
     /// Builds the tree over `(item index, box)` pairs. Item indices need not be distinct
-    /// or dense; empty boxes (and boxes with a NaN bound) are dropped. More than `u32::MAX`
-    /// items give an empty tree.
+    /// or dense; empty boxes (and boxes with a NaN bound) are dropped. More items than
+    /// a `u32` index can number give an empty tree.
     pub fn build(items: impl IntoIterator<Item = (u32, Aabb)>) -> Bvh {
         let (ids, boxes): (Vec<u32>, Vec<Aabb>) = items.into_iter().filter(|(_, b)| !b.is_empty()).unzip();
         let n = ids.len();
-        if n == 0 || n > u32::MAX as usize {
+        if n == 0 || u32::try_from(n).is_err() {
             return Bvh::default();
         }
         let mut prims: Vec<Prim> = boxes.par_iter().enumerate().map(|(i, b)| Prim { centre: b.center(), at: i as u32 }).collect();

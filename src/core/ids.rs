@@ -49,6 +49,11 @@ pub struct RegionId(pub u32);
 /// has the same value but its own name, as it is a vertex, not an absent one.
 pub(crate) const NONE: u32 = u32::MAX;
 
+/// The largest value a `u32` index, count or tag can take: the bound that readers check
+/// counts and tags against before narrowing them to `u32`. A limit, not a sentinel (it shares
+/// its value with [`NONE`], which no valid index reaches).
+pub(crate) const INDEX_MAX: u32 = u32::MAX;
+
 macro_rules! one_based {
     ($t:ident, $what:literal) => {
         impl $t {

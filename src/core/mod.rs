@@ -9,6 +9,7 @@ pub(crate) mod bucket_sort;
 pub(crate) mod bvh;
 pub(crate) mod closest;
 pub(crate) mod cdt;
+pub(crate) mod error_json;
 pub(crate) mod ids;
 pub(crate) mod intersection;
 pub mod predicates;

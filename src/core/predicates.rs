@@ -33,7 +33,7 @@ use glam::{DVec2, DVec3};
 use robust::{Coord, Coord3D};
 
 /// The sign of an exactly evaluated determinant.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
 pub enum Sign {
     /// Strictly negative.
     Negative = -1,

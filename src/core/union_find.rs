@@ -12,6 +12,8 @@
 //! earlier unions (orientability of a surface: triangles flipped or not relative to their
 //! neighbours).
 
+use crate::core::ids::NONE;
+
 /// Disjoint sets of `0..n` with path halving; the smallest element of a set is its root.
 #[derive(Clone, Debug)]
 pub(crate) struct UnionFind {
@@ -23,7 +25,7 @@ pub(crate) struct UnionFind {
 impl UnionFind {
     /// `n` singletons.
     pub fn new(n: usize) -> Self {
-        debug_assert!(n <= u32::MAX as usize);
+        debug_assert!(u32::try_from(n).is_ok());
         UnionFind { parent: (0..n as u32).collect(), size: vec![1; n] }
     }
 
@@ -70,12 +72,12 @@ impl UnionFind {
     /// number of sets.
     pub fn labels(&mut self) -> (Vec<u32>, usize) {
         let n = self.len();
-        let mut label_of_root = vec![u32::MAX; n];
+        let mut label_of_root = vec![NONE; n];
         let mut labels = vec![0u32; n];
         let mut count = 0u32;
         for x in 0..n as u32 {
             let r = self.find(x) as usize;
-            if label_of_root[r] == u32::MAX {
+            if label_of_root[r] == NONE {
                 label_of_root[r] = count;
                 count += 1;
             }
@@ -96,7 +98,7 @@ pub(crate) struct ParityUnionFind {
 impl ParityUnionFind {
     /// `n` singletons, each of parity 0.
     pub fn new(n: usize) -> Self {
-        debug_assert!(n <= u32::MAX as usize);
+        debug_assert!(u32::try_from(n).is_ok());
         ParityUnionFind { parent: (0..n as u32).collect(), parity: vec![false; n] }
     }
 

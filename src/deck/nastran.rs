@@ -108,7 +108,7 @@ pub struct NastranSummary {
 pub fn write_nastran(path: &Path, m: &FeModel, options: &NastranOptions) -> Result<NastranSummary, IoError> {
     let not = |what: String| IoError::NotRepresentable { path: path.to_path_buf(), format: "Nastran bulk data", what };
     m.validate().map_err(|e| not(e.to_string()))?;
-    let plan = plan(m).map_err(not)?;
+    let plan = plan(m).map_err(|e| not(e.to_string()))?;
     let mut summary = NastranSummary { sol: plan.sol, subcases: plan.steps.len(), ..NastranSummary::default() };
     write_atomic(path, |w| {
         let mut out = Out { w, s: String::new(), large: options.large };

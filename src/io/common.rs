@@ -109,17 +109,31 @@ pub(crate) fn unused_vertices_note(m: &TetMesh) -> Option<String> {
     (n > 0).then(|| format!("{n} vertices are used by no tetrahedron (kept, so that vertex numbers match the file)"))
 }
 
+/// Why a token is not a tag ([`integral_tag`]); each names the token.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub(crate) enum TagError {
+    /// An integer outside `0..=INDEX_MAX`.
+    #[error("'{0}' is not a tag fepre can hold (0 to 4294967295)")]
+    OutOfRange(String),
+    /// A number with a fractional part (or not finite).
+    #[error("'{0}' is not an integer")]
+    NotInteger(String),
+    /// Not a number at all.
+    #[error("'{0}' is not a number")]
+    NotANumber(String),
+}
+
 /// Parses a non-negative integer tag, written as an integer or as an integral real (`3`,
 /// `3.0`, `3e0`), as TetGen writes attributes. The error says what is wrong with `text`.
-pub(crate) fn integral_tag(text: &str) -> Result<u32, String> {
+pub(crate) fn integral_tag(text: &str) -> Result<u32, TagError> {
     if let Ok(v) = text.parse::<i64>() {
-        return u32::try_from(v).map_err(|_| format!("'{text}' is not a tag fepre can hold (0 to 4294967295)"));
+        return u32::try_from(v).map_err(|_| TagError::OutOfRange(text.to_owned()));
     }
     match text.parse::<f64>() {
-        Ok(x) if x.is_finite() && x.fract() == 0.0 && (0.0..=u32::MAX as f64).contains(&x) => Ok(x as u32),
-        Ok(x) if x.is_finite() && x.fract() == 0.0 => Err(format!("'{text}' is not a tag fepre can hold (0 to 4294967295)")),
-        Ok(_) => Err(format!("'{text}' is not an integer")),
-        Err(_) => Err(format!("'{text}' is not a number")),
+        Ok(x) if x.is_finite() && x.fract() == 0.0 && (0.0..=f64::from(crate::core::ids::INDEX_MAX)).contains(&x) => Ok(x as u32),
+        Ok(x) if x.is_finite() && x.fract() == 0.0 => Err(TagError::OutOfRange(text.to_owned())),
+        Ok(_) => Err(TagError::NotInteger(text.to_owned())),
+        Err(_) => Err(TagError::NotANumber(text.to_owned())),
     }
 }
 
@@ -145,9 +159,9 @@ mod tests {
     fn tags_and_orientation() {
         assert_eq!(integral_tag("7"), Ok(7));
         assert_eq!(integral_tag("7.0"), Ok(7));
-        assert!(integral_tag("-1").unwrap_err().contains("0 to"));
-        assert!(integral_tag("1.5").unwrap_err().contains("not an integer"));
-        assert!(integral_tag("x").unwrap_err().contains("not a number"));
+        assert!(integral_tag("-1").unwrap_err().to_string().contains("0 to"));
+        assert!(integral_tag("1.5").unwrap_err().to_string().contains("not an integer"));
+        assert!(integral_tag("x").unwrap_err().to_string().contains("not a number"));
         let mut m = TetMesh {
             vertices: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE],
             tets: vec![[0, 2, 1, 3], [0, 1, 2, 3]],

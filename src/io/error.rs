@@ -6,7 +6,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// Where in a file a problem was found.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Location {
     /// Nowhere in particular (the file as a whole).
     File,
@@ -30,7 +30,7 @@ impl fmt::Display for Location {
 }
 
 /// Why a mesh file could not be read or written.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, thiserror::Error, serde::Serialize)]
 #[non_exhaustive]
 pub enum IoError {
     /// The file could not be opened or read.
@@ -39,6 +39,7 @@ pub enum IoError {
         /// The file.
         path: PathBuf,
         /// The operating system's reason.
+        #[serde(serialize_with = "crate::core::error_json::message")]
         source: std::io::Error,
     },
     /// The path is a directory.
@@ -116,6 +117,7 @@ pub enum IoError {
         /// The output file.
         path: PathBuf,
         /// The operating system's reason.
+        #[serde(serialize_with = "crate::core::error_json::message")]
         source: std::io::Error,
     },
 }

@@ -201,12 +201,23 @@ fn local_f32(node: &Node<'_>) -> DMat4 {
     }
 }
 
+/// Why a `data:` URI could not be decoded.
+#[derive(Debug, thiserror::Error)]
+enum DataUriError {
+    /// No `,` between the media type and the data.
+    #[error("a data: URI without ','")]
+    NoComma,
+    /// The payload is not base64.
+    #[error("bad base64 in its data: URI: {0}")]
+    Base64(#[from] base64::DecodeError),
+}
+
 /// Decodes a `data:` URI (base64 or percent-encoded).
-fn data_uri(uri: &str) -> Result<Vec<u8>, String> {
+fn data_uri(uri: &str) -> Result<Vec<u8>, DataUriError> {
     let rest = uri.strip_prefix("data:").unwrap_or(uri);
-    let (head, payload) = rest.split_once(',').ok_or("a data: URI without ','")?;
+    let (head, payload) = rest.split_once(',').ok_or(DataUriError::NoComma)?;
     if head.ends_with(";base64") {
-        BASE64.decode(payload.trim()).map_err(|e| format!("bad base64 in its data: URI: {e}"))
+        Ok(BASE64.decode(payload.trim())?)
     } else {
         Ok(percent_decode(payload))
     }
@@ -239,7 +250,7 @@ impl<'a> Buffers<'a> {
         let err = |m: String| IoError::at_entity(self.path, entity.as_str(), m);
         let data: Cow<'a, [u8]> = match buffer.source() {
             Source::Bin => Cow::Borrowed(self.bin.ok_or_else(|| err("refers to the BIN chunk of a GLB file, and there is none".into()))?),
-            Source::Uri(uri) if uri.starts_with("data:") => Cow::Owned(data_uri(uri).map_err(err)?),
+            Source::Uri(uri) if uri.starts_with("data:") => Cow::Owned(data_uri(uri).map_err(|e| err(e.to_string()))?),
             Source::Uri(uri) if uri.contains("://") => {
                 return Err(IoError::Unsupported {
                     path: self.path.to_path_buf(),
@@ -509,7 +520,7 @@ impl Walk<'_> {
                 continue;
             }
             let base = self.s.vertices.len();
-            if base + n > u32::MAX as usize {
+            if u32::try_from(base + n).is_err() {
                 return Err(perr("more than 4,294,967,295 vertices in all instances".into()));
             }
             for (k, c) in positions.chunks_exact(3).enumerate() {

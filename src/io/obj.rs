@@ -175,7 +175,7 @@ impl Scan {
                 return Err(IoError::at_line(path, line, "vertex coordinate divided by its weight is not a finite number"));
             }
         }
-        if self.vertices.len() > u32::MAX as usize {
+        if u32::try_from(self.vertices.len()).is_err() {
             return Err(IoError::at_line(path, line, "more than 4,294,967,296 vertices"));
         }
         self.vertices.push(p);
@@ -203,7 +203,7 @@ impl Scan {
             let v = parts.next().unwrap_or_default();
             let count = self.vertices.len();
             match Scan::index(path, line, v, count, "vertex")? {
-                Some(i) if i <= u32::MAX as u64 => self.corners.push(i as u32),
+                Some(i) if i <= u64::from(crate::core::ids::INDEX_MAX) => self.corners.push(i as u32),
                 Some(i) => {
                     return Err(IoError::at_line(path, line, format!("vertex index {} is out of range (at most 4,294,967,296 vertices)", i + 1)));
                 }
@@ -286,10 +286,10 @@ impl Scan {
     }
 
     /// Checks that tobj's objects, arities and indices describe the scanned faces.
-    fn cross_check(&self, models: &[tobj::Model]) -> Result<(), String> {
+    fn cross_check(&self, models: &[tobj::Model]) -> Result<(), Disagreement> {
         let mut faces = self.faces.iter();
         for m in models.iter().filter(|m| !m.mesh.indices.is_empty()) {
-            let tag: u32 = m.name.strip_prefix('t').and_then(|t| t.parse().ok()).ok_or(format!("unexpected object '{}'", m.name))?;
+            let tag: u32 = m.name.strip_prefix('t').and_then(|t| t.parse().ok()).ok_or_else(|| Disagreement::Object(m.name.clone()))?;
             let arities: Vec<usize> = if m.mesh.face_arities.is_empty() {
                 vec![3; m.mesh.indices.len() / 3]
             } else {
@@ -298,24 +298,24 @@ impl Scan {
             let mut to_global: Vec<u32> = Vec::new();
             let mut at = 0;
             for arity in arities {
-                let f = faces.next().ok_or("tobj found more faces")?;
+                let f = faces.next().ok_or(Disagreement::MoreFaces)?;
                 if f.len != arity || f.tag != tag {
-                    return Err(format!("face of line {}: {} corners with tag {}, tobj: {arity} with tag {tag}", f.line, f.len, f.tag));
+                    return Err(Disagreement::Face { line: f.line, corners: f.len, tag: f.tag, tobj_corners: arity, tobj_tag: tag });
                 }
-                let ours = self.corners.get(f.start..f.start + f.len).ok_or("corner out of range")?;
+                let ours = self.corners.get(f.start..f.start + f.len).ok_or(Disagreement::CornerOutOfRange { line: f.line })?;
                 for (k, &g) in ours.iter().enumerate() {
-                    let l = *m.mesh.indices.get(at + k).ok_or("tobj has too few indices")? as usize;
+                    let l = *m.mesh.indices.get(at + k).ok_or(Disagreement::FewerIndices { line: f.line })? as usize;
                     match to_global.get(l) {
                         Some(&x) if x == g => {}
                         None if l == to_global.len() => to_global.push(g),
-                        _ => return Err(format!("face of line {}: corner {k} is vertex {g}, tobj disagrees", f.line)),
+                        _ => return Err(Disagreement::Corner { line: f.line, corner: k, vertex: g }),
                     }
                 }
                 at += arity;
             }
         }
         match faces.next() {
-            Some(f) => Err(format!("tobj lost the face of line {}", f.line)),
+            Some(f) => Err(Disagreement::LostFace { line: f.line }),
             None => Ok(()),
         }
     }
@@ -336,6 +336,60 @@ impl Scan {
             })
             .collect()
     }
+}
+
+/// Where tobj's reading of the faces disagrees with fepre's scan (a bug of one of the two,
+/// reported as an internal error naming the face's line).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+enum Disagreement {
+    /// tobj made an object that the scan's re-emitted text does not name.
+    #[error("unexpected object '{0}'")]
+    Object(String),
+    /// tobj found faces beyond the scan's.
+    #[error("tobj found more faces")]
+    MoreFaces,
+    /// The corner count or the tag of a face differs.
+    #[error("face of line {line}: {corners} corners with tag {tag}, tobj: {tobj_corners} with tag {tobj_tag}")]
+    Face {
+        /// The face's line.
+        line: usize,
+        /// Its corners by the scan.
+        corners: usize,
+        /// Its tag by the scan.
+        tag: u32,
+        /// Its corners by tobj.
+        tobj_corners: usize,
+        /// Its tag by tobj.
+        tobj_tag: u32,
+    },
+    /// The scan's corner range of a face lies outside its corner list.
+    #[error("corner out of range")]
+    CornerOutOfRange {
+        /// The face's line.
+        line: usize,
+    },
+    /// tobj holds fewer indices than the faces' corners.
+    #[error("tobj has too few indices")]
+    FewerIndices {
+        /// The face's line.
+        line: usize,
+    },
+    /// A corner refers to another vertex.
+    #[error("face of line {line}: corner {corner} is vertex {vertex}, tobj disagrees")]
+    Corner {
+        /// The face's line.
+        line: usize,
+        /// The corner, 0-based.
+        corner: usize,
+        /// The scan's vertex, 0-based.
+        vertex: u32,
+    },
+    /// tobj lost a face of the scan.
+    #[error("tobj lost the face of line {line}")]
+    LostFace {
+        /// The face's line.
+        line: usize,
+    },
 }
 
 /// Reads an OBJ file's bytes (text; bytes that are not UTF-8 are replaced, which matters only

@@ -29,8 +29,8 @@ use std::path::Path;
 /// Checks an OFF header keyword (`OFF`, `COFF`, `NOFF`, `STCNOFF`, …, ASCII case-insensitive).
 ///
 /// `Ok(true)` for a header, `Ok(false)` for a token that is no header (the counts of a file
-/// without one), `Err` with a message for a variant fepre does not read.
-fn header(token: &str) -> Result<bool, String> {
+/// without one), `Err` for a variant fepre does not read.
+fn header(token: &str) -> Result<bool, HeaderError> {
     let upper = token.to_ascii_uppercase();
     let Some(prefix) = upper.strip_suffix("OFF") else { return Ok(false) };
     let rest = prefix.strip_prefix("ST").unwrap_or(prefix);
@@ -38,9 +38,20 @@ fn header(token: &str) -> Result<bool, String> {
     let rest = rest.strip_prefix('N').unwrap_or(rest);
     match rest {
         "" => Ok(true),
-        "4" | "N" | "4N" => Err(format!("'{token}': only 3-dimensional vertices are supported")),
-        _ => Err(format!("'{token}' is not an OFF header (expected OFF, COFF, NOFF, STOFF, …)")),
+        "4" | "N" | "4N" => Err(HeaderError::NotThreeDimensional(token.to_owned())),
+        _ => Err(HeaderError::Unknown(token.to_owned())),
     }
+}
+
+/// An OFF header fepre does not read; each names the header token.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+enum HeaderError {
+    /// `4OFF`, `nOFF` and the like: vertices of another dimension.
+    #[error("'{0}': only 3-dimensional vertices are supported")]
+    NotThreeDimensional(String),
+    /// A word ending in `OFF` that no OFF variant spells.
+    #[error("'{0}' is not an OFF header (expected OFF, COFF, NOFF, STOFF, …)")]
+    Unknown(String),
 }
 
 /// Reads an OFF file's bytes.
@@ -53,7 +64,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
     let first = tok.next_or_error("the 'OFF' header")?;
     let mut notes = Vec::new();
     let has_header = header(first)
-        .map_err(|message| IoError::Unsupported { path: path.to_path_buf(), at: Location::Line(tok.line()), message })?;
+        .map_err(|e| IoError::Unsupported { path: path.to_path_buf(), at: Location::Line(tok.line()), message: e.to_string() })?;
     // The counts: after the header on its line, on the next line, or first in the file.
     let count_tokens: Vec<&str> = if has_header {
         let rest = tok.rest_of_line();
@@ -86,7 +97,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
     };
     let nv = count(0, "vertex count")?;
     let nf = count(1, "face count")?;
-    if nv > u32::MAX as usize {
+    if u32::try_from(nv).is_err() {
         return Err(IoError::at_line(path, count_line, format!("{nv} vertices: at most 4,294,967,295 are supported")));
     }
 

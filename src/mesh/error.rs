@@ -4,7 +4,7 @@ use crate::core::Sign;
 use std::fmt;
 
 /// An element of a mesh, by kind and 0-based position in its array.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum Element {
     /// A triangle of a [`TriSurface`](crate::mesh::TriSurface) or a
     /// [`PlanarMesh`](crate::mesh::PlanarMesh).
@@ -29,7 +29,7 @@ impl fmt::Display for Element {
 }
 
 /// Why a mesh container is invalid. Indices are 0-based positions in the container's arrays.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
 #[non_exhaustive]
 pub enum MeshError {
     /// A per-element array (tags) does not have one entry per element.

@@ -1,5 +1,6 @@
 //! `TetMesh`: positively oriented tetrahedra with region tags and tagged boundary triangles.
 
+use crate::core::ids::NONE;
 use crate::core::predicates::orient3d;
 use crate::core::{Aabb, FaceId, FaceNames, RegionId, RegionNames, Sign};
 use crate::mesh::tri_surface::{check_finite, check_simplex};
@@ -73,7 +74,7 @@ impl TetMesh {
                 *u = true;
             }
         }
-        let mut id = vec![u32::MAX; self.vertices.len()];
+        let mut id = vec![NONE; self.vertices.len()];
         let mut next = 0;
         for (i, &u) in used.iter().enumerate() {
             if u {
@@ -84,7 +85,7 @@ impl TetMesh {
         }
         let removed = self.vertices.len() - next;
         self.vertices.truncate(next);
-        let renumber = |v: u32| id.get(v as usize).copied().unwrap_or(u32::MAX);
+        let renumber = |v: u32| id.get(v as usize).copied().unwrap_or(NONE);
         for tet in &mut self.tets {
             *tet = tet.map(renumber);
         }

@@ -1,5 +1,6 @@
 //! Merging of coincident vertices with a tolerance relative to the model's size.
 
+use crate::core::ids::NONE;
 use crate::core::Tolerance;
 use crate::mesh::TriSurface;
 use glam::DVec3;
@@ -126,7 +127,7 @@ impl TriSurface {
                 used[i as usize] = true;
             }
         }
-        let mut new_index = vec![u32::MAX; w.vertices.len()];
+        let mut new_index = vec![NONE; w.vertices.len()];
         let mut verts = Vec::with_capacity(w.vertices.len());
         for (i, p) in w.vertices.iter().enumerate() {
             if used[i] {

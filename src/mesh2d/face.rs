@@ -52,7 +52,8 @@ impl PlaneFrame {
 }
 
 /// Why a face could not be made a domain.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
+#[non_exhaustive]
 pub enum FaceError {
     /// The face has no triangles.
     #[error("{0} has no triangles")]

@@ -95,7 +95,7 @@ fn cad_solids(m: &Model, surface: &TriSurface) -> Solids {
             None => free = true,
         }
     }
-    let mut index = vec![u32::MAX; m.solids.len()];
+    let mut index = vec![crate::core::ids::NONE; m.solids.len()];
     let mut solids = Vec::new();
     for (k, s) in m.solids.iter().enumerate() {
         if used[k] {
@@ -143,7 +143,7 @@ fn shell_solids(surface: &TriSurface) -> Solids {
             }
         }
     }
-    let mut index = vec![u32::MAX; shells.len()];
+    let mut index = vec![crate::core::ids::NONE; shells.len()];
     let mut solids = Vec::new();
     for k in 0..shells.len() {
         if root[k] == k {

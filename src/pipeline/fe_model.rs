@@ -81,7 +81,7 @@ pub fn wants_fe(jf: &JobFile) -> bool {
 pub fn build_fe(jf: &JobFile, part: &Part, groups: &Groups, unit: f64) -> Result<(FeModel, FeSummary), PipelineError> {
     let job = &jf.job;
     let Some(mesh) = part.mesh.as_ref() else {
-        return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh to build an FE model from".into() });
+        return Err(PipelineError::Usage { path: part.path.clone(), problem: crate::pipeline::UsageProblem::NoTetMeshForModel });
     };
     let kind = match job.model.element {
         ElementChoice::C3D4 => ElementKind::C3D4,
@@ -164,7 +164,7 @@ pub fn build_fe(jf: &JobFile, part: &Part, groups: &Groups, unit: f64) -> Result
         steps.push(summary);
         m.steps.push(step);
     }
-    m.validate().map_err(|e| PipelineError::Usage { path: part.path.clone(), message: format!("the FE model is inconsistent (a bug): {e}") })?;
+    m.validate().map_err(|e| PipelineError::Usage { path: part.path.clone(), problem: crate::pipeline::UsageProblem::InconsistentModel { why: e.to_string() } })?;
     let summary = FeSummary { element: kind.name().into(), nodes: m.nodes.len(), elements: m.element_count(), curving: m.curving.clone(), selectors: built.groups, solids, steps, ties };
     Ok((m, summary))
 }

@@ -246,7 +246,7 @@ impl JobFile {
     /// [`PipelineError::Job`] naming the key, line and column: a syntax error, an unknown key,
     /// a wrong type, a bad value.
     pub fn read(path: &Path) -> Result<JobFile, PipelineError> {
-        let text = std::fs::read_to_string(path).map_err(|e| PipelineError::Job { path: path.to_path_buf(), line: 0, column: 0, message: format!("cannot read: {e}") })?;
+        let text = std::fs::read_to_string(path).map_err(|e| PipelineError::Job { path: path.to_path_buf(), line: 0, column: 0, key: None, message: format!("cannot read: {e}") })?;
         JobFile::parse(path, text)
     }
 
@@ -385,7 +385,7 @@ impl JobFile {
         };
         match at {
             Some(o) => self.error_at(o, e.to_string()),
-            None => PipelineError::Job { path: self.path.clone(), line: 0, column: 0, message: e.to_string() },
+            None => PipelineError::Job { path: self.path.clone(), line: 0, column: 0, key: None, message: e.to_string() },
         }
     }
 }
@@ -400,7 +400,7 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 
 fn error_at(path: &Path, text: &str, offset: usize, message: String) -> PipelineError {
     let (line, column) = line_column(text, offset);
-    PipelineError::Job { path: path.to_path_buf(), line, column, message }
+    PipelineError::Job { path: path.to_path_buf(), line, column, key: key_at(text, offset), message }
 }
 
 /// The key whose value starts at or before `offset` on its line (`size` in `size = -1`, the

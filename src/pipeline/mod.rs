@@ -30,5 +30,5 @@ pub mod solve;
 mod summary;
 pub mod tessellated;
 
-pub use error::PipelineError;
+pub use error::{PipelineError, PlanarProblem, Requirement, SolverProblem, UsageProblem};
 pub use part::{Certified, Part, failure_message, tessellate_file, tessellate_model};

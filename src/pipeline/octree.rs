@@ -35,7 +35,7 @@ impl Part {
             self.tessellate(size, tess)?;
         }
         let Some(surface) = &self.surface else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
+            return Err(PipelineError::Usage { path: self.path.clone(), problem: crate::pipeline::UsageProblem::NoSurface });
         };
         let t0 = Instant::now();
         let (mesh, report, contacts, solids) = self.octree_solids(surface, size, opts, resolve)?;
@@ -105,7 +105,7 @@ impl Part {
             let mesh = merge_solids(meshes, &solids, &mut contacts);
             let Some(mut report) = OctreeReport::merged(&reports) else {
                 // every solid is empty: the first one's error
-                let (k, e) = first_empty.ok_or_else(|| PipelineError::Usage { path: self.path.clone(), message: "no solid to mesh".into() })?;
+                let (k, e) = first_empty.ok_or_else(|| PipelineError::Usage { path: self.path.clone(), problem: crate::pipeline::UsageProblem::NoSolid })?;
                 let info = &solids.solids[k];
                 return Err(octree_error(OctreeError::InSolid { solid: info.tag.0, name: info.name.clone(), source: Box::new(e) }));
             };

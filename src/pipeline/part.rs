@@ -1,7 +1,7 @@
 //! A part going through the pipeline: what was read (a B-rep or a tagged surface), its face
 //! catalogue, the certified tessellation, the tet mesh, and every stage's report.
 
-use super::PipelineError;
+use super::{PipelineError, UsageProblem};
 use super::default_size::default_size;
 use super::job::Method;
 use crate::attributes::density::RegionSizes;
@@ -300,7 +300,7 @@ impl Part {
     /// `#id`s); the failed tessellation is kept in [`Part::certified`] for reports.
     pub fn tessellate(&mut self, size: &dyn SizeField, opts: &TessellateOptions) -> Result<&Certificate, PipelineError> {
         let Some(model) = &mut self.model else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
+            return Err(PipelineError::Usage { path: self.path.clone(), problem: UsageProblem::NotCad });
         };
         // the boundary of a volume mesh: its volume against the CAD solids' is the mesh
         // summary's to report (and `--require-volume-error`'s to demand)
@@ -316,7 +316,7 @@ impl Part {
     /// [`PipelineError::Certificate`] when a check failed.
     fn accept(&mut self, c: Certified, [tessellate_s, certify_s]: [f64; 2], solids: Option<(TriSurface, usize)>) -> Result<&Certificate, PipelineError> {
         let Some(model) = &self.model else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
+            return Err(PipelineError::Usage { path: self.path.clone(), problem: UsageProblem::NotCad });
         };
         if !c.certificate.reoriented.is_empty() {
             // faces turned: what the catalogue says of their normals is built again on use
@@ -325,15 +325,15 @@ impl Part {
         self.seconds.tessellate = tessellate_s;
         self.seconds.certify = certify_s;
         self.seconds.certify_beside_mesh = false;
-        let message = (!c.certificate.passed).then(|| failure_message(&self.path, &c.certificate, &model.dropped));
-        if message.is_none() {
+        let failed = (!c.certificate.passed).then(|| PipelineError::certificate(&self.path, &c.certificate, &model.dropped));
+        if failed.is_none() {
             let (surface, left_out) = solids.unwrap_or_else(|| solids_only(model, &c.tessellation.surface));
             self.surface = Some(surface);
             self.open_surface_faces = left_out;
         }
         let c = self.certified.insert(c);
-        match message {
-            Some(message) => Err(PipelineError::Certificate { path: self.path.clone(), message }),
+        match failed {
+            Some(e) => Err(e),
             None => Ok(&c.certificate),
         }
     }
@@ -348,7 +348,7 @@ impl Part {
     /// As [`Part::tessellate`]: a failed certificate, whatever the mesher made of it.
     fn tessellate_meshing(&mut self, size: &dyn SizeField, tess: &TessellateOptions, field: &dyn SizeField, opts: &MeshOptions) -> Result<Option<(Meshed, f64)>, PipelineError> {
         let Some(model) = &mut self.model else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "not a CAD part: nothing to tessellate".into() });
+            return Err(PipelineError::Usage { path: self.path.clone(), problem: UsageProblem::NotCad });
         };
         let t0 = Instant::now();
         let mut tessellation = tessellate_sized(model, tess, size);
@@ -410,7 +410,7 @@ impl Part {
         // a CAD part is tessellated, and meshed while its tessellation is certified
         let speculative = if self.is_cad() && self.certified.is_none() { self.tessellate_meshing(size, tess, field, &opts)? } else { None };
         let Some(surface) = &self.surface else {
-            return Err(PipelineError::Usage { path: self.path.clone(), message: "no surface to mesh".into() });
+            return Err(PipelineError::Usage { path: self.path.clone(), problem: UsageProblem::NoSurface });
         };
         let t0 = Instant::now();
         let (mut result, before) = match speculative {
@@ -513,7 +513,7 @@ impl Part {
             (Some(Format::Stl | Format::Obj | Format::Off | Format::Vtu | Format::Msh), _, Some(surface)) => {
                 io::write_ref(out, MeshRef::Surface(surface), &WriteOptions::default())?;
             }
-            _ => return Err(PipelineError::Usage { path: out.to_path_buf(), message: "tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh".into() }),
+            _ => return Err(PipelineError::Usage { path: out.to_path_buf(), problem: UsageProblem::OutputFormat }),
         }
         Ok(())
     }
@@ -625,24 +625,5 @@ fn is_recovery(e: &MeshingError) -> bool {
 
 /// The certificate's failures as one message, naming faces and STEP ids.
 pub fn failure_message(path: &Path, c: &Certificate, dropped: &[Dropped]) -> String {
-    let mut msg = format!("{}: the tessellation fails its certificate ({} failed checks)", path.display(), c.failure_count);
-    for d in dropped.iter().take(5) {
-        msg.push_str(&format!("\n  the reader dropped {} {}: {}", d.id, d.kind, d.why));
-    }
-    for f in c.failures.iter().take(5) {
-        msg.push_str("\n  ");
-        msg.push_str(f.check);
-        if let Some(face) = f.face {
-            msg.push_str(&format!(" face {}", face.0));
-        }
-        if let Some(id) = f.step_id {
-            msg.push_str(&format!(" ({id})"));
-        }
-        msg.push_str(": ");
-        msg.push_str(&f.message);
-    }
-    if c.failure_count > 5 {
-        msg.push_str(&format!("\n  ... {} more (--json lists up to 20)", c.failure_count - 5));
-    }
-    msg
+    PipelineError::certificate(path, c, dropped).to_string()
 }

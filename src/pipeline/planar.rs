@@ -12,7 +12,7 @@
 use super::default_size::default_size;
 use super::job::Method;
 use super::part::tessellate_file;
-use super::PipelineError;
+use super::{PipelineError, PlanarProblem};
 use crate::cad::brep::{EntityRef, Model};
 use crate::cad::geom::Surface;
 use crate::core::{FaceId, RegionId};
@@ -97,10 +97,10 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
         FaceChoice::Faces(list) => {
             for &f in list {
                 let Some(face) = model.try_face(f) else {
-                    return Err(PipelineError::Planar { path: path.to_path_buf(), message: format!("face {} does not exist (the part has {} faces)", f.0, model.faces.len()) });
+                    return Err(PipelineError::Planar { path: path.to_path_buf(), problem: PlanarProblem::NoSuchFace { face: f, faces: model.faces.len() } });
                 };
                 if !is_plane(f) {
-                    return Err(PipelineError::Planar { path: path.to_path_buf(), message: format!("face {} ({}) is not planar", f.0, face.source) });
+                    return Err(PipelineError::Planar { path: path.to_path_buf(), problem: PlanarProblem::NotPlanar { face: f, step_id: face.source } });
                 }
             }
             list.clone()
@@ -138,7 +138,7 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
             Ok(m) => meshed.push(m),
             Err(reason) => {
                 if matches!(choice, FaceChoice::Faces(_)) {
-                    return Err(PipelineError::Planar { path: path.to_path_buf(), message: format!("{reason} (STEP {})", face.source) });
+                    return Err(PipelineError::Planar { path: path.to_path_buf(), problem: PlanarProblem::Failed { face: f, step_id: face.source, reason } });
                 }
                 failed.push(FailedPlanarFace { face: f, step_id: face.source, reason });
             }
@@ -158,7 +158,7 @@ impl PlanarFaces {
         for m in &self.meshed {
             let pm = &m.mesh.mesh;
             // mesh vertex -> domain point, for the boundary
-            let mut domain_point = vec![u32::MAX; pm.vertices.len()];
+            let mut domain_point = vec![crate::core::ids::NONE; pm.vertices.len()];
             for (s, chain) in m.mesh.boundary.iter().enumerate() {
                 let [a, b] = m.planar.domain.segments[s];
                 domain_point[chain[0] as usize] = a;
@@ -167,7 +167,7 @@ impl PlanarFaces {
             let ids: Vec<u32> = (0..pm.vertices.len())
                 .map(|i| {
                     let dp = domain_point[i];
-                    if dp != u32::MAX {
+                    if dp != crate::core::ids::NONE {
                         let sv = m.planar.surface_vertex[dp as usize];
                         if let Some(&id) = shared.get(&sv) {
                             return id;

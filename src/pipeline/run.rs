@@ -89,7 +89,7 @@ fn run_groups(part: &mut Part, plan: &Plan, groups: &Groups, check_only: bool, o
     result?;
     report.surface_triangles = part.surface.as_ref().map_or(0, |s| s.triangles.len());
     let Some(mesh) = part.mesh.as_ref() else {
-        return Err(PipelineError::Usage { path: part.path.clone(), message: "no tet mesh was made".into() });
+        return Err(PipelineError::Usage { path: part.path.clone(), problem: crate::pipeline::UsageProblem::NoTetMesh });
     };
     let r = part.mesh_report.clone().unwrap_or_default();
     let cad_volume = part.certified.as_ref().map(|c| c.certificate.volume[1]);

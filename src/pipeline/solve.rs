@@ -4,7 +4,7 @@
 //! per held set, frequencies, temperature range). One step where ccx2paraview is a second
 //! tool.
 
-use super::PipelineError;
+use super::{PipelineError, SolverProblem};
 use super::job::{JobFile, OutputKind};
 use super::run::{JobOutcome, RunReport, carry_out};
 use crate::fe::{Analysis, Bc, FeModel};
@@ -78,14 +78,14 @@ pub struct SolveReport {
 /// missing or fails (with its `*ERROR` lines) or its results cannot be read.
 pub fn solve_job(jf: &JobFile) -> Result<SolveReport, PipelineError> {
     if jf.job.step.is_empty() {
-        return Err(PipelineError::Job { path: jf.path.clone(), line: 0, column: 0, message: "`fepre solve` needs at least one [[step]] (boundary conditions and loads on selectors)".into() });
+        return Err(PipelineError::Job { path: jf.path.clone(), line: 0, column: 0, key: None, message: "`fepre solve` needs at least one [[step]] (boundary conditions and loads on selectors)".into() });
     }
     let ccx = std::env::var_os(CCX_ENV).map_or_else(|| PathBuf::from("ccx"), PathBuf::from);
     ccx_version(&ccx)?;
     let deck = jf.job.output.iter().find(|o| o.kind() == OutputKind::Deck && super::job::deck_format(o.file.get_ref()) == Some(super::job::DeckFormat::Inp)).map(|o| jf.resolve(o.file.get_ref()));
     let JobOutcome { mut report, fe, .. } = carry_out(jf, false)?;
     let Some(model) = fe else {
-        return Err(PipelineError::Usage { path: jf.path.clone(), message: "the job made no FE model".into() });
+        return Err(PipelineError::Usage { path: jf.path.clone(), problem: crate::pipeline::error::UsageProblem::NoFeModel });
     };
     let deck = match deck {
         Some(d) => d,
@@ -118,18 +118,15 @@ pub fn solve_job(jf: &JobFile) -> Result<SolveReport, PipelineError> {
     Ok(out)
 }
 
-fn solver_error(path: &Path, message: String) -> PipelineError {
-    PipelineError::Solver { path: path.to_path_buf(), message }
+fn solver_error(path: &Path, problem: SolverProblem) -> PipelineError {
+    PipelineError::Solver { path: path.to_path_buf(), problem }
 }
 
 /// Checks that `ccx` runs.
 fn ccx_version(ccx: &Path) -> Result<(), PipelineError> {
     match Command::new(ccx).arg("-v").output() {
         Ok(_) => Ok(()),
-        Err(e) => Err(solver_error(
-            ccx,
-            format!("CalculiX (ccx) cannot be run ({e}): install it (Debian/Ubuntu: `apt install calculix-ccx`; conda: `conda install -c conda-forge calculix`) or set {CCX_ENV} to its path"),
-        )),
+        Err(e) => Err(solver_error(ccx, SolverProblem::NotInstalled { why: e.to_string() })),
     }
 }
 
@@ -137,10 +134,10 @@ fn ccx_version(ccx: &Path) -> Result<(), PipelineError> {
 /// `.frd` file.
 fn run_ccx(ccx: &Path, deck: &Path) -> Result<PathBuf, PipelineError> {
     let folder = deck.parent().filter(|p| !p.as_os_str().is_empty()).map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    let stem = deck.file_stem().and_then(|s| s.to_str()).ok_or_else(|| solver_error(deck, "the deck's name is not valid UTF-8".into()))?;
+    let stem = deck.file_stem().and_then(|s| s.to_str()).ok_or_else(|| solver_error(deck, SolverProblem::DeckName))?;
     let frd = folder.join(format!("{stem}.frd"));
     let _ = std::fs::remove_file(&frd);
-    let out = Command::new(ccx).arg("-i").arg(stem).current_dir(&folder).output().map_err(|e| solver_error(ccx, format!("cannot run: {e}")))?;
+    let out = Command::new(ccx).arg("-i").arg(stem).current_dir(&folder).output().map_err(|e| solver_error(ccx, SolverProblem::CannotRun { why: e.to_string() }))?;
     let mut log = out.stdout.clone();
     log.extend_from_slice(&out.stderr);
     let log_path = folder.join(format!("{stem}.log"));
@@ -149,7 +146,7 @@ fn run_ccx(ccx: &Path, deck: &Path) -> Result<PathBuf, PipelineError> {
     let errors: Vec<&str> = text.lines().filter(|l| l.contains("*ERROR")).map(str::trim).take(5).collect();
     if !out.status.success() || !errors.is_empty() || !frd.is_file() {
         let why = if errors.is_empty() { format!("exit status {}", out.status) } else { errors.join("; ") };
-        return Err(solver_error(deck, format!("CalculiX failed: {why} (its output is in {})", log_path.display())));
+        return Err(solver_error(deck, SolverProblem::Failed { why, log: log_path }));
     }
     Ok(frd)
 }

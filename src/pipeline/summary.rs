@@ -246,7 +246,7 @@ impl Summarised {
                         message.push_str(&format!("\n  {label:<14} {text}"));
                     }
                 }
-                return Err(PipelineError::Requirement { path: path.to_path_buf(), message });
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), requirement: crate::pipeline::Requirement::MinDihedral, found: s.min_dihedral_deg, required: d, message });
             }
         } else if s.tets_under_1_deg_unexplained > 0 {
             // the default requirement: no tet under 1° that no input angle under 1° explains
@@ -256,7 +256,7 @@ impl Summarised {
                 fmt_num(s.worst_unexplained_tet.as_ref().map_or(0.0, |w| w.min_dihedral_deg)),
                 s.tets_under_1_deg
             );
-            return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, s.worst_unexplained_tet.as_ref()) });
+            return Err(PipelineError::Requirement { path: path.to_path_buf(), requirement: crate::pipeline::Requirement::NoUnexplainedSliver, found: s.worst_unexplained_tet.as_ref().map_or(0.0, |w| w.min_dihedral_deg), required: 1.0, message: with_place(head, s.worst_unexplained_tet.as_ref()) });
         }
         if let (Some(r), Some(e), Some(v)) = (plan.require_volume_error, s.volume_error, s.cad_volume) {
             if !(e.abs() <= r) {
@@ -267,7 +267,7 @@ impl Summarised {
                     fmt_num(v),
                     fmt_num(r)
                 );
-                return Err(PipelineError::Requirement { path: path.to_path_buf(), message: head });
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), requirement: crate::pipeline::Requirement::VolumeError, found: e, required: r, message: head });
             }
         }
         if let Some(r) = plan.require_max_radius_edge {
@@ -276,7 +276,7 @@ impl Summarised {
                 let place = self.quality.max_radius_edge.1.map(|t| self.boundary.locate(mesh, t, &self.angles, self.bound, &name));
                 let over = mesh.tets.iter().filter(|t| !(tet_radius_edge(&t.map(|v| mesh.vertices[v as usize])) <= r)).count();
                 let head = format!("the largest radius-edge ratio is {}, above the {r} required ({over} tets above it); nothing written", fmt_num(self.quality.max_radius_edge.0));
-                return Err(PipelineError::Requirement { path: path.to_path_buf(), message: with_place(head, place.as_ref()) });
+                return Err(PipelineError::Requirement { path: path.to_path_buf(), requirement: crate::pipeline::Requirement::MaxRadiusEdge, found: self.quality.max_radius_edge.0, required: r, message: with_place(head, place.as_ref()) });
             }
         }
         Ok(())

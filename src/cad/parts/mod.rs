@@ -34,7 +34,7 @@ use crate::core::FaceId;
 use glam::DVec3;
 
 /// Why a part could not be built.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, thiserror::Error, serde::Serialize)]
 #[non_exhaustive]
 pub enum PartError {
     /// The parameters do not describe a valid part.
@@ -59,7 +59,7 @@ pub enum PartError {
         /// The face being converted.
         face: FaceId,
         /// Why.
-        why: String,
+        why: GeometryError,
     },
     /// A face the part's naming rules do not recognise (a bug in the part's builder).
     #[error("face {face} of the {part} matches none of its names (internal error)")]
@@ -69,6 +69,40 @@ pub enum PartError {
         /// The face.
         face: FaceId,
     },
+}
+
+/// Why a curve or surface of truck's solid could not be converted to ours ([`PartError::Geometry`]
+/// names the face).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error, serde::Serialize)]
+#[non_exhaustive]
+pub enum GeometryError {
+    /// A line whose two points coincide.
+    #[error("a line of zero length")]
+    ZeroLengthLine,
+    /// An intersection curve, which is not converted.
+    #[error("an intersection curve (fepre converts lines, circles and B-splines)")]
+    IntersectionCurve,
+    /// A plane without a normal or an axis.
+    #[error("a degenerate plane")]
+    DegeneratePlane,
+    /// A surface of revolution whose axis has no direction.
+    #[error("a revolution about a zero axis")]
+    ZeroAxis,
+    /// A B-spline or NURBS surface without a parameter range.
+    #[error("an unbounded {surface}")]
+    Unbounded {
+        /// "B-spline surface" or "NURBS surface".
+        surface: &'static str,
+    },
+    /// Degrees, knots, control points or weights that make no B-spline.
+    #[error("{why}")]
+    Spline {
+        /// What is wrong with them (as the B-spline's constructor says).
+        why: String,
+    },
+    /// The face's surface has no normal at the point sampled to compare senses.
+    #[error("no normal at the sample point")]
+    NoNormal,
 }
 
 /// What the naming rules look at: the face's surface, its outward normal where it is a plane,

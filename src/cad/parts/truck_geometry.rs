@@ -7,6 +7,7 @@
 //! exactly as a (rational) B-spline or a surface of revolution.
 
 use crate::cad::geom::{BSplineCurve, BSplineSurface, Circle, Curve, Cylinder, Frame, Interval, Line, Plane, Revolution, Sphere, Surface, Torus, TorusPart};
+use super::GeometryError;
 use glam::DVec3;
 use std::f64::consts::TAU;
 use truck_modeling::{
@@ -80,20 +81,25 @@ fn knots_of(k: &[f64]) -> Vec<f64> {
 }
 
 /// A rational B-spline from truck's homogeneous control points `(w x, w y, w z, w)`.
-fn rational(degree: usize, knots: &[f64], hom: &[Vector4]) -> Result<BSplineCurve, String> {
+fn rational(degree: usize, knots: &[f64], hom: &[Vector4]) -> Result<BSplineCurve, GeometryError> {
     let points = hom.iter().map(|h| DVec3::new(h.x / h.w, h.y / h.w, h.z / h.w)).collect();
     let weights = hom.iter().map(|h| h.w).collect();
-    BSplineCurve::new(degree, knots_of(knots), points, Some(weights)).map_err(|e| e.to_string())
+    BSplineCurve::new(degree, knots_of(knots), points, Some(weights)).map_err(spline)
+}
+
+/// The B-spline constructors' reason as ours.
+fn spline(why: impl std::fmt::Display) -> GeometryError {
+    GeometryError::Spline { why: why.to_string() }
 }
 
 /// Converts a truck curve; `tol` is the distance within which a sampled shape is accepted.
-pub(super) fn curve(c: &truck_modeling::Curve, tol: f64) -> Result<ConvertedCurve, String> {
+pub(super) fn curve(c: &truck_modeling::Curve, tol: f64) -> Result<ConvertedCurve, GeometryError> {
     use truck_modeling::Curve as T;
     match c {
         T::Line(l) => {
             let (a, b) = (p3(l.0), p3(l.1));
             if (b - a).length() == 0.0 {
-                return Err("a line of zero length".into());
+                return Err(GeometryError::ZeroLengthLine);
             }
             Ok(ConvertedCurve { curve: Curve::Line(Line { origin: a, direction: b - a }), range: Interval::new(0.0, 1.0) })
         }
@@ -104,7 +110,7 @@ pub(super) fn curve(c: &truck_modeling::Curve, tol: f64) -> Result<ConvertedCurv
                 return Ok(c);
             }
             let points = b.control_points().iter().map(|p| p3(*p)).collect();
-            let curve = BSplineCurve::new(b.degree(), knots_of(b.knot_vec()), points, None).map_err(|e| e.to_string())?;
+            let curve = BSplineCurve::new(b.degree(), knots_of(b.knot_vec()), points, None).map_err(spline)?;
             Ok(ConvertedCurve { curve: Curve::BSpline(curve), range: Interval::new(t0, t1) })
         }
         T::NurbsCurve(n) => {
@@ -116,7 +122,7 @@ pub(super) fn curve(c: &truck_modeling::Curve, tol: f64) -> Result<ConvertedCurv
             let curve = rational(n.degree(), n.knot_vec(), n.control_points())?;
             Ok(ConvertedCurve { curve: Curve::BSpline(curve), range: Interval::new(t0, t1) })
         }
-        T::IntersectionCurve(_) => Err("an intersection curve (fepre converts lines, circles and B-splines)".into()),
+        T::IntersectionCurve(_) => Err(GeometryError::IntersectionCurve),
     }
 }
 
@@ -127,11 +133,11 @@ fn recognised_circle(f: &dyn Fn(f64) -> DVec3, t0: f64, t1: f64, tol: f64) -> Op
 }
 
 /// Converts a truck surface.
-pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, String> {
+pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, GeometryError> {
     use truck_modeling::Surface as T;
     match s {
         T::Plane(p) => {
-            let frame = Frame::from_axes(p3(p.origin()), Some(v3(p.normal())), Some(v3(p.u_axis()))).ok_or("a degenerate plane")?;
+            let frame = Frame::from_axes(p3(p.origin()), Some(v3(p.normal())), Some(v3(p.u_axis()))).ok_or(GeometryError::DegeneratePlane)?;
             Ok(Surface::Plane(Plane { frame }))
         }
         T::RevolutedCurve(proc) => {
@@ -139,13 +145,14 @@ pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, 
             let rc = proc.entity();
             let profile = rc.entity_curve().transformed(m);
             let origin = p3(truck_modeling::Transform::transform_point(&m, rc.origin()));
-            let axis = v3(truck_modeling::Transform::transform_vector(&m, rc.axis())).try_normalize().ok_or("a revolution about a zero axis")?;
+            let axis = v3(truck_modeling::Transform::transform_vector(&m, rc.axis())).try_normalize().ok_or(GeometryError::ZeroAxis)?;
             let profile = curve(&profile, tol)?;
             Ok(revolved(profile.curve, origin, axis, tol))
         }
         T::BSplineSurface(b) => {
             let (u, v) = b.try_range_tuple();
-            let (u, v) = (u.ok_or("an unbounded B-spline surface")?, v.ok_or("an unbounded B-spline surface")?);
+            let unbounded = GeometryError::Unbounded { surface: "B-spline surface" };
+            let (u, v) = (u.ok_or(unbounded.clone())?, v.ok_or(unbounded)?);
             if let Some(s) = recognised(s, u, v, tol) {
                 return Ok(s);
             }
@@ -154,11 +161,12 @@ pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, 
             let (nu, nv) = (cp.len(), cp.first().map_or(0, Vec::len));
             let points = cp.iter().flatten().map(|p| p3(*p)).collect();
             let (du, dv) = b.degrees();
-            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, None).map_err(|e| e.to_string())?))
+            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, None).map_err(spline)?))
         }
         T::NurbsSurface(n) => {
             let (u, v) = n.try_range_tuple();
-            let (u, v) = (u.ok_or("an unbounded NURBS surface")?, v.ok_or("an unbounded NURBS surface")?);
+            let unbounded = GeometryError::Unbounded { surface: "NURBS surface" };
+            let (u, v) = (u.ok_or(unbounded.clone())?, v.ok_or(unbounded)?);
             if let Some(s) = recognised(s, u, v, tol) {
                 return Ok(s);
             }
@@ -168,7 +176,7 @@ pub(super) fn surface(s: &truck_modeling::Surface, tol: f64) -> Result<Surface, 
             let points = cp.iter().flatten().map(|h| DVec3::new(h.x / h.w, h.y / h.w, h.z / h.w)).collect();
             let weights = cp.iter().flatten().map(|h| h.w).collect();
             let (du, dv) = n.degrees();
-            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, Some(weights)).map_err(|e| e.to_string())?))
+            Ok(Surface::BSpline(BSplineSurface::new(du, dv, knots_of(ku), knots_of(kv), nu, nv, points, Some(weights)).map_err(spline)?))
         }
     }
 }

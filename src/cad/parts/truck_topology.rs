@@ -6,7 +6,7 @@
 //! from outside), and the face's `same_sense` says whether our surface's normal points out
 //! of the solid where truck's oriented surface normal does (compared at one sample point).
 
-use super::PartError;
+use super::{GeometryError, PartError};
 use super::truck_geometry::{self, p3};
 use crate::cad::brep::{Coedge, Edge, EntityRef, Face, Loop, Model, Shell, Solid, Vertex};
 use crate::cad::geom::Surface;
@@ -42,7 +42,7 @@ pub fn solid_to_model(solid: &truck_modeling::Solid, name: &str) -> Result<Model
             let fid = FaceId::from_index(m.faces.len());
             let ts = face.surface();
             let ours = truck_geometry::surface(&ts, tol).map_err(|why| PartError::Geometry { face: fid, why })?;
-            let same_sense = agrees(&face.oriented_surface(), &ours).ok_or_else(|| PartError::Geometry { face: fid, why: "no normal at the sample point".into() })?;
+            let same_sense = agrees(&face.oriented_surface(), &ours).ok_or_else(|| PartError::Geometry { face: fid, why: GeometryError::NoNormal })?;
             m.surfaces.push(ours);
             let mut loops = Vec::new();
             for (j, wire) in face.boundaries().iter().enumerate() {

@@ -14,6 +14,7 @@
 //!
 //! A piece holds at most [`MAX_PIECE`] triangles.
 
+use crate::core::ids::NONE;
 use crate::core::FaceId;
 use crate::core::bucket_sort::collect_sorted_by_lead;
 use glam::DVec3;
@@ -32,14 +33,14 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
     let neighbours = neighbours_across(points.len(), triangles);
     let neighbour = |x: u32, k: usize| -> Option<u32> {
         let y = neighbours[3 * x as usize + k];
-        (y != u32::MAX).then_some(y)
+        (y != NONE).then_some(y)
     };
     let tag = |t: u32| tags.get(t as usize).copied().unwrap_or_default();
-    let mut piece = vec![u32::MAX; triangles.len()];
+    let mut piece = vec![NONE; triangles.len()];
     let mut queue: Vec<u32> = Vec::new();
     let mut count = 0u32;
     for seed in 0..triangles.len() as u32 {
-        if piece[seed as usize] != u32::MAX {
+        if piece[seed as usize] != NONE {
             continue;
         }
         piece[seed as usize] = count;
@@ -55,7 +56,7 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 let Some(y) = neighbour(x, k) else { continue };
-                if piece[y as usize] != u32::MAX || tag(y) != tag(x) || members >= MAX_PIECE {
+                if piece[y as usize] != NONE || tag(y) != tag(x) || members >= MAX_PIECE {
                     continue;
                 }
                 let ty = triangles[y as usize];
@@ -72,7 +73,7 @@ pub fn flat_pieces(points: &[DVec3], triangles: &[[u32; 3]], tags: &[FaceId]) ->
 }
 
 /// Per triangle side `3 t + k` (from corner `k` to corner `k + 1`), the triangle across it
-/// where exactly two triangle sides lie on that edge (`u32::MAX` elsewhere): the other one, or
+/// where exactly two triangle sides lie on that edge ([`NONE`] elsewhere): the other one, or
 /// the triangle itself where both sides are its own. The side records are sorted by edge in
 /// vertex buckets ([`collect_sorted_by_lead`]; a full sort where an index is out of range).
 fn neighbours_across(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
@@ -91,7 +92,7 @@ fn neighbours_across(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
         all.sort_unstable();
         all
     };
-    let mut across = vec![u32::MAX; 3 * triangles.len()];
+    let mut across = vec![NONE; 3 * triangles.len()];
     for run in on_edge.chunk_by(|x, y| x.0 == y.0) {
         if let [p, q] = run {
             let (tp, tq) = (p.1 / 3, q.1 / 3);

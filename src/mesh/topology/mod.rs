@@ -44,6 +44,7 @@ pub use flat_pieces::flat_pieces;
 pub use self_intersection::intersecting_pairs;
 pub use shells::triangle_shells;
 
+use crate::core::ids::INDEX_MAX;
 use crate::core::bvh::Bvh;
 use crate::core::intersection::is_degenerate;
 use crate::core::{Aabb, FaceId};
@@ -217,7 +218,7 @@ impl<'a> Prepared<'a> {
     pub fn new(s: &'a TriSurface) -> Prepared<'a> {
         let nv = s.vertices.len();
         // indices are u32 throughout (corner ids 3t + k included)
-        let limit = (u32::MAX / 3) as usize;
+        let limit = (INDEX_MAX / 3) as usize;
         let ok = |t: &[u32; 3]| t.iter().all(|&v| (v as usize) < nv) && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
         let all_ok = s.triangles.len() <= limit && s.triangles.iter().all(ok);
         if all_ok {

@@ -18,7 +18,8 @@ use glam::DVec2;
 use std::collections::BTreeMap;
 
 /// A violation found by [`check_conforming`].
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
+#[non_exhaustive]
 pub enum CheckError {
     /// The container's own checks failed.
     #[error("the mesh is invalid: {0}")]

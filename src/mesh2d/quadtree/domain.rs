@@ -16,7 +16,8 @@ use crate::core::Sign;
 use glam::DVec2;
 
 /// Why a domain was refused.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
+#[non_exhaustive]
 pub enum DomainError {
     /// Fewer than three segments.
     #[error("the domain has {0} boundary segments (at least 3 are needed)")]

@@ -47,12 +47,14 @@ pub use check::{angles, check_conforming, Angles, CheckError};
 pub use domain::{Domain, DomainError};
 pub use tree::{Params, Quadtree, Status};
 
+use crate::core::ids::NONE;
 use crate::core::RegionId;
 use crate::mesh::PlanarMesh;
 use glam::DVec2;
 
 /// Why a domain could not be meshed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
+#[non_exhaustive]
 pub enum QuadtreeError {
     /// The input is not a valid domain.
     #[error("invalid domain: {0}")]
@@ -157,10 +159,10 @@ pub fn mesh(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &QuadtreeOpti
     let inside_triangles = t.triangles.len();
     let mut triangles = t.triangles;
     triangles.extend(b.triangles);
-    let mut remap = vec![u32::MAX; vertices.positions.len()];
+    let mut remap = vec![NONE; vertices.positions.len()];
     let mut positions = Vec::new();
     let mut take = |i: u32, positions: &mut Vec<DVec2>| -> u32 {
-        if remap[i as usize] == u32::MAX {
+        if remap[i as usize] == NONE {
             remap[i as usize] = positions.len() as u32;
             positions.push(vertices.positions[i as usize]);
         }

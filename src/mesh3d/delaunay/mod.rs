@@ -121,7 +121,7 @@ pub struct Delaunay {
 }
 
 /// Why a point set has no tetrahedralization.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
 #[non_exhaustive]
 pub enum DelaunayError {
     /// A coordinate is NaN or infinite.
@@ -176,7 +176,7 @@ pub fn count_tetrahedra(points: &[DVec3], options: &DelaunayOptions) -> Result<D
 }
 
 fn build(points: &[DVec3], options: &DelaunayOptions, finish: Finish) -> Result<Delaunay, DelaunayError> {
-    if points.len() >= (u32::MAX - 1) as usize {
+    if points.len() >= store::DEAD as usize {
         return Err(DelaunayError::TooManyPoints(points.len()));
     }
     if let Some(i) = points.iter().position(|p| !p.is_finite()) {

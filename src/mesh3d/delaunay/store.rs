@@ -3,15 +3,16 @@
 //! Relaxed atomic loads and stores compile to plain moves; the rounds of the parallel
 //! insertion are separated by rayon's joins, which order them.
 
+use crate::core::ids::NONE;
 use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 /// Vertex id marking a deleted tet slot (every vertex of a free slot is `DEAD`).
-pub(crate) const DEAD: u32 = u32::MAX - 1;
+pub(crate) const DEAD: u32 = NONE - 1;
 /// The ghost vertex (the point at infinity), vertex 3 of the ghost tets that close the hull.
 /// The one definition, used by the Delaunay drivers and the mesher; it shares its value with
-/// [`NONE`](crate::core::ids::NONE) (no index) but is a vertex, so it has its own name. Neither
+/// [`NONE`] (no index) but is a vertex, so it has its own name. Neither
 /// leaves the crate.
-pub(crate) const GHOST: u32 = u32::MAX;
+pub(crate) const GHOST: u32 = NONE;
 
 /// One tet: its vertices and its neighbour references, in one 32-byte record so that a visit
 /// touches one half cache line.

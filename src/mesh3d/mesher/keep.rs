@@ -248,7 +248,7 @@ fn merge_passes(tr: &mut Tetra, sm: &mut SurfaceModel, no_worse: bool, delaunay:
     loop {
         let mut merged = 0;
         let points: Vec<u32> =
-            (0..sm.location.len() as u32).filter(|&v| v < sm.refined_from && matches!(sm.location[v as usize], Location::Segment(_) | Location::Facet(_))).collect();
+            (0..sm.location.len() as u32).filter(|&v| sm.refined_from.is_none_or(|r| v < r) && matches!(sm.location[v as usize], Location::Segment(_) | Location::Facet(_))).collect();
         for v in points {
             star(tr, v, &mut sv);
             let floor = if no_worse { sv.iter().map(|&t| shape(tr.tets[t as usize].v.map(|x| tr.point(x)))).fold(f64::INFINITY, f64::min) } else { f64::NEG_INFINITY };

@@ -291,7 +291,7 @@ fn refinement_stop(stopped: bool, points: usize, max_points: usize) -> Option<Re
 }
 
 /// Why a surface could not be meshed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
 #[non_exhaustive]
 pub enum MeshingError {
     /// The surface is not closed: it has edges used by one triangle only.
@@ -532,7 +532,7 @@ pub(crate) fn mesh_surface_pinned(
             (tetra::Tetra::new(points, ranks, options.seed), clock.elapsed().as_secs_f64())
         }
     };
-    let mut tr = tr.map_err(MeshingError::Degenerate)?;
+    let mut tr = tr.map_err(|e| MeshingError::Degenerate(e.to_string()))?;
     report.stage_seconds.push(("delaunay".to_string(), delaunay_s));
     clock = Instant::now();
     let budget = 50 * surface.triangles.len() + 10_000;

@@ -32,7 +32,7 @@ pub(crate) struct Recovery {
 /// Inserts a Steiner point at `p` that lies on the boundary; the walk starts at a tet of
 /// `near`. Returns its index, or `None` when it coincides with a vertex (then nothing is added
 /// to the model).
-fn insert_point(tr: &mut Tetra, p: DVec3, near: &[u32]) -> Result<Option<u32>, String> {
+fn insert_point(tr: &mut Tetra, p: DVec3, near: &[u32]) -> Result<Option<u32>, SplitError> {
     // start in a tet holding the whole piece if there is one (then no wall lies between)
     let mut buf = Vec::new();
     let start = match *near {
@@ -50,9 +50,42 @@ fn insert_point(tr: &mut Tetra, p: DVec3, near: &[u32]) -> Result<Option<u32>, S
         }
         other => {
             tr.remove_last_point();
-            Err(format!("a Steiner point at {p} could not be inserted ({other:?}, walled {})", tr.walled))
+            Err(SplitError::NotInserted { at: p, outcome: other, walled: tr.walled })
         }
     }
+}
+
+/// Why a split of a subsegment or a subface failed; [`recover`] turns it into a
+/// [`MeshingError::Recovery`] naming the facet.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub(crate) enum SplitError {
+    /// The Steiner point could not be inserted (a bug, or walls that block it).
+    #[error("a Steiner point at {at} could not be inserted ({outcome:?}, walled {walled})")]
+    NotInserted {
+        /// The point.
+        at: DVec3,
+        /// What the insertion did instead.
+        outcome: Inserted,
+        /// Whether the tetrahedralization had its walls up.
+        walled: bool,
+    },
+    /// The subsegment is already shorter than [`MIN_SPLIT`] of its segment: recovery would not
+    /// end.
+    #[error(
+        "recovery does not end near {near}: an input edge there had to be cut into pieces under {MIN_SPLIT:e} of its length {length} (the surface comes nearer itself there than the mesher can separate)"
+    )]
+    TooShort {
+        /// The middle of the subsegment.
+        near: DVec3,
+        /// The length of its segment.
+        length: f64,
+    },
+    /// A facet without sides (no subsegment to split instead of its subface).
+    #[error("facet {facet} has no sides")]
+    NoSides {
+        /// The facet.
+        facet: u32,
+    },
 }
 
 /// Recovery gives up when the missing subsegments grew by a quarter or more for this many
@@ -68,7 +101,7 @@ const MIN_SPLIT: f64 = 1e-12;
 
 /// [`split_subsegment_deferred`] with every facet it changed retriangulated at once.
 #[cfg(test)]
-pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
+pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, SplitError> {
     let split = split_subsegment_deferred(tr, sm, s, a, b);
     sm.flush(&tr.k.points);
     split
@@ -83,16 +116,13 @@ pub(crate) fn split_subsegment(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a:
 /// When the subsegment is already shorter than a millionth of a millionth of its segment
 /// (two parts of the surface nearer each other there than splitting can separate: recovery
 /// would not end), and when the split point cannot be inserted.
-fn split_subsegment_deferred(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, String> {
+fn split_subsegment_deferred(tr: &mut Tetra, sm: &mut SurfaceModel, s: u32, a: u32, b: u32) -> Result<bool, SplitError> {
     let (pa, pb) = (tr.point(a), tr.point(b));
     // the segment's length: an input edge, straight between its two ends
     let ends = &sm.segments[s as usize].points;
     let whole = tr.point(ends[0]).distance(tr.point(ends[ends.len() - 1]));
     if pa.distance(pb) < MIN_SPLIT * whole {
-        return Err(format!(
-            "recovery does not end near {}: an input edge there had to be cut into pieces under {MIN_SPLIT:e} of its length {whole} (the surface comes nearer itself there than the mesher can separate)",
-            (pa + pb) * 0.5
-        ));
+        return Err(SplitError::TooShort { near: (pa + pb) * 0.5, length: whole });
     }
     let m = split_point(sm, s, a, b, pa, pb);
     match insert_point(tr, m, &[a, b])? {
@@ -232,7 +262,7 @@ pub(crate) fn subface_split(tr: &Tetra, sm: &SurfaceModel, f: u32, t: [u32; 3], 
 /// Splits subface `[a, b, c]` of facet `f`: at its circumcentre if that lies in the facet and
 /// encroaches no subsegment, else the encroached subsegment, or where the centre lies outside
 /// the facet, the side subsegment between the subface and the centre.
-pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u32; 3], stats: &mut Recovery) -> Result<bool, String> {
+pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u32; 3], stats: &mut Recovery) -> Result<bool, SplitError> {
     let [pa, pb, pc] = t.map(|v| tr.point(v));
     let cc = circumcenter(pa, pb, pc);
     match subface_split(tr, sm, f, t, cc) {
@@ -240,7 +270,7 @@ pub(crate) fn split_subface(tr: &mut Tetra, sm: &mut SurfaceModel, f: u32, t: [u
             stats.segment_points += 1;
             return split_subsegment_deferred(tr, sm, s, u, v);
         }
-        SubfaceSplit::NoSides => return Err(format!("facet {f} has no sides")),
+        SubfaceSplit::NoSides => return Err(SplitError::NoSides { facet: f }),
         SubfaceSplit::Centre => {}
     }
     // where rounding puts the centre on a vertex, the subface's centroid serves
@@ -324,7 +354,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 continue;
             }
             stats.segment_points += 1;
-            changed |= split_subsegment_deferred(tr, sm, s, a, b).map_err(|m| fail(sm, sm.segments[s as usize].facets[0], &m))?;
+            changed |= split_subsegment_deferred(tr, sm, s, a, b).map_err(|e| fail(sm, sm.segments[s as usize].facets[0], &e.to_string()))?;
         }
         // the facets the round's splits changed, triangulated once each
         sm.flush(&tr.k.points);
@@ -349,7 +379,7 @@ pub(crate) fn recover(tr: &mut Tetra, sm: &mut SurfaceModel, budget: usize) -> R
                 if !sm.has_subface(f, t) {
                     continue;
                 }
-                changed |= split_subface(tr, sm, f, t, &mut stats).map_err(|m| fail(sm, f, &m))?;
+                changed |= split_subface(tr, sm, f, t, &mut stats).map_err(|e| fail(sm, f, &e.to_string()))?;
             }
             sm.flush(&tr.k.points);
         }

@@ -25,6 +25,7 @@
 //! tets smaller still, a cascade that spent the whole point budget in one spot (4,000 points
 //! in a ball of radius 0.03 on `featuretype.STL`) and left the rest of the part unrefined.
 
+use crate::core::ids::NONE;
 use crate::core::{RegionId, SizeField};
 use crate::mesh3d::mesher::carve::Labels;
 use crate::mesh3d::mesher::recover::circumcenter;
@@ -220,9 +221,6 @@ const LFS_FLOOR: f64 = 0.5;
 /// `plate_holes.STL` 69,507 tets and 6.05°, against 53,497 and 4.00°, and 83,094 and 6.33°).
 const SPLIT_FLOOR: f64 = 0.25;
 
-/// A rejection that names no wall: the point came too near a vertex.
-const NEAR: u32 = u32::MAX;
-
 /// The share of the local feature size under which no circumcentre joins a vertex.
 const CC_FLOOR: f64 = 0.25;
 
@@ -293,7 +291,7 @@ pub(crate) fn refine(
     let mut lfs = local_feature_sizes(tr);
     let mut edges = boundary.as_deref().map(FacetEdges::new);
     if let Some(sm) = boundary.as_deref_mut() {
-        sm.refined_from = tr.num_points() as u32;
+        sm.refined_from = Some(tr.num_points() as u32);
     }
     // the new tets of an insertion: those in the material that are bad go on the heap
     let queue_created = |tr: &mut Tetra, labels: &Labels, heap: &mut BadQueue| {
@@ -339,10 +337,11 @@ pub(crate) fn refine(
         let c_floor = CC_FLOOR * c_lfs;
         let mut encroached = None;
         // (a centre strictly inside the tet the walk finds, too near one of its vertices, is
-        // turned down without its cavity dug: 4,152 of 23,560 on part.step at TetGen's count)
-        let res = tr.insert_checked_near(p, t, Some((c_floor, (NEAR, 0))), |tr, walls| {
+        // turned down without its cavity dug: 4,152 of 23,560 on part.step at TetGen's count);
+        // a rejection whose wall tet is NONE names no wall: the point came too near a vertex
+        let res = tr.insert_checked_near(p, t, Some((c_floor, (NONE, 0))), |tr, walls| {
             if walls.iter().flat_map(|x| x.0).filter(|&x| x != GHOST).any(|x| tr.point(x).distance(c) < c_floor) {
-                Some((NEAR, 0))
+                Some((NONE, 0))
             } else if let Some((_, w)) = encroached_wall(tr, walls, c) {
                 // the subface to split: the first on the outline whose outside tet is the
                 // encroached one's. With the exterior gone every face that looks outside has
@@ -392,7 +391,7 @@ pub(crate) fn refine(
                 let region = labels.get(t);
                 let lmin = tet_sphere(tr, t).2.max(2.0 * r_min);
                 let mut done = false;
-                for q in inside_candidates(tr, t, if let Inserted::Rejected(wt, wk) = res { Some((wt, wk)).filter(|w| w.0 != NEAR) } else { None }) {
+                for q in inside_candidates(tr, t, if let Inserted::Rejected(wt, wk) = res { Some((wt, wk)).filter(|w| w.0 != NONE) } else { None }) {
                     // not too near any vertex it would join: half the tet's shortest edge, and
                     // never under half the local feature size there (the sizes of the
                     // boundary's vertices, carried on 1-Lipschitz), so that points off the

@@ -6,8 +6,10 @@
 //! the holes outnumber the subfaces. The order read is the order a plain list would keep
 //! (removals keep the rest in order, additions go at the end), so the mesh does not change.
 
+use crate::core::ids::NONE;
+
 /// What a removed subface leaves in its slot.
-const HOLE: [u32; 3] = [u32::MAX; 3];
+const HOLE: [u32; 3] = [NONE; 3];
 
 /// A facet's subfaces, each in a slot that stays put until the list is squeezed.
 #[derive(Clone, Debug, Default)]

@@ -75,8 +75,8 @@ pub(crate) struct SurfaceModel {
     /// The facet of every current subface and its slot there, by its sorted vertices.
     index: FxHashMap<[u32; 3], (u32, u32)>,
     /// Boundary points from this index on were put there by refinement (boundary splits):
-    /// merging recovery's points back leaves them.
-    pub refined_from: u32,
+    /// merging recovery's points back leaves them. `None` before refinement.
+    pub refined_from: Option<u32>,
     /// The most the enclosed volume can change by merging input triangles that are flat only
     /// within the tolerance: over every merged facet, twice its area times how far its input
     /// vertices lie from its plane (every subface stays in that slab over the same polygon).
@@ -188,7 +188,7 @@ impl SurfaceModel {
             }
         }
         let pending = vec![false; facets.len()];
-        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: u32::MAX, flattening_volume, pending }
+        SurfaceModel { facets, segments, location: vec![Location::Input; n], index, refined_from: None, flattening_volume, pending }
     }
 
     /// Point `p` in facet `f`'s plane coordinates.

@@ -43,6 +43,20 @@ pub(crate) enum Inserted {
     Refused,
 }
 
+/// Why [`Tetra::new`] made no tetrahedralization.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub(crate) enum TetraError {
+    /// The points span no tetrahedron.
+    #[error("the surface vertices span no tetrahedron (all coplanar)")]
+    Flat,
+    /// Two points coincide (the second is the one being inserted).
+    #[error("vertices {0} and {1} coincide")]
+    Coincide(u32, u32),
+    /// A point could not be inserted (our bug).
+    #[error("vertex {0} could not be inserted")]
+    NotInserted(u32),
+}
+
 /// A growing, possibly constrained, Delaunay tetrahedralization.
 pub(crate) struct Tetra {
     /// Points (input vertices first, then Steiner points); ties broken by index.
@@ -76,14 +90,14 @@ impl Tetra {
     /// The Delaunay tetrahedralization of `points` (all distinct, spanning a tetrahedron).
     ///
     /// # Errors
-    /// A message when the points span no tetrahedron or some coincide (the caller checked the
-    /// surface, so this is a bug or degenerate input it could not see).
+    /// [`TetraError`] when the points span no tetrahedron or some coincide (the caller checked
+    /// the surface, so this is a bug or degenerate input it could not see).
     /// `ranks` orders the points for the symbolic perturbation (a permutation of `0..n`).
-    pub fn new(points: Vec<DVec3>, ranks: Vec<u32>, seed: u64) -> Result<Self, String> {
+    pub fn new(points: Vec<DVec3>, ranks: Vec<u32>, seed: u64) -> Result<Self, TetraError> {
         let n = points.len();
         let order = brio_order(&points, seed);
         let k = FloatKernel { ids: ranks, points };
-        let first = first_tet(&k, &order).ok_or("the surface vertices span no tetrahedron (all coplanar)")?;
+        let first = first_tet(&k, &order).ok_or(TetraError::Flat)?;
         let mut tr = Tetra {
             k,
             tets: Vec::with_capacity(n * 8 + 64),
@@ -119,8 +133,8 @@ impl Tetra {
             }
             match tr.insert_at(p, NONE) {
                 Inserted::Yes(_) => {}
-                Inserted::Duplicate(v) => return Err(format!("vertices {p} and {v} coincide")),
-                _ => return Err(format!("vertex {p} could not be inserted")),
+                Inserted::Duplicate(v) => return Err(TetraError::Coincide(p, v)),
+                _ => return Err(TetraError::NotInserted(p)),
             }
         }
         Ok(tr)

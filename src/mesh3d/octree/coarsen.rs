@@ -41,6 +41,7 @@
 //!   / 250, 1.5 million tets: this stage 6.6 s in one piece, 4.5 s in slabs on two cores,
 //!   0.1 % more tets left).
 
+use crate::core::ids::NONE;
 use crate::core::predicates::orient3d;
 use crate::mesh::TetMesh;
 use crate::quality::tetrahedron::{dihedrals_of_extreme_cosines, tet_extreme_dihedral_cosines};
@@ -322,7 +323,7 @@ impl<'a> Collapser<'a> {
             (lo, hi)
         };
         let (mut t_lo, mut t_hi) = thresholds(1.0);
-        let mut hint = u32::MAX;
+        let mut hint = NONE;
         for &w in nbrs.iter().filter(|&&w| !self.no_target[w as usize]) {
             // onto `w`, and where `w` may move too, both onto their midpoint
             for at_mid in [false, true] {
@@ -347,7 +348,7 @@ impl<'a> Collapser<'a> {
 
     /// The extreme cosines of the tets `v` onto `w` at `q` makes (with `moved`, also those at
     /// `w` moved to `q`), or `None` where one is not positive or they pass `limits`. `hint`:
-    /// the slot of the tet at `v` that failed last (`u32::MAX`: none), judged first, and set
+    /// the slot of the tet at `v` that failed last ([`NONE`]: none), judged first, and set
     /// to the one that fails (fandisk at about diagonal / 250: this stage 12 % faster).
     fn fold(&self, mesh: &TetMesh, v: u32, w: u32, q: DVec3, moved: bool, limits: (f64, f64), hint: &mut u32) -> Option<(f64, f64)> {
         let (mut c_lo, mut c_hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -365,7 +366,7 @@ impl<'a> Collapser<'a> {
         // (the order judged changes nothing but the time: every tet must pass, and the
         // extremes are folded)
         let first = *hint;
-        if first != u32::MAX {
+        if first != NONE {
             let tet = mesh.tets[first as usize];
             if !tet.contains(&w) && !judge(tet, v) {
                 return None;

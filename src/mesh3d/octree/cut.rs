@@ -26,6 +26,7 @@
 //!   order: the same input gives the same cuts for any number of threads.
 
 use super::lattice::Lattice;
+use crate::core::ids::NONE;
 use super::winding::{INSIDE, Winding};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -89,7 +90,7 @@ pub fn cut_and_warp(lattice: &Lattice, oracle: &Winding, w: &[f64], alpha_long: 
         let alpha = if long { alpha_long } else { alpha_short };
         for (v, d) in [(a, t), (b, 1.0 - t)] {
             if d < alpha {
-                let e = best.entry(v).or_insert((f64::INFINITY, u32::MAX));
+                let e = best.entry(v).or_insert((f64::INFINITY, NONE));
                 if d < e.0 || (d == e.0 && (k as u32) < e.1) {
                     *e = (d, k as u32);
                 }

@@ -23,12 +23,43 @@
 use crate::core::Aabb;
 use crate::core::predicates::orient3d_int;
 use glam::DVec3;
+use serde::Serialize;
 
 /// Offset of the lattice from the box, in cells, beyond the one cell of margin.
 const PHI: [f64; 3] = [0.236_067_977_5, 0.302_775_637_7, 0.171_572_875_3];
 
 /// Most lattice vertices the mesher builds (about 2 GiB of working memory).
 pub const MAX_VERTICES: u64 = 120_000_000;
+
+/// Why no lattice covers a box at a cell size ([`Lattice::covering`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error, Serialize)]
+#[non_exhaustive]
+pub enum LatticeError {
+    /// The cell size is not a positive finite number.
+    #[error("cell size {h} is not a positive number")]
+    NotASize {
+        /// The cell size.
+        h: f64,
+    },
+    /// The box is empty: the surface has no vertices.
+    #[error("the surface has no vertices")]
+    NoVertices,
+    /// The lattice would have more than [`MAX_VERTICES`] vertices.
+    #[error(
+        "cell size {h:.4e} needs {count:.3e} lattice vertices over a box of {:.4e} x {:.4e} x {:.4e}; at most {MAX_VERTICES} (use a larger size)",
+        extent[0],
+        extent[1],
+        extent[2]
+    )]
+    TooMany {
+        /// The cell size.
+        h: f64,
+        /// The lattice vertices it needs.
+        count: f64,
+        /// The box's extent.
+        extent: [f64; 3],
+    },
+}
 
 /// The BCC lattice over a box; see the module docs.
 #[derive(Clone, Debug)]
@@ -51,26 +82,21 @@ impl Lattice {
     /// The lattice of cell size `h` covering `bbox` with a margin.
     ///
     /// # Errors
-    /// A message when `h` is not positive and finite, the box is empty, or the lattice would
-    /// have more than `MAX_VERTICES` vertices.
-    pub fn covering(bbox: &Aabb, h: f64) -> Result<Lattice, String> {
+    /// [`LatticeError`]: `h` is not positive and finite, the box is empty, or the lattice would
+    /// have more than [`MAX_VERTICES`] vertices.
+    pub fn covering(bbox: &Aabb, h: f64) -> Result<Lattice, LatticeError> {
         if !(h.is_finite() && h > 0.0) {
-            return Err(format!("cell size {h} is not a positive number"));
+            return Err(LatticeError::NotASize { h });
         }
         if bbox.is_empty() {
-            return Err("the surface has no vertices".into());
+            return Err(LatticeError::NoVertices);
         }
         let origin = bbox.min - DVec3::new(1.0 + PHI[0], 1.0 + PHI[1], 1.0 + PHI[2]) * h;
         let e = bbox.max - origin;
         let n = [e.x, e.y, e.z].map(|x| (x / h).ceil() + 2.0);
         let count = (n[0] + 1.0) * (n[1] + 1.0) * (n[2] + 1.0) + n[0] * n[1] * n[2];
         if !count.is_finite() || count > MAX_VERTICES as f64 {
-            return Err(format!(
-                "cell size {h:.4e} needs {count:.3e} lattice vertices over a box of {:.4e} x {:.4e} x {:.4e}; at most {MAX_VERTICES} (use a larger size)",
-                bbox.extent().x,
-                bbox.extent().y,
-                bbox.extent().z
-            ));
+            return Err(LatticeError::TooMany { h, count, extent: bbox.extent().to_array() });
         }
         Ok(Lattice { origin, h, n: n.map(|x| x as u32) })
     }

@@ -72,13 +72,14 @@ mod winding_volume;
 
 pub use buried::{Buried, Side};
 pub use deviation::{Deviation, deviation};
-pub use lattice::Lattice;
+pub use lattice::{Lattice, LatticeError};
 pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
 pub use rows::is_cycle;
 pub use snap::Snapped;
 pub use winding::Winding;
 pub use winding_volume::{WindingVolume, winding_volume};
 
+use crate::core::ids::NONE;
 use crate::core::predicates::orient3d;
 use crate::core::{Aabb, RegionId, SizeField};
 use crate::mesh::{TetMesh, TriSurface};
@@ -278,11 +279,12 @@ pub struct EmptySolid {
 }
 
 /// Why the octree mesher made no mesh.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, thiserror::Error, Serialize)]
+#[non_exhaustive]
 pub enum OctreeError {
     /// No lattice for this size (too fine for the box, or not a size).
-    #[error("{0}")]
-    Lattice(String),
+    #[error(transparent)]
+    Lattice(#[from] LatticeError),
     /// Nothing is inside.
     #[error("no lattice vertex is inside the surface at cell size {0:.4e}: a finer size, or a surface that encloses a volume")]
     Empty(f64),
@@ -364,7 +366,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
         *t = Instant::now();
     };
     let mut t = Instant::now();
-    let lattice = Lattice::covering(&surface.bbox(), h).map_err(OctreeError::Lattice)?;
+    let lattice = Lattice::covering(&surface.bbox(), h)?;
     let n = lattice.num_vertices();
     let w = winding_at_lattice(&lattice, oracle, cycle);
     // the divergence theorem gives the stuffed volume where the winding number is 0 or 1
@@ -617,7 +619,7 @@ fn fill(lattice: &Lattice, tree: Option<&graded::Octree>, cuts: &Cuts, oracle: &
         inner.extend(c.3);
     }
     // compact: used lattice vertices, then used cut points
-    let mut map = vec![u32::MAX; nl as usize + cuts.edges.len()];
+    let mut map = vec![NONE; nl as usize + cuts.edges.len()];
     for t in &tets {
         for &v in t {
             map[v as usize] = 0;

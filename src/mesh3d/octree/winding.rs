@@ -27,6 +27,7 @@
 //!   Across the hole of an open surface the level set moves by that error.
 
 use crate::core::bvh::{Bvh, NodeView};
+use crate::core::ids::NONE;
 use crate::core::intersection::{SegmentCrossing, segment_crosses_triangle};
 use crate::core::predicates::orient3d;
 use crate::core::Sign;
@@ -67,7 +68,7 @@ pub struct Winding<'a> {
     crossing: std::sync::OnceLock<ShellCrossings>,
 }
 
-/// Per triangle its shell (`u32::MAX`: none), and the pairs of shells that cross, sorted.
+/// Per triangle its shell ([`NONE`]: none), and the pairs of shells that cross, sorted.
 type ShellCrossings = (Vec<u32>, Vec<(u32, u32)>);
 
 /// How a segment meets the surface: the parameter along it and the winding number's jump.
@@ -143,18 +144,18 @@ impl<'a> Winding<'a> {
     pub fn shells_cross(&self, a: usize, b: usize) -> bool {
         let (shell, pairs) = self.crossing();
         let (x, y) = (shell[a], shell[b]);
-        x != u32::MAX && y != u32::MAX && pairs.binary_search(&(x.min(y), x.max(y))).is_ok()
+        x != NONE && y != NONE && pairs.binary_search(&(x.min(y), x.max(y))).is_ok()
     }
 
     /// Per triangle its shell, and the pairs of shells that cross (sorted); made once.
     fn crossing(&self) -> &ShellCrossings {
         self.crossing.get_or_init(|| {
-            let shell: Vec<u32> = crate::mesh::topology::triangle_shells(self.surface).into_iter().map(|s| s.unwrap_or(u32::MAX)).collect();
+            let shell: Vec<u32> = crate::mesh::topology::triangle_shells(self.surface).into_iter().map(|s| s.unwrap_or(NONE)).collect();
             let mut pairs: Vec<(u32, u32)> = Vec::new();
             for (t, l) in self.meets().iter().enumerate() {
                 for &o in l {
                     let (x, y) = (shell[t], shell[o as usize]);
-                    if x != u32::MAX && y != u32::MAX {
+                    if x != NONE && y != NONE {
                         pairs.push((x.min(y), x.max(y)));
                     }
                 }
@@ -168,7 +169,7 @@ impl<'a> Winding<'a> {
     /// Whether triangle `t`'s shell crosses any shell (itself included).
     pub fn crosses_any(&self, t: usize) -> bool {
         let (shell, pairs) = self.crossing();
-        shell[t] != u32::MAX && pairs.iter().any(|&(x, y)| x == shell[t] || y == shell[t])
+        shell[t] != NONE && pairs.iter().any(|&(x, y)| x == shell[t] || y == shell[t])
     }
 
     /// The surface.

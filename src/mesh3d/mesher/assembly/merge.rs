@@ -8,6 +8,7 @@
 //! where). Should the merged mesh fail [`TetMesh::validate`], the solids are left unmerged,
 //! which is always valid.
 
+use crate::core::ids::NONE;
 use crate::core::union_find::UnionFind;
 use crate::core::{FaceId, RegionId};
 use crate::mesh::TetMesh;
@@ -51,7 +52,7 @@ pub(crate) fn merge(meshes: Vec<TetMesh>, tags: &[RegionId], names: &[Option<Str
     }
     // the root of a set is its smallest index: the node of the first solid; the other nodes
     // go, the rest keep their order
-    let mut index = vec![u32::MAX; out.vertices.len()];
+    let mut index = vec![NONE; out.vertices.len()];
     let mut vertices: Vec<DVec3> = Vec::with_capacity(out.vertices.len());
     for v in 0..out.vertices.len() as u32 {
         let r = uf.find(v);

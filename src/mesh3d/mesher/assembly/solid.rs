@@ -9,6 +9,7 @@
 //! the surface is not strictly inside.
 
 use crate::core::bvh::Bvh;
+use crate::core::ids::NONE;
 use crate::core::closest::point_triangle_distance;
 use crate::core::intersection::{SegmentCrossing, point_on_triangle, segment_crosses_triangle};
 use crate::core::{Aabb, FaceId};
@@ -55,7 +56,7 @@ pub(crate) fn split(surface: &TriSurface, of_triangle: &[u32], count: usize) -> 
     }
     // local index of each part vertex in the solid being cut, valid where stamp == solid
     let mut local = vec![0u32; surface.vertices.len()];
-    let mut stamp = vec![u32::MAX; surface.vertices.len()];
+    let mut stamp = vec![NONE; surface.vertices.len()];
     for (s, (part, tris)) in out.iter_mut().zip(&by_solid).enumerate() {
         for &t in tris {
             let mapped = surface.triangles[t as usize].map(|v| {
