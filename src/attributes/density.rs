@@ -148,7 +148,7 @@ struct RawBoxSize {
 impl TryFrom<RawBoxSize> for BoxSize {
     type Error = String;
     fn try_from(b: RawBoxSize) -> Result<Self, String> {
-        Ok(BoxSize { region: BoxSpec::try_from_corners(b.min, b.max)?, size: b.size })
+        Ok(BoxSize { region: BoxSpec::try_from_corners(b.min, b.max).map_err(|e| e.to_string())?, size: b.size })
     }
 }
 

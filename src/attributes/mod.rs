@@ -15,4 +15,4 @@ pub use catalogue::{FaceCatalogue, FaceInfo, FaceShape};
 pub use density::{BoxSize, DEFAULT_GRADING, Density, DensityError, DensityField, DistanceSize, FaceSize, Fraction, Grading, PointSize, RegionSizes};
 pub use groups::Groups;
 pub use selector::{Colour, CylinderSelector, Extreme, PlaneSelector, SelectError, Selection, Selector, SolidRef, glob};
-pub use values::{BoxSpec, Direction, NonNegative, Positive};
+pub use values::{BoxError, BoxSpec, Direction, NonNegative, Positive};

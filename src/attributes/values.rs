@@ -79,14 +79,31 @@ struct RawBox {
     max: [f64; 3],
 }
 
+/// Why two corners make no [`BoxSpec`].
+#[derive(Clone, Debug, PartialEq, thiserror::Error, Serialize)]
+#[non_exhaustive]
+pub enum BoxError {
+    /// A corner has a coordinate that is not finite.
+    #[error("box corners must be finite")]
+    NotFinite,
+    /// `min` is above `max` on some axis.
+    #[error("box min {min:?} is above max {max:?} on some axis")]
+    Inverted {
+        /// The lower corner given.
+        min: [f64; 3],
+        /// The upper corner given.
+        max: [f64; 3],
+    },
+}
+
 impl TryFrom<RawBox> for BoxSpec {
-    type Error = String;
-    fn try_from(b: RawBox) -> Result<Self, String> {
+    type Error = BoxError;
+    fn try_from(b: RawBox) -> Result<Self, BoxError> {
         if b.min.iter().chain(&b.max).any(|x| !x.is_finite()) {
-            return Err("box corners must be finite".into());
+            return Err(BoxError::NotFinite);
         }
         if (0..3).any(|k| b.min[k] > b.max[k]) {
-            return Err(format!("box min {:?} is above max {:?} on some axis", b.min, b.max));
+            return Err(BoxError::Inverted { min: b.min, max: b.max });
         }
         Ok(BoxSpec { min: b.min, max: b.max })
     }
@@ -124,7 +141,7 @@ impl BoxSpec {
     ///
     /// # Errors
     /// Corners not finite, or `min > max` on an axis.
-    pub fn try_from_corners(min: [f64; 3], max: [f64; 3]) -> Result<BoxSpec, String> {
+    pub fn try_from_corners(min: [f64; 3], max: [f64; 3]) -> Result<BoxSpec, BoxError> {
         BoxSpec::try_from(RawBox { min, max })
     }
 }
@@ -138,7 +155,7 @@ mod tests {
         assert!(Positive::try_from(0.0).unwrap_err().contains("> 0"));
         assert!(Positive::try_from(f64::NAN).is_err());
         assert_eq!(Positive::try_from(2.5).map(Positive::get), Ok(2.5));
-        assert!(BoxSpec::try_from(RawBox { min: [0.0, 2.0, 0.0], max: [1.0, 1.0, 1.0] }).unwrap_err().contains("above max"));
+        assert!(BoxSpec::try_from(RawBox { min: [0.0, 2.0, 0.0], max: [1.0, 1.0, 1.0] }).unwrap_err().to_string().contains("above max"));
         assert!(Direction::try_from([0.0; 3]).is_err());
         assert_eq!(Direction::try_from([0.0, 0.0, 2.0]).unwrap().0, [0.0, 0.0, 1.0]);
     }
