@@ -33,7 +33,7 @@ pub fn check_points_weights(points: &[glam::DVec3], weights: Option<Vec<f64>>) -
 /// `degree + 1` times, and a non-empty domain `[knots[degree], knots[n]]`.
 pub fn check_knots(degree: usize, knots: &[f64], n: usize) -> Result<(), SplineError> {
     if degree == 0 || degree > MAX_DEGREE {
-        return Err(SplineError::Degree { degree });
+        return Err(SplineError::Degree { degree, max: MAX_DEGREE });
     }
     if n < degree + 1 {
         return Err(SplineError::TooFewPoints { points: n, degree });
@@ -252,7 +252,7 @@ mod tests {
         let count = check_knots(2, &[0.0, 0.0, 0.0, 1.0, 1.0], 3).unwrap_err();
         assert_eq!(count, SplineError::KnotCount { knots: 5, points: 3, degree: 2 });
         assert!(count.to_string().contains("expected 6"));
-        assert_eq!(check_knots(0, &[0.0, 1.0], 1), Err(SplineError::Degree { degree: 0 }));
+        assert_eq!(check_knots(0, &[0.0, 1.0], 1), Err(SplineError::Degree { degree: 0, max: MAX_DEGREE }));
         assert_eq!(check_knots(0, &[0.0, 1.0], 1).unwrap_err().to_string(), "degree 0 is outside 1..=25");
         let repeated = check_knots(1, &[0.0, 0.0, 0.0, 0.0], 2).unwrap_err();
         assert!(matches!(repeated, SplineError::KnotRepeated { index: 2, degree: 1, .. }));

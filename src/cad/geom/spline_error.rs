@@ -1,6 +1,5 @@
 //! Why a B-spline curve or surface, or a STEP knot list, was refused ([`SplineError`]).
 
-use super::basis::MAX_DEGREE;
 use serde::Serialize;
 
 /// A B-spline's data that does not make a spline. The messages are those a STEP reader shows
@@ -30,11 +29,13 @@ pub enum SplineError {
         /// Its index.
         index: usize,
     },
-    /// A degree of 0 or above [`MAX_DEGREE`].
-    #[error("degree {degree} is outside 1..={MAX_DEGREE}")]
+    /// A degree of 0 or above the largest accepted (`basis::MAX_DEGREE`).
+    #[error("degree {degree} is outside 1..={max}")]
     Degree {
         /// The degree.
         degree: usize,
+        /// The largest degree accepted.
+        max: usize,
     },
     /// Fewer than `degree + 1` control points.
     #[error("{points} control points are too few for degree {degree} (at least {})", degree + 1)]
