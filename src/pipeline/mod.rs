@@ -16,18 +16,25 @@
 //! ```
 
 pub mod assembly;
+pub mod cad_info;
+pub mod convert;
 mod error;
 pub mod fe_model;
 pub mod fe_ties;
+pub mod inspect;
 pub mod job;
 pub mod job_fe;
+pub mod mesh2d_file;
+pub mod mesh_file;
 pub mod octree;
 pub mod part;
 pub mod planar;
 pub mod run;
 pub mod solve;
 mod summary;
+pub mod tessellate_step;
 pub mod tessellated;
+pub mod warning;
 
 pub use error::PipelineError;
 pub use part::{Certified, Part, failure_message, tessellate_file, tessellate_model};

@@ -38,6 +38,8 @@ pub struct Plan {
     /// Largest relative difference between the mesh's volume and the CAD solids' (a CAD part),
     /// or the run fails.
     pub require_volume_error: Option<f64>,
+    /// Where the options were given: the warnings name the option that makes one an error.
+    pub interface: super::warning::Interface,
 }
 
 impl Plan {
@@ -83,6 +85,8 @@ pub struct RunReport {
     pub fe: Option<super::fe_model::FeSummary>,
     /// What the octree mesher did (method octree).
     pub octree: Option<crate::mesh3d::octree::OctreeReport>,
+    /// What the run made but would rather not have ([`super::warning`]).
+    pub warnings: Vec<super::warning::Warning>,
 }
 
 /// Evaluates every selector of `plan` on `part` (an empty one is an error even when unused).
@@ -157,6 +161,7 @@ fn run_plan_writing(part: &mut Part, plan: &Plan, check_only: bool, out: Option<
     report.contacts = part.contacts.clone();
     report.seconds = part.seconds.clone();
     report.octree = part.octree_report.clone();
+    report.warnings = super::warning::run_warnings(report.mesh.as_ref(), report.octree.as_ref(), plan.interface);
     summarised.check(&part.path, mesh, plan, &report.face_table)?;
     if let Some(w) = written {
         w?.commit()?;
@@ -207,6 +212,7 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
         require_volume_error: job.require.volume_error.map(|r| r.get()),
+        interface: super::warning::Interface::JobFile,
     };
     let mut report = match run_plan(&mut part, &plan, check_only) {
         Ok(r) => r,
