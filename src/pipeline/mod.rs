@@ -5,7 +5,12 @@
 //! [`Part`] keeps the B-rep, the certified surface, the certificate, the mesh and every
 //! report. Job files ([`job`]) describe a run in TOML; [`run::run_job`] carries one out.
 //!
-//! `cli/` parses arguments, calls this and prints: no meshing decision is made there.
+//! `cli/` parses arguments, calls this and prints: no meshing decision is made there. Each
+//! subcommand is one call here: [`inspect::inspect_file`], [`convert::convert_file`],
+//! [`mesh_file::mesh_file`], [`mesh2d_file::mesh2d_file`], [`cad_info::cad_info`],
+//! [`tessellate_step::tessellate_step`], [`run::run_job`], [`solve::solve_job`]; every report
+//! carries its `warnings` ([`warning::Warning`]: kind, message, place), which the binary
+//! prints on standard error and `--json` carries.
 //!
 //! ```no_run
 //! use fepre::pipeline::{Part, run::{Plan, run_plan}};
