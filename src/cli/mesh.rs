@@ -174,7 +174,7 @@ fn print(r: &MeshFileReport) {
         let d = &o.deviation;
         outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
         outln!("                 {} boundary vertices snapped onto feature corners, {} onto feature edges ({} moves refused to keep the angle bounds and the boundary near the input)", o.snapped.corners, o.snapped.edge_vertices, o.snapped.refused);
-        if let Some(line) = crate::pipeline::warning::cell_choice(o) {
+        if let Some(line) = crate::pipeline::describe::cell_choice(o) {
             outln!("  cell chosen    {line}");
         }
         if o.solids > 1 {

@@ -264,7 +264,7 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
     if !delaunay {
         return;
     }
-    outln!("refinement       {}", crate::pipeline::warning::refinement_text(m));
+    outln!("refinement       {}", crate::pipeline::describe::refinement_text(m));
     if m.optimize_out_of_attempts {
         outln!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);
     } else {

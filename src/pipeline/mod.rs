@@ -23,6 +23,7 @@
 pub mod assembly;
 pub mod cad_info;
 pub mod convert;
+pub mod describe;
 mod error;
 pub mod fe_model;
 pub mod fe_ties;
