@@ -2,13 +2,10 @@
 //! vertices (assembly instances expanded), units, faces per surface kind, and every item it
 //! left out with the reason.
 
-use crate::cad::brep::{Dropped, Summary};
-use crate::cad::step;
+use crate::pipeline::cad_info::{BrepInfo, CadInfo, CadInfoOptions, TessellatedInfo, cad_info};
 use anyhow::Result;
-use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Examples shown by `fepre cad-info --help`.
 pub const EXAMPLES: &str = "\
@@ -36,129 +33,48 @@ pub struct Args {
     pub deviation: f64,
 }
 
-/// What `--mesh` adds.
-#[derive(Debug, Serialize)]
-struct MeshInfo {
-    triangles: usize,
-    vertices: usize,
-    closed: bool,
-    manifold: bool,
-    oriented: bool,
-    open_edges: usize,
-    volume_mm3: f64,
-    area_mm2: f64,
-    failed_faces: Vec<crate::tessellate::FailedFace>,
-    seconds: f64,
-}
-
-/// The JSON object `fepre cad-info --json` prints.
-#[derive(Debug, Serialize)]
-struct Report {
-    file: String,
-    #[serde(flatten)]
-    summary: Summary,
-    dropped: Vec<Dropped>,
-    seconds: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    mesh: Option<MeshInfo>,
-}
-
 /// Runs `fepre cad-info`.
 ///
 /// # Errors
 /// When the file cannot be read as STEP (the message names the line or `#id`).
 pub fn run(args: &Args) -> Result<()> {
-    let t0 = Instant::now();
-    let model = match step::read_shape(&args.file)? {
-        step::Shape::Brep(m) => m,
-        step::Shape::Tessellated(t) => return tessellated(args, &t, t0.elapsed().as_secs_f64()),
-    };
-    let seconds = t0.elapsed().as_secs_f64();
-    let mesh = args.mesh.then(|| {
-        let t1 = Instant::now();
-        let t = crate::tessellate::tessellate(&model, &crate::tessellate::TessellateOptions::default().with_chord_relative(args.deviation));
-        let r = crate::mesh::topology::surface_report(&t.surface, &crate::mesh::topology::ReportOptions::default().with_self_intersections(false));
-        MeshInfo {
-            triangles: t.surface.triangles.len(),
-            vertices: t.surface.vertices.len(),
-            closed: r.closed,
-            manifold: r.manifold,
-            oriented: r.oriented,
-            open_edges: r.open_edges,
-            volume_mm3: r.shells.iter().map(|s| s.volume).sum(),
-            area_mm2: r.shells.iter().map(|s| s.area).sum(),
-            failed_faces: t.failed,
-            seconds: t1.elapsed().as_secs_f64(),
-        }
-    });
-    let report = Report { file: args.file.display().to_string(), summary: Summary::of(&model), dropped: model.dropped.clone(), seconds, mesh };
+    let info = cad_info(&args.file, &CadInfoOptions { mesh: args.mesh, deviation: args.deviation })?;
     if args.json {
-        outln!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&info)?);
     } else {
-        out!("{}", text(&report, args.max_listed));
+        match &info {
+            CadInfo::Brep(r) => out!("{}", text(r, args.max_listed)),
+            CadInfo::Tessellated(r) => out!("{}", tessellated_text(r, args.max_listed)),
+        }
     }
+    crate::cli::print_warnings(info.warnings());
     Ok(())
 }
 
-/// The JSON object `fepre cad-info --json` prints for a file of tessellated geometry only.
-#[derive(Debug, Serialize)]
-struct TessReport<'a> {
-    file: String,
-    /// Always true here: the file holds no B-rep.
-    tessellated: bool,
-    units: &'a crate::cad::brep::Units,
-    #[serde(flatten)]
-    summary: crate::pipeline::tessellated::TessellatedSummary,
-    faces_table: &'a [step::TessellatedFace],
-    solids_table: &'a [step::TessellatedSolid],
-    certificate: crate::pipeline::tessellated::MeshCertificate,
-    dropped: &'a [Dropped],
-    seconds: f64,
-}
-
-/// `fepre cad-info` of a file of tessellated geometry only: counts, units, and the surface
-/// certified as a mesh.
-fn tessellated(args: &Args, t: &step::Tessellated, seconds: f64) -> Result<()> {
-    use crate::pipeline::tessellated::{TessellatedSummary, certify_surface};
-    let r = TessReport {
-        file: args.file.display().to_string(),
-        tessellated: true,
-        units: &t.units,
-        summary: TessellatedSummary::of(t, &t.surface),
-        faces_table: &t.faces,
-        solids_table: &t.solids,
-        certificate: certify_surface(&t.surface),
-        dropped: &t.dropped,
-        seconds,
-    };
-    if args.json {
-        outln!("{}", serde_json::to_string_pretty(&r)?);
-        return Ok(());
-    }
+/// The text report of a file of tessellated geometry only.
+fn tessellated_text(r: &TessellatedInfo, max_listed: usize) -> String {
     let (s, c) = (&r.summary, &r.certificate);
     let mut out = String::new();
     let _ = writeln!(out, "file        {}", r.file);
     let _ = writeln!(out, "geometry    tessellated only (AP242): no B-rep; meshed as a surface mesh is");
-    let _ = writeln!(out, "units       {} (x{} to mm)", t.units.length, t.units.to_mm);
+    let _ = writeln!(out, "units       {} (x{} to mm)", r.units.length, r.units.to_mm);
     let _ = writeln!(out, "solids      {} TESSELLATED_SOLID, {} TESSELLATED_SHELL", s.solids, s.shells);
     let _ = writeln!(out, "faces       {} ({} triangles, {} vertices)", s.faces, s.triangles, s.vertices);
-    if let Some(b) = t.surface.bbox().diagonal().is_finite().then(|| t.surface.bbox()) {
-        let e = b.max - b.min;
-        let _ = writeln!(out, "extent mm   {:.6} x {:.6} x {:.6}", e.x, e.y, e.z);
+    if let Some(e) = r.extent {
+        let _ = writeln!(out, "extent mm   {:.6} x {:.6} x {:.6}", e[0], e[1], e[2]);
     }
     let _ = writeln!(out, "mesh        closed {}, manifold {}, oriented {}, outward {}, {} open edges, {} self-intersections", c.closed, c.manifold, c.oriented, c.outward, c.open_edges, c.self_intersections);
     let _ = writeln!(out, "volume mm3  {:.6}  area mm2 {:.6}", c.volume, c.area);
     let _ = writeln!(out, "certificate {}", if c.passed { "passed (as a mesh)" } else { "FAILED" });
-    let _ = writeln!(out, "dropped     {}", t.dropped.len());
-    for d in t.dropped.iter().take(args.max_listed) {
+    let _ = writeln!(out, "dropped     {}", r.dropped.len());
+    for d in r.dropped.iter().take(max_listed) {
         let _ = writeln!(out, "  {} {}: {}", d.id, d.kind, d.why);
     }
-    let _ = writeln!(out, "seconds     {:.3}", seconds);
-    out!("{out}");
-    Ok(())
+    let _ = writeln!(out, "seconds     {:.3}", r.seconds);
+    out
 }
 
-fn text(r: &Report, max_listed: usize) -> String {
+fn text(r: &BrepInfo, max_listed: usize) -> String {
     let s = &r.summary;
     let mut out = String::new();
     let _ = writeln!(out, "file       {}", r.file);

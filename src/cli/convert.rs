@@ -3,9 +3,9 @@
 use crate::cli::progress::Progress;
 use crate::cli::usage_error;
 use crate::core::Tolerance;
-use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
+use crate::pipeline::PipelineError;
+use crate::pipeline::convert::{ConvertOptions, convert_file};
 use anyhow::Result;
-use serde::Serialize;
 use std::path::PathBuf;
 
 /// Examples shown by `fepre convert --help`.
@@ -37,78 +37,29 @@ pub struct Args {
     pub json: bool,
 }
 
-#[derive(Serialize)]
-struct Summary<'a> {
-    input: String,
-    output: String,
-    format: &'a str,
-    kind: &'a str,
-    vertices: usize,
-    triangles: usize,
-    tets: usize,
-    tags: usize,
-    notes: Vec<String>,
-}
-
 /// Runs `fepre convert`.
 ///
 /// # Errors
 /// Unreadable input or failed output (exit 1); an output extension fepre does not write
 /// (bad usage, exit 2).
 pub fn run(args: &Args) -> Result<()> {
-    let out_format = Format::from_path(&args.output).filter(|f| f.can_write()).ok_or_else(|| {
-        usage_error(format!(
-            "{}: fepre cannot write this extension; use one of .stl .obj .off .mesh .node .ele .face .poly .smesh .msh .vtu",
-            args.output.display()
-        ))
+    let progress = Progress::start(&format!("converting {} to {}", args.input.display(), args.output.display()));
+    let options = ConvertOptions { weld: if args.no_weld { None } else { Some(Tolerance::relative(args.weld)) }, ascii: args.ascii };
+    let summary = convert_file(&args.input, &args.output, &options).map_err(|e| match e {
+        PipelineError::Usage { .. } => usage_error(e.to_string()),
+        e => anyhow::Error::new(e),
     })?;
-    let progress = Progress::start(&format!("reading {}", args.input.display()));
-    let weld = if args.no_weld { None } else { Some(Tolerance::relative(args.weld)) };
-    let mut loaded = io::read(&args.input, &ReadOptions::default().with_weld(weld))?;
-    let surface_only = matches!(out_format, Format::Stl | Format::Obj | Format::Off);
-    if let (MeshData::Volume(m), true) = (&loaded.mesh, surface_only) {
-        loaded.notes.push(format!("wrote the boundary surface of the tetrahedral mesh ({} tets are not representable in {})", m.tets.len(), out_format.name()));
-        let mut s = m.boundary_surface();
-        s.remove_unused_vertices();
-        loaded.mesh = MeshData::Surface(s);
-    }
-    progress.stage(&format!("writing {}", args.output.display()));
-    io::write(&args.output, &loaded.mesh, &WriteOptions::default().with_ascii(args.ascii))?;
     progress.finish();
-    let (vertices, triangles, tets, mut tags) = match &loaded.mesh {
-        MeshData::Surface(s) => (s.vertices.len(), s.triangles.len(), 0, s.tags().len()),
-        MeshData::Volume(m) => {
-            let mut t: Vec<_> = m.region_tags.clone();
-            t.sort_unstable();
-            t.dedup();
-            (m.vertices.len(), m.boundary.len(), m.tets.len(), t.len())
-        }
-        MeshData::Points(p) => (p.len(), 0, 0, 0),
-    };
-    let tagless = matches!(out_format, Format::Off) || (out_format == Format::Stl && !args.ascii);
-    if tagless && tags > 1 {
-        loaded.notes.push(format!("{} holds no tags: {tags} tags were not written (use --ascii for STL solids, or .obj, .msh, .mesh, .vtu)", out_format.name()));
-        tags = 0;
-    }
-    let summary = Summary {
-        input: args.input.display().to_string(),
-        output: args.output.display().to_string(),
-        format: out_format.name(),
-        kind: loaded.mesh.kind(),
-        vertices,
-        triangles,
-        tets,
-        tags,
-        notes: loaded.notes,
-    };
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
         for n in &summary.notes {
             eprintln!("note: {n}");
         }
+        let (tets, triangles) = (summary.tets, summary.triangles);
         let elements = if tets > 0 { format!("{tets} tets, {triangles} boundary triangles") } else { format!("{triangles} triangles") };
-        outln!("wrote {} ({}): {} vertices, {}, {} tags", summary.output, summary.format, vertices, elements, tags);
+        outln!("wrote {} ({}): {} vertices, {}, {} tags", summary.output, summary.format, summary.vertices, elements, summary.tags);
     }
+    crate::cli::print_warnings(&summary.warnings);
     Ok(())
 }

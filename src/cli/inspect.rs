@@ -2,20 +2,13 @@
 //! for tet meshes, element quality.
 
 use crate::cli::progress::Progress;
-use crate::core::{FaceId, Tolerance};
-use crate::io::{self, MeshData, ReadOptions};
-use crate::mesh::TriSurface;
-use crate::mesh::topology::{IntersectingPair, ReportOptions, ShellReport, SurfaceReport, surface_report};
-use crate::quality::explained::{Explained, explained};
-use crate::quality::input_angles::small_input_angles;
-use crate::quality::mesh_quality::{NEAR_DEGENERATE_VOLUME_LENGTH, TetQualityReport, tet_mesh_quality};
-use crate::quality::worst_tet::{BoundaryIndex, TetPlace};
+use crate::core::Tolerance;
+use crate::pipeline::inspect::{InspectOptions, InspectReport, inspect_file};
+use crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH;
+use crate::quality::worst_tet::TetPlace;
 use anyhow::Result;
-use serde::Serialize;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Examples shown by `fepre inspect --help`.
 pub const EXAMPLES: &str = "\
@@ -53,192 +46,26 @@ pub struct Args {
     pub weld: f64,
 }
 
-/// A tag with its name and how many triangles carry it.
-#[derive(Debug, Serialize)]
-struct TagInfo {
-    tag: u32,
-    name: Option<String>,
-    triangles: usize,
-}
-
-/// Keys present for tet meshes only.
-#[derive(Debug, Serialize)]
-struct TetKeys {
-    min_dihedral_deg: f64,
-    max_dihedral_deg: f64,
-    max_radius_edge: f64,
-    tets_under_5_deg: usize,
-    tets_under_1_deg: usize,
-    /// Tets under 10°; of those, the ones that touch no angle under 10° of the mesh's
-    /// boundary (its dihedral angles at edges and the corners of its faces, as
-    /// `fepre mesh` reports them), and of those the ones between the two sides of one.
-    tets_under_10_deg: usize,
-    tets_under_10_deg_unexplained: usize,
-    tets_under_10_deg_between_sides: usize,
-    /// The boundary's angles under 10° (counted where some tet is under 10°).
-    input_angles_under_10_deg: usize,
-    /// Volume-length ratio under `NEAR_DEGENERATE_VOLUME_LENGTH` (exactly flat ones included).
-    near_degenerate: usize,
-    /// The tet with the smallest dihedral angle: its centroid, nearest face and feature edge.
-    worst_tet: Option<TetPlace>,
-    inverted: usize,
-    boundary_triangles: usize,
-    regions: Vec<TagInfo>,
-    quality: TetQualityReport,
-}
-
-/// The JSON object `fepre inspect --json` prints. For a tet mesh the surface keys describe
-/// the boundary of the meshed volume (its faces that belong to one tet), and `volume` is the
-/// sum of the tet volumes.
-#[derive(Debug, Serialize)]
-struct Report {
-    file: String,
-    format: &'static str,
-    kind: &'static str,
-    file_vertices: usize,
-    vertices: usize,
-    triangles: usize,
-    tets: usize,
-    components: usize,
-    closed: bool,
-    manifold: bool,
-    oriented: bool,
-    outward: bool,
-    open_edges: usize,
-    nonmanifold_edges: usize,
-    nonmanifold_vertices: usize,
-    degenerate_triangles: usize,
-    euler: i64,
-    genus: Option<i64>,
-    volume: f64,
-    area: f64,
-    boundary_loops: usize,
-    self_intersections: Option<usize>,
-    /// Where the surface is open, overlaps itself or faces inward: the volume where its
-    /// winding number exceeds one half (what `--method octree` meshes).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    winding_volume: Option<crate::mesh3d::octree::WindingVolume>,
-    first_intersections: Vec<IntersectingPair>,
-    bbox: Option<[[f64; 3]; 2]>,
-    tags: Vec<TagInfo>,
-    shells: Vec<ShellReport>,
-    #[serde(flatten)]
-    tet: Option<TetKeys>,
-    notes: Vec<String>,
-    seconds: f64,
-}
-
-fn tag_infos(tags: impl Iterator<Item = u32>, names: impl Fn(u32) -> Option<String>) -> Vec<TagInfo> {
-    let mut count: BTreeMap<u32, usize> = BTreeMap::new();
-    for t in tags {
-        *count.entry(t).or_default() += 1;
-    }
-    count.into_iter().map(|(tag, triangles)| TagInfo { tag, name: names(tag), triangles }).collect()
-}
-
-/// Cells per axis of the winding-number volume (2.1 million samples: a fraction of a
-/// per cent on a part that fills its box).
-const WINDING_CELLS: usize = 128;
-
 /// Runs `fepre inspect`.
 ///
 /// # Errors
 /// An unreadable or invalid input file (exit 1).
 pub fn run(args: &Args) -> Result<()> {
-    let start = Instant::now();
     let progress = Progress::start(&format!("reading {}", args.file.display()));
-    let weld = if args.no_weld { None } else { Some(Tolerance::relative(args.weld)) };
-    let loaded = io::read(&args.file, &ReadOptions::default().with_weld(weld))?;
-    let opts = ReportOptions::default().with_self_intersections(!args.no_self_intersections).with_max_listed(args.max_listed);
-    progress.stage("computing the topology report");
-    let (surface, tet) = match &loaded.mesh {
-        MeshData::Surface(s) => (s.clone(), None),
-        MeshData::Volume(m) => {
-            progress.stage("measuring element quality");
-            let q = tet_mesh_quality(m);
-            let regions = tag_infos(m.region_tags.iter().map(|r| r.0), |r| m.region_names.get(crate::core::RegionId(r)).map(str::to_string));
-            // io::read validates what it returns: every index is in range. The input angles
-            // are the boundary's own (a mesh keeps its input surface's angles)
-            let index = BoundaryIndex::new(m);
-            let (angles, e) = if q.min_dihedral_deg < 10.0 {
-                let angles = small_input_angles(&m.boundary_surface(), 10.0, true);
-                let e = explained(m, index.sides(), &angles, 10.0);
-                (angles, e)
-            } else {
-                (Vec::new(), Explained::default())
-            };
-            let worst_tet = q.min_dihedral.argmin.map(|t| index.locate(m, t, &angles, 10.0, &|f| m.face_names.get(f).map(str::to_string)));
-            let keys = TetKeys {
-                min_dihedral_deg: q.min_dihedral_deg,
-                max_dihedral_deg: q.max_dihedral_deg,
-                max_radius_edge: q.max_radius_edge,
-                tets_under_5_deg: q.tets_min_dihedral_below_5,
-                tets_under_1_deg: q.tets_min_dihedral_below_1,
-                tets_under_10_deg: e.under[2].0,
-                tets_under_10_deg_unexplained: e.under[2].1,
-                tets_under_10_deg_between_sides: e.between[0],
-                input_angles_under_10_deg: angles.len(),
-                near_degenerate: q.near_degenerate,
-                worst_tet,
-                inverted: q.inverted,
-                boundary_triangles: m.boundary.len(),
-                regions,
-                quality: q,
-            };
-            (m.boundary_surface(), Some(keys))
-        }
-        MeshData::Points(p) => (TriSurface { vertices: p.clone(), ..Default::default() }, None),
+    let options = InspectOptions {
+        weld: if args.no_weld { None } else { Some(Tolerance::relative(args.weld)) },
+        self_intersections: !args.no_self_intersections,
+        winding_volume: !args.no_winding_volume,
+        max_listed: args.max_listed,
     };
-    progress.stage("computing the topology report");
-    let r: SurfaceReport = surface_report(&surface, &opts);
-    // a surface that is not a clean closed outward one: its divergence-theorem volume is not
-    // what it encloses, so the winding number's is measured too
-    let dirty = !(r.closed && r.manifold && r.oriented && r.outward) || r.self_intersections.is_some_and(|n| n > 0);
-    let winding_volume = if tet.is_none() && dirty && !args.no_winding_volume && !surface.triangles.is_empty() {
-        progress.stage("measuring the volume the winding number encloses");
-        crate::mesh3d::octree::winding_volume(&surface, WINDING_CELLS)
-    } else {
-        None
-    };
+    let report = inspect_file(&args.file, &options, &|s| progress.stage(s))?;
     progress.finish();
-    let tags = tag_infos(surface.face_tags.iter().map(|t| t.0), |t| surface.face_names.get(FaceId(t)).map(str::to_string));
-    let report = Report {
-        file: args.file.display().to_string(),
-        format: loaded.format.name(),
-        kind: loaded.mesh.kind(),
-        file_vertices: loaded.file_vertices,
-        vertices: surface.vertices.len(),
-        triangles: r.triangles,
-        tets: if let MeshData::Volume(m) = &loaded.mesh { m.tets.len() } else { 0 },
-        components: r.components,
-        closed: r.closed,
-        manifold: r.manifold,
-        oriented: r.oriented,
-        outward: r.outward,
-        open_edges: r.open_edges,
-        nonmanifold_edges: r.nonmanifold_edges,
-        nonmanifold_vertices: r.nonmanifold_vertices,
-        degenerate_triangles: r.degenerate_triangles,
-        euler: r.euler,
-        genus: r.genus,
-        volume: tet.as_ref().map_or(r.volume, |t| t.quality.volume),
-        area: r.area,
-        boundary_loops: r.boundary_loops,
-        self_intersections: r.self_intersections,
-        winding_volume,
-        first_intersections: r.first_intersections.clone(),
-        bbox: r.bbox.or_else(|| crate::core::Aabb::from_points(&surface.vertices).to_array()),
-        tags,
-        shells: r.shells,
-        tet,
-        notes: loaded.notes,
-        seconds: start.elapsed().as_secs_f64(),
-    };
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         out!("{}", render(&report));
     }
+    crate::cli::print_warnings(&report.warnings);
     Ok(())
 }
 
@@ -251,7 +78,7 @@ fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
 }
 
 /// The text report.
-fn render(r: &Report) -> String {
+fn render(r: &InspectReport) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{} ({}, {})", r.file, r.format, r.kind);
     if r.kind == "point set" {

@@ -6,11 +6,11 @@ use crate::attributes::density::Fraction;
 use crate::attributes::values::Positive;
 use crate::cli::progress::Progress;
 use crate::cli::{positive, usage_error};
-use crate::io::Format;
-use crate::pipeline::run::{Plan, RunReport, run_plan_to};
-use crate::pipeline::{Part, PipelineError};
+use crate::mesh3d::mesher::{dihedral_bound, radius_edge_bound};
+use crate::pipeline::mesh_file::{MeshFileReport, mesh_file};
+use crate::pipeline::run::Plan;
+use crate::pipeline::PipelineError;
 use anyhow::Result;
-use serde::Serialize;
 use std::path::PathBuf;
 
 /// Examples shown by `fepre mesh --help`.
@@ -116,37 +116,15 @@ fn deviation(s: &str) -> Result<f64, String> {
     if x > 0.0 && x <= 0.1 { Ok(x) } else { Err(format!("'{s}' must be in (0, 0.1]")) }
 }
 
+/// clap's adapter for [`radius_edge_bound`].
 fn radius_edge(s: &str) -> Result<f64, String> {
-    let x = positive(s)?;
-    if x >= 1.1 { Ok(x) } else { Err(format!("{x} is below 1.1: no tetrahedral mesh reaches it (the regular tet has 0.61, but refinement cannot end below about 1.1)")) }
+    radius_edge_bound(positive(s)?).map_err(|e| e.to_string())
 }
 
+/// clap's adapter for [`dihedral_bound`].
 fn dihedral(s: &str) -> Result<f64, String> {
     let x = positive(s).or_else(|e| if s.trim() == "0" { Ok(0.0) } else { Err(e) })?;
-    if x <= 35.0 { Ok(x) } else { Err(format!("{x}° is above 35°: no mesher can promise it")) }
-}
-
-#[derive(Serialize)]
-struct Report<'a> {
-    input: String,
-    output: String,
-    seconds: f64,
-    read_seconds: f64,
-    /// Counts, quality, the worst tet's place, refinement and optimisation budgets.
-    #[serde(flatten)]
-    summary: &'a crate::pipeline::run::MeshSummary,
-    boundary_steiner_points: usize,
-    global_size: f64,
-    /// Per boundary face tag: unique name (and for STEP parts colour, STEP `#id`, solid).
-    face_table: &'a [crate::cad::brep::FaceEntry],
-    mesher: &'a crate::mesh3d::mesher::MeshReport,
-    /// Faces of different solids that touch (several solids).
-    contacts: &'a [crate::pipeline::assembly::ContactReport],
-    /// What the octree mesher did (--method octree).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    octree: Option<&'a crate::mesh3d::octree::OctreeReport>,
-    /// Faces of open surface-model shells beside the solids, left out of the mesh.
-    open_surface_faces: usize,
+    dihedral_bound(x).map_err(|e| e.to_string())
 }
 
 /// Runs `fepre mesh`.
@@ -155,15 +133,9 @@ struct Report<'a> {
 /// An unreadable, open, non-manifold or self-intersecting surface, a failed certificate, a
 /// requirement not met (exit 1); an output format that cannot hold tets (exit 2).
 pub fn run(args: &Args) -> Result<()> {
-    let out = &args.output;
-    if !matches!(Format::from_path(out), Some(Format::Medit | Format::TetGen | Format::Vtu | Format::Msh)) {
-        return Err(usage_error(format!("{}: tets are written as .mesh, .ele/.node, .vtu or .msh", out.display())));
-    }
     if args.octree_coarsen == "off" && (args.method != "octree" || args.octree_grading != "graded") {
         return Err(usage_error("--octree-coarsen off: only with --method octree --octree-grading graded".to_string()));
     }
-    let progress = Progress::start(&format!("reading {}", args.surface.display()));
-    let mut part = Part::open(&args.surface)?;
     let density = Density { size: args.size.and_then(Positive::new), deviation: args.deviation.map(Fraction), ..Density::default() };
     let plan = Plan {
         density,
@@ -180,44 +152,29 @@ pub fn run(args: &Args) -> Result<()> {
         },
         ..Plan::default()
     };
-    progress.stage("meshing");
-    let report = run_plan_to(&mut part, &plan, out).map_err(|e| match e {
+    let progress = Progress::start(&format!("meshing {}", args.surface.display()));
+    let report = mesh_file(&args.surface, &plan, &args.output).map_err(|e| match e {
         PipelineError::Usage { .. } => usage_error(e.to_string()),
         e => anyhow::Error::new(e),
     })?;
     progress.finish();
-    print(args, &part, &report)
+    if args.json {
+        outln!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print(&report);
+    }
+    crate::cli::print_warnings(&report.warnings);
+    Ok(())
 }
 
-fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
-    let m = report.mesh.clone().unwrap_or_default();
-    let mesher = report.mesher.clone().unwrap_or_default();
-    let r = Report {
-        input: args.surface.display().to_string(),
-        output: args.output.display().to_string(),
-        seconds: part.seconds.total(),
-        read_seconds: part.seconds.read,
-        summary: &m,
-        boundary_steiner_points: mesher.boundary_steiner_points,
-        global_size: report.global_size,
-        face_table: &report.face_table,
-        mesher: &mesher,
-        contacts: &report.contacts,
-        octree: report.octree.as_ref(),
-        open_surface_faces: part.open_surface_faces,
-    };
-    crate::cli::warn_octree(report.octree.as_ref());
-    if args.json {
-        outln!("{}", serde_json::to_string_pretty(&r)?);
-        crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D", report.octree.is_some());
-        return Ok(());
-    }
-    crate::cli::print_mesh_summary(&m, report.octree.is_none());
-    if let Some(o) = &report.octree {
+fn print(r: &MeshFileReport) {
+    let (m, mesher, seconds) = (&r.summary, &r.mesher, &r.stage_seconds);
+    crate::cli::print_mesh_summary(m, r.octree.is_none());
+    if let Some(o) = &r.octree {
         let d = &o.deviation;
         outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
         outln!("                 {} boundary vertices snapped onto feature corners, {} onto feature edges ({} moves refused to keep the angle bounds and the boundary near the input)", o.snapped.corners, o.snapped.edge_vertices, o.snapped.refused);
-        if let Some(line) = crate::cli::cell_choice(o) {
+        if let Some(line) = crate::pipeline::describe::cell_choice(o) {
             outln!("  cell chosen    {line}");
         }
         if o.solids > 1 {
@@ -263,8 +220,8 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
         }
         outln!("  features       {} of {} feature edges (> {}°) farther than the cell size from the boundary (worst {:.4e})", d.unresolved_feature_edges, d.feature_edges, d.feature_angle_deg, d.feature_max_distance);
     }
-    if part.open_surface_faces > 0 {
-        outln!("open shells      {} faces of open surface shells beside the solids left out (`fepre tessellate` lists their holes)", part.open_surface_faces);
+    if r.open_surface_faces > 0 {
+        outln!("open shells      {} faces of open surface shells beside the solids left out (`fepre tessellate` lists their holes)", r.open_surface_faces);
     }
     let by_refinement = match mesher.refinement_boundary_points {
         0 => String::new(),
@@ -272,13 +229,11 @@ fn print(args: &Args, part: &Part, report: &RunReport) -> Result<()> {
     };
     outln!("boundary Steiner {}{by_refinement}", r.boundary_steiner_points);
     outln!("size             {:.4} (global)", r.global_size);
-    let beside = if part.seconds.certify_beside_mesh { " beside meshing" } else { "" };
-    outln!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}{beside}, mesh {:.3})", r.seconds, part.seconds.read, part.seconds.tessellate, part.seconds.certify, part.seconds.mesh);
+    let beside = if seconds.certify_beside_mesh { " beside meshing" } else { "" };
+    outln!("seconds          {:.3} (read {:.3}, tessellate {:.3}, certify {:.3}{beside}, mesh {:.3})", r.seconds, seconds.read, seconds.tessellate, seconds.certify, seconds.mesh);
     for (stage, s) in &mesher.stage_seconds {
         outln!("  {stage:<10} {s:.3}");
     }
-    crate::cli::contacts::print(&report.contacts);
+    crate::cli::contacts::print(&r.contacts);
     outln!("wrote            {}", r.output);
-    crate::cli::warn_mesh_summary(&m, "--require-min-dihedral D", report.octree.is_some());
-    Ok(())
 }

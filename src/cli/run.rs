@@ -58,10 +58,7 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         print(&report, args.check);
     }
-    crate::cli::warn_octree(report.octree.as_ref());
-    if let Some(m) = &report.mesh {
-        crate::cli::warn_mesh_summary(m, "[require] min_dihedral", report.octree.is_some());
-    }
+    crate::cli::print_warnings(&report.warnings);
     Ok(())
 }
 

@@ -10,18 +10,11 @@
 //! surface shells beside solids are listed the same way, and `watertight` speaks of the
 //! solids.
 
-use crate::cad::brep::{Dropped, EntityRef, FaceEntry, Model, Units};
 use crate::cli::usage_error;
-use crate::core::size_field::UniformSize;
-use crate::core::{FaceId, SizeField};
-use crate::io::{self, Format, MeshData, WriteOptions};
-use crate::pipeline;
-use crate::tessellate::certificate::Certificate;
-use crate::tessellate::{TessellateOptions, Tessellation};
+use crate::pipeline::PipelineError;
+use crate::pipeline::tessellate_step::{BrepTessellation, TessellateFailure, TessellateReport, TessellateStepOptions, TessellatedFileReport, tessellate_step};
 use anyhow::Result;
-use serde::Serialize;
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Examples shown by `fepre tessellate --help`.
 pub const EXAMPLES: &str = "\
@@ -73,87 +66,8 @@ fn positive_fraction(s: &str) -> Result<f64, String> {
     if x > 0.0 && x <= 0.1 { Ok(x) } else { Err(format!("'{s}' must be in (0, 0.1]")) }
 }
 
-/// Euler characteristic of one shell group, mesh and B-rep.
-#[derive(Debug, Serialize)]
-struct EulerEntry {
-    brep_shells: Vec<EntityRef>,
-    mesh: i64,
-    brep: i64,
-}
-
-/// A face that could not be meshed.
-#[derive(Debug, Serialize)]
-struct FailedFaceEntry {
-    face: FaceId,
-    step_id: EntityRef,
-    reason: String,
-}
-
-/// The JSON object `fepre tessellate --json` prints.
-#[derive(Debug, Serialize)]
-struct Report {
-    input: String,
-    output: Option<String>,
-    solids: usize,
-    /// Shells not bounding a solid (surface models).
-    surface_model_shells: usize,
-    /// What sewing the open shells did.
-    sewing: Option<crate::cad::brep::SewReport>,
-    faces: usize,
-    /// Per face: unique name, colour, STEP `#id`, solid.
-    face_table: Vec<FaceEntry>,
-    triangles: usize,
-    vertices: usize,
-    /// Closed, manifold, oriented where it should be ([`Certificate::watertight`]).
-    watertight: bool,
-    /// What `watertight` speaks of: `solids` (open surface shells beside them are reported
-    /// in `open_surface`), or `surface model`.
-    watertight_of: &'static str,
-    /// The shells of a surface model (no solid) left open after sewing: their free edges
-    /// grouped into holes.
-    open_surface: Option<OpenSurface>,
-    euler: Vec<EulerEntry>,
-    volume: f64,
-    area: f64,
-    units: Units,
-    deviation: f64,
-    max_edge: Option<f64>,
-    chord_mm: f64,
-    dropped: Vec<Dropped>,
-    /// What was odd about the file as written but read anyway ([`Model::notes`]).
-    notes: Vec<String>,
-    failed_faces: Vec<FailedFaceEntry>,
-    seconds: f64,
-    read_seconds: f64,
-    tessellate_seconds: f64,
-    certificate: Certificate,
-}
-
-/// Open shells of a surface model after sewing.
-#[derive(Debug, Serialize)]
-struct OpenSurface {
-    /// Shells that bound no solid and do not close.
-    shells: usize,
-    /// Their free edges.
-    free_edges: usize,
-    /// The free edges grouped into holes, largest first.
-    holes: Vec<crate::cad::brep::Hole>,
-}
-
-/// The open surface-model shells of `m`, or `None` when every one closes (or there is none).
-fn open_surface(m: &Model) -> Option<OpenSurface> {
-    let holes = m.holes(|s| s.solid.is_none() && !s.closed);
-    if holes.is_empty() {
-        return None;
-    }
-    let mut shells: Vec<EntityRef> = holes.iter().flat_map(|h| h.shells.iter().copied()).collect();
-    shells.sort_unstable();
-    shells.dedup();
-    Some(OpenSurface { shells: shells.len(), free_edges: holes.iter().map(|h| h.edges).sum(), holes })
-}
-
 /// The lines that say where a surface is open.
-fn print_open(r: &Report) {
+fn print_open(r: &BrepTessellation) {
     if let Some(o) = &r.open_surface {
         let beside = if r.watertight_of == "solids" { " beside the solids (not part of `watertight`)" } else { "" };
         outln!("open shells  {}{beside}: {} free edges in {} hole{}", o.shells, o.free_edges, o.holes.len(), if o.holes.len() == 1 { "" } else { "s" });
@@ -169,14 +83,6 @@ fn print_open(r: &Report) {
     }
 }
 
-/// What `fepre tessellate` made: the B-rep, its certified tessellation, the seconds.
-struct Certified {
-    model: Model,
-    tessellation: Tessellation,
-    certificate: Certificate,
-    seconds: [f64; 2],
-}
-
 /// Runs `fepre tessellate`.
 ///
 /// # Errors
@@ -184,31 +90,21 @@ struct Certified {
 /// format that cannot hold a surface (exit 2).
 pub fn run(args: &Args) -> Result<()> {
     let out = &args.output;
-    if !matches!(Format::from_path(out), Some(Format::Stl | Format::Obj | Format::Vtu | Format::Msh)) {
-        return Err(usage_error(format!("{}: the surface is written as .stl, .obj, .vtu or .msh", out.display())));
-    }
-    let t0 = Instant::now();
-    let opts = match args.deviation {
-        Some(d) => TessellateOptions::default().with_chord_relative(d).with_volume_relative(0.0),
-        None => TessellateOptions::default(),
-    };
-    let size = args.max_edge.map(UniformSize);
-    let model = match crate::cad::step::read_shape(&args.cad)? {
-        crate::cad::step::Shape::Brep(m) => m,
-        crate::cad::step::Shape::Tessellated(t) => return run_tessellated(args, &t, t0),
-    };
-    let read = t0.elapsed().as_secs_f64();
-    let (model, c, seconds) = pipeline::tessellate_model(model, read, &opts, size.as_ref().map(|s| s as &dyn SizeField), &crate::tessellate::certificate::CertifyOptions::default());
-    let c = Certified { model, tessellation: c.tessellation, certificate: c.certificate, seconds: [seconds.read, seconds.tessellate] };
-    let passed = c.certificate.passed;
-    if !passed && !args.force {
-        if args.json {
-            outln!("{}", serde_json::to_string_pretty(&report(args, &c, None, t0))?);
+    let options = TessellateStepOptions { deviation: args.deviation, max_edge: args.max_edge, force: args.force };
+    let r = match tessellate_step(&args.cad, &options, out) {
+        Ok(TessellateReport::Brep(r)) => r,
+        Ok(TessellateReport::Tessellated(r)) => return print_tessellated(args, &r),
+        Err(TessellateFailure { report, error }) => {
+            if let (Some(report), true) = (report, args.json) {
+                outln!("{}", serde_json::to_string_pretty(&report)?);
+            }
+            return Err(match error {
+                e @ PipelineError::Usage { .. } => usage_error(e.to_string()),
+                e => anyhow::Error::new(e),
+            });
         }
-        anyhow::bail!("{}", pipeline::failure_message(&args.cad, &c.certificate, &c.model.dropped));
-    }
-    io::write(out, &MeshData::Surface(c.tessellation.surface.clone()), &WriteOptions::default())?;
-    let r = report(args, &c, Some(out.display().to_string()), t0);
+    };
+    let passed = r.certificate.passed;
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&r)?);
     } else {
@@ -233,8 +129,8 @@ pub fn run(args: &Args) -> Result<()> {
         outln!("volume mm3   {:.9} (B-rep {:.9})", r.volume, r.certificate.volume[1]);
         outln!("area mm2     {:.9} (B-rep {:.9})", r.area, r.certificate.area[1]);
         outln!("certificate  {}", if passed { "passed" } else { "FAILED (written with --force)" });
-        if !passed {
-            outln!("{}", pipeline::failure_message(&args.cad, &r.certificate, &r.dropped));
+        if let Some(m) = &r.failure_message {
+            outln!("{m}");
         }
         outln!("dropped      {}", r.dropped.len());
         for n in &r.notes {
@@ -243,64 +139,18 @@ pub fn run(args: &Args) -> Result<()> {
         outln!("seconds      {:.3}", r.seconds);
         outln!("wrote        {}", out.display());
     }
+    crate::cli::print_warnings(&r.warnings);
     Ok(())
 }
 
-/// The JSON object `fepre tessellate --json` prints for a file of tessellated geometry only.
-#[derive(Debug, Serialize)]
-struct TessReport<'a> {
-    input: String,
-    output: Option<String>,
-    /// Always true here: the surface is the file's own triangles, certified as a mesh.
-    tessellated: bool,
-    #[serde(flatten)]
-    summary: pipeline::tessellated::TessellatedSummary,
-    face_table: Vec<FaceEntry>,
-    units: &'a Units,
-    certificate: pipeline::tessellated::MeshCertificate,
-    dropped: &'a [Dropped],
-    seconds: f64,
-}
-
-/// `fepre tessellate` of a file of tessellated geometry only: its triangles, certified as a
-/// mesh (closed, manifold, oriented outward, no self-intersection), written when they pass.
-fn run_tessellated(args: &Args, t: &crate::cad::step::Tessellated, t0: Instant) -> Result<()> {
-    use pipeline::tessellated::{TessellatedSummary, certify_surface, mesh_failure_message};
-    let out = &args.output;
-    let certificate = certify_surface(&t.surface);
-    let mut face_table = crate::cad::brep::face_table_of_names(&t.surface.face_names, t.surface.face_tags.iter().copied());
-    for e in &mut face_table {
-        if let Some(f) = e.face.index().and_then(|k| t.faces.get(k)) {
-            e.step_id = Some(f.step_id);
-            e.solid = f.solid;
-        }
-    }
-    let passed = certificate.passed;
-    let mut r = TessReport {
-        input: args.cad.display().to_string(),
-        output: None,
-        tessellated: true,
-        summary: TessellatedSummary::of(t, &t.surface),
-        face_table,
-        units: &t.units,
-        certificate,
-        dropped: &t.dropped,
-        seconds: 0.0,
-    };
-    if !passed && !args.force {
-        if args.json {
-            r.seconds = t0.elapsed().as_secs_f64();
-            outln!("{}", serde_json::to_string_pretty(&r)?);
-        }
-        anyhow::bail!("{}", mesh_failure_message(&args.cad, &r.certificate));
-    }
-    io::write(out, &MeshData::Surface(t.surface.clone()), &WriteOptions::default())?;
-    r.output = Some(out.display().to_string());
-    r.seconds = t0.elapsed().as_secs_f64();
+/// Prints what `fepre tessellate` made of a file of tessellated geometry only.
+fn print_tessellated(args: &Args, r: &TessellatedFileReport) -> Result<()> {
     if args.json {
-        outln!("{}", serde_json::to_string_pretty(&r)?);
+        outln!("{}", serde_json::to_string_pretty(r)?);
+        crate::cli::print_warnings(&r.warnings);
         return Ok(());
     }
+    let out = &args.output;
     let (s, c) = (&r.summary, &r.certificate);
     outln!("geometry     tessellated only (AP242): the file's triangles, certified as a mesh (--deviation and --max-edge do not apply)");
     outln!("solids       {} TESSELLATED_SOLID, {} TESSELLATED_SHELL", s.solids, s.shells);
@@ -309,46 +159,13 @@ fn run_tessellated(args: &Args, t: &crate::cad::step::Tessellated, t0: Instant) 
     outln!("watertight   {}", c.closed && c.manifold && c.oriented && c.outward);
     outln!("volume mm3   {:.9}", c.volume);
     outln!("area mm2     {:.9}", c.area);
-    outln!("certificate  {}", if passed { "passed (as a mesh)" } else { "FAILED (written with --force)" });
-    if !passed {
-        outln!("{}", mesh_failure_message(&args.cad, c));
+    outln!("certificate  {}", if c.passed { "passed (as a mesh)" } else { "FAILED (written with --force)" });
+    if let Some(m) = &r.failure_message {
+        outln!("{m}");
     }
     outln!("dropped      {}", r.dropped.len());
     outln!("seconds      {:.3}", r.seconds);
     outln!("wrote        {}", out.display());
+    crate::cli::print_warnings(&r.warnings);
     Ok(())
-}
-
-fn report(args: &Args, c: &Certified, output: Option<String>, t0: Instant) -> Report {
-    let s = &c.tessellation.surface;
-    let cert = c.certificate.clone();
-    let volume: f64 = cert.shells.iter().filter(|x| x.brep_closed).map(|x| x.volume_mesh).sum();
-    Report {
-        input: args.cad.display().to_string(),
-        output,
-        solids: c.model.solids.len(),
-        surface_model_shells: c.model.surface_model_shells(),
-        sewing: c.model.sewing.clone(),
-        faces: c.model.faces.len(),
-        face_table: c.model.face_table(),
-        triangles: s.triangles.len(),
-        vertices: s.vertices.len(),
-        watertight: cert.watertight(),
-        watertight_of: if cert.shells.iter().any(|x| x.solid) { "solids" } else { "surface model" },
-        open_surface: open_surface(&c.model),
-        euler: cert.shells.iter().map(|x| EulerEntry { brep_shells: x.brep_shells.clone(), mesh: x.euler_mesh, brep: x.euler_brep }).collect(),
-        volume,
-        area: cert.area[0],
-        units: c.model.units.clone(),
-        deviation: args.deviation.unwrap_or(TessellateOptions::default().chord_relative),
-        max_edge: args.max_edge,
-        chord_mm: c.tessellation.chord,
-        dropped: c.model.dropped.clone(),
-        notes: c.model.notes.clone(),
-        failed_faces: c.tessellation.failed.iter().map(|f| FailedFaceEntry { face: f.face, step_id: f.source, reason: f.why.clone() }).collect(),
-        seconds: t0.elapsed().as_secs_f64(),
-        read_seconds: c.seconds[0],
-        tessellate_seconds: c.seconds[1],
-        certificate: cert,
-    }
 }

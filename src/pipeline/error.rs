@@ -43,6 +43,15 @@ pub enum PipelineError {
         /// The first five entities the reader dropped.
         dropped: Vec<Dropped>,
     },
+    /// A tessellated-only file's surface failed its mesh certificate (closed, manifold,
+    /// oriented outward, no self-intersection, no zero-area triangle).
+    #[error("{}", super::tessellated::mesh_failure_message(path, certificate))]
+    MeshCertificate {
+        /// The file.
+        path: PathBuf,
+        /// The checks, failed and passed.
+        certificate: Box<super::tessellated::MeshCertificate>,
+    },
     /// The volume mesher refused the surface or failed.
     #[error("{}: {source}", path.display())]
     Meshing {
@@ -205,6 +214,18 @@ pub enum UsageProblem {
     /// An output file whose format holds neither tets nor surfaces.
     #[error("tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh")]
     OutputFormat,
+    /// A tet mesh's output file of a format that holds no tets.
+    #[error("tets are written as .mesh, .ele/.node, .vtu or .msh")]
+    TetFormat,
+    /// A surface's output file of a format the surface writers do not write.
+    #[error("the surface is written as .stl, .obj, .vtu or .msh")]
+    SurfaceFormat,
+    /// Planar faces' output file of a format that holds no tagged faces.
+    #[error("the faces are written as .msh, .vtu, .mesh, .obj or .stl")]
+    FacesFormat,
+    /// A conversion's output file of a format fepre does not write.
+    #[error("fepre cannot write this extension; use one of .stl .obj .off .mesh .node .ele .face .poly .smesh .msh .vtu")]
+    ConvertFormat,
     /// The FE model built fails its own checks (our bug).
     #[error("the FE model is inconsistent (a bug): {why}")]
     InconsistentModel {

@@ -23,7 +23,7 @@ use super::PipelineError;
 use super::job_fe::{MaterialSpec, ModelSection, SectionSpec, SolveSection, StepSpec};
 use crate::attributes::values::Positive;
 use crate::attributes::{Density, SelectError, Selector};
-use crate::mesh3d::mesher::MeshOptions;
+use crate::mesh3d::mesher::{MeshOptions, dihedral_bound, radius_edge_bound};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -285,13 +285,13 @@ impl JobFile {
             }
         }
         if let Some(r) = &m.max_radius_edge {
-            if !(r.get_ref().is_finite() && *r.get_ref() >= 1.1) {
-                return Err(self.error_at(r.span().start, format!("key `max_radius_edge`: {} is below 1.1: no tetrahedral mesh reaches it", r.get_ref())));
+            if let Err(e) = radius_edge_bound(*r.get_ref()) {
+                return Err(self.error_at(r.span().start, format!("key `max_radius_edge`: {e}")));
             }
         }
         if let Some(d) = &m.min_dihedral {
-            if !(d.get_ref().is_finite() && (0.0..=35.0).contains(d.get_ref())) {
-                return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35]", d.get_ref())));
+            if let Err(e) = dihedral_bound(*d.get_ref()) {
+                return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {e}")));
             }
         }
         if let Some(t) = &m.narrow_tolerance {
@@ -300,8 +300,8 @@ impl JobFile {
             }
         }
         if let Some(d) = &self.job.require.min_dihedral {
-            if !(d.get_ref().is_finite() && (0.0..=35.0).contains(d.get_ref())) {
-                return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {}° must be in [0, 35] (no mesher can promise more)", d.get_ref())));
+            if let Err(e) = dihedral_bound(*d.get_ref()) {
+                return Err(self.error_at(d.span().start, format!("key `min_dihedral`: {e}")));
             }
         }
         for o in &self.job.output {

@@ -31,6 +31,8 @@ pub struct Plan {
     /// Largest relative difference between the mesh's volume and the CAD solids' (a CAD part),
     /// or the run fails.
     pub require_volume_error: Option<f64>,
+    /// Where the options were given: the warnings name the option that makes one an error.
+    pub interface: super::warning::Interface,
 }
 
 impl Plan {

@@ -48,6 +48,8 @@ pub struct RunReport {
     pub fe: Option<super::fe_model::FeSummary>,
     /// What the octree mesher did (method octree).
     pub octree: Option<crate::mesh3d::octree::OctreeReport>,
+    /// What the run made but would rather not have ([`super::warning`]).
+    pub warnings: Vec<super::warning::Warning>,
 }
 
 /// Runs `plan` on `part`: selectors, size field, tessellation and certificate (CAD), volume
@@ -103,6 +105,7 @@ fn run_groups(part: &mut Part, plan: &Plan, groups: &Groups, check_only: bool, o
     report.contacts = contact_reports(&part.contacts, &report.face_table, &part.solids);
     report.seconds = part.seconds.clone();
     report.octree = part.octree_report.clone();
+    report.warnings = super::warning::run_warnings(report.mesh.as_ref(), report.octree.as_ref(), plan.interface);
     summarised.check(&part.path, mesh, plan, &report.face_table)?;
     if let Some(w) = written {
         w?.commit()?;
@@ -153,6 +156,7 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
         require_volume_error: job.require.volume_error.map(|r| r.get()),
+        interface: super::warning::Interface::JobFile,
     };
     let run = part.groups(&plan.selectors).and_then(|groups| run_groups(&mut part, &plan, &groups, check_only, None).map(|r| (r, groups)));
     let (mut report, groups) = match run {

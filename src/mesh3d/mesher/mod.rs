@@ -138,7 +138,57 @@ impl Default for MeshOptions {
     }
 }
 
+/// The smallest radius-edge bound a mesher can end at (the regular tet has 0.61, but Delaunay
+/// refinement cannot end below about 1.1).
+pub const MIN_RADIUS_EDGE_BOUND: f64 = 1.1;
+
+/// The largest dihedral angle (degrees) a mesher can work towards or a run can require.
+pub const MAX_DIHEDRAL_BOUND: f64 = 35.0;
+
+/// A mesh option no mesher can meet.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error, Serialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum MeshOptionError {
+    /// A radius-edge bound under [`MIN_RADIUS_EDGE_BOUND`] (or not a finite number).
+    #[error("{0} is below 1.1: no tetrahedral mesh reaches it (the regular tet has 0.61, but refinement cannot end below about 1.1)")]
+    RadiusEdge(f64),
+    /// A dihedral angle outside `[0, MAX_DIHEDRAL_BOUND]` degrees (or not a finite number).
+    #[error("{0}° must be in [0, 35]: no mesher can promise more")]
+    Dihedral(f64),
+}
+
+/// `r` as a radius-edge bound: at least [`MIN_RADIUS_EDGE_BOUND`].
+///
+/// # Errors
+/// [`MeshOptionError::RadiusEdge`] below it, or not a finite number.
+pub fn radius_edge_bound(r: f64) -> Result<f64, MeshOptionError> {
+    if r.is_finite() && r >= MIN_RADIUS_EDGE_BOUND { Ok(r) } else { Err(MeshOptionError::RadiusEdge(r)) }
+}
+
+/// `d` as a dihedral angle to aim at or require (degrees): in `[0, MAX_DIHEDRAL_BOUND]`.
+///
+/// # Errors
+/// [`MeshOptionError::Dihedral`] outside it, or not a finite number.
+pub fn dihedral_bound(d: f64) -> Result<f64, MeshOptionError> {
+    if d.is_finite() && (0.0..=MAX_DIHEDRAL_BOUND).contains(&d) { Ok(d) } else { Err(MeshOptionError::Dihedral(d)) }
+}
+
 impl MeshOptions {
+    /// Sets [`MeshOptions::max_radius_edge`], checked by [`radius_edge_bound`].
+    ///
+    /// # Errors
+    /// A bound no mesh reaches.
+    pub fn try_with_max_radius_edge(self, r: f64) -> Result<Self, MeshOptionError> {
+        radius_edge_bound(r).map(|r| self.with_max_radius_edge(r))
+    }
+    /// Sets [`MeshOptions::min_dihedral`], checked by [`dihedral_bound`].
+    ///
+    /// # Errors
+    /// An angle no mesher can promise.
+    pub fn try_with_min_dihedral(self, d: f64) -> Result<Self, MeshOptionError> {
+        dihedral_bound(d).map(|d| self.with_min_dihedral(d))
+    }
     /// Sets [`MeshOptions::max_radius_edge`].
     pub fn with_max_radius_edge(mut self, r: f64) -> Self {
         self.max_radius_edge = r;
