@@ -6,7 +6,7 @@
 use fepre::attributes::FaceSize;
 use fepre::attributes::Positive;
 use fepre::attributes::{Density, Selector};
-use fepre::pipeline::run::{Plan, run_plan};
+use fepre::pipeline::{Plan, run_plan};
 use fepre::pipeline::{Part, PipelineError};
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -11,11 +11,11 @@
 //! - layer 4 [`tessellate`], [`mesh3d`]: surfaces of B-reps, tet meshes;
 //! - layer 5 [`attributes`] (selectors, sizes), [`fe`] (the FE model);
 //! - layer 6 [`pipeline`] (jobs, `fepre solve`), [`deck`] (solver decks);
-//! - layer 7 [`cli`]: the command line, one file per subcommand.
+//! - layer 7: the `fepre` binary's command line (its own crate, `src/main.rs` and `src/cli/`),
+//!   which uses nothing but this API.
 
 pub mod cad;
 pub mod attributes;
-pub mod cli;
 pub mod core;
 pub mod deck;
 pub mod fe;

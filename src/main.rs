@@ -1,5 +1,8 @@
-//! The `fepre` command line; see `fepre --help`.
+//! The `fepre` command line; see `fepre --help`. It parses, calls the library's public API
+//! (one call per subcommand) and prints.
+
+mod cli;
 
 fn main() -> std::process::ExitCode {
-    fepre::cli::main()
+    cli::main()
 }

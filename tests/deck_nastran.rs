@@ -19,7 +19,7 @@ use fepre::fe::consistent_forces;
 use fepre::fe::{Analysis, Bc, BoundaryGeometry, BrepGeometry, ElementKind, FeModel, Load, Material, Section, Step, build_model};
 use fepre::mesh::TetMesh;
 use fepre::pipeline::Part;
-use fepre::pipeline::run::{Plan, run_plan};
+use fepre::pipeline::{Plan, run_plan};
 use glam::DVec3;
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet};

@@ -9,7 +9,7 @@ use fepre::cad::geom::Curve;
 use fepre::cad::parts::Bracket;
 use fepre::mesh3d::mesher::MeshOptions;
 use fepre::pipeline::Part;
-use fepre::pipeline::run::Plan;
+use fepre::pipeline::Plan;
 use glam::DVec3;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -30,7 +30,7 @@ fn distance_grading_reaches_the_tets() {
     density.size = Positive::new(6.0);
     density.distance.push(DistanceSize { faces: "end".into(), size: Positive::new(0.8).unwrap(), growth: NonNegative::new(0.2), max: Positive::new(3.0) });
     let plan = Plan { selectors, density, unit: 1.0, mesh: MeshOptions::default(), ..Plan::default() };
-    let report = fepre::pipeline::run::run_plan(&mut part, &plan, false).expect("meshes");
+    let report = fepre::pipeline::run_plan(&mut part, &plan, false).expect("meshes");
     let m = part.mesh.as_ref().unwrap();
     assert_eq!(m.validate(), Ok(()));
     println!("{} tets, min dihedral {:.2}", m.tets.len(), report.mesh.as_ref().unwrap().min_dihedral_deg);
@@ -140,7 +140,7 @@ fn poly_region_volumes_become_region_sizes() {
     let h = part.region_sizes[0].1;
     assert!((h - (6.0 * 2f64.sqrt() * 0.001).cbrt()).abs() < 1e-12);
     let plan = Plan { unit: 1.0, ..Plan::default() };
-    fepre::pipeline::run::run_plan(&mut part, &plan, false).expect("meshes");
+    fepre::pipeline::run_plan(&mut part, &plan, false).expect("meshes");
     let m = part.mesh.as_ref().unwrap();
     assert_eq!(m.validate(), Ok(()));
     assert!(m.region_tags.iter().all(|r| r.0 == 7), "the region keeps its attribute");

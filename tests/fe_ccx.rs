@@ -24,7 +24,7 @@ use fepre::cad::brep::Model;
 use fepre::cad::parts::{Block, Tube};
 use fepre::io::frd::{self, FrdResults};
 use fepre::pipeline::job::JobFile;
-use fepre::pipeline::solve::{SolveReport, solve_job};
+use fepre::pipeline::{SolveReport, solve_job};
 use glam::DVec3;
 use std::path::Path;
 

@@ -13,7 +13,7 @@ mod common;
 use common::tools;
 use fepre::cad::parts::Block;
 use fepre::pipeline::job::JobFile;
-use fepre::pipeline::run::carry_out;
+use fepre::pipeline::carry_out;
 use fepre::quality::tet_measures;
 use glam::DVec3;
 use std::path::Path;

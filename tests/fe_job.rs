@@ -11,7 +11,7 @@ use fepre::cad::geom::Rigid;
 use fepre::cad::parts::{Block, Elbow, Flange};
 use fepre::core::FaceId;
 use fepre::pipeline::job::JobFile;
-use fepre::pipeline::run::carry_out;
+use fepre::pipeline::carry_out;
 use glam::DVec3;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;

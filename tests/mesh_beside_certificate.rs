@@ -4,7 +4,7 @@
 use fepre::attributes::Density;
 use fepre::mesh3d::mesher::MeshOptions;
 use fepre::pipeline::Part;
-use fepre::pipeline::run::Plan;
+use fepre::pipeline::Plan;
 use std::collections::BTreeMap;
 use std::path::Path;
 

@@ -8,7 +8,7 @@ use fepre::core::{BoundaryGeometry, FaceId};
 use fepre::fe::BrepGeometry;
 use fepre::mesh3d::mesher::MeshOptions;
 use fepre::pipeline::Part;
-use fepre::pipeline::run::Plan;
+use fepre::pipeline::Plan;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 

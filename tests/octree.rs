@@ -8,7 +8,7 @@
 use fepre::io::{MeshData, WriteOptions};
 use fepre::mesh3d::octree::{Grading, MAX_DIHEDRAL, MIN_DIHEDRAL, OctreeOptions};
 use fepre::pipeline::job::Method;
-use fepre::pipeline::run::{Plan, run_plan};
+use fepre::pipeline::{Plan, run_plan};
 use fepre::pipeline::Part;
 use fepre::quality::tet_mesh_quality;
 use std::path::Path;

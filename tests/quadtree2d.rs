@@ -6,7 +6,7 @@
 mod common;
 
 use fepre::mesh2d::quadtree::{self, check_balance, check_conforming, QuadtreeOptions};
-use fepre::pipeline::planar::{mesh_planar_faces, FaceChoice};
+use fepre::pipeline::{mesh_planar_faces, FaceChoice};
 
 /// Meshes every planar face of `name` and asserts the acceptance on each; returns the
 /// number of faces meshed and the smallest band angle.

@@ -12,7 +12,7 @@
 mod common;
 
 use fepre::mesh::TetMesh;
-use fepre::pipeline::run::{Plan, run_plan};
+use fepre::pipeline::{Plan, run_plan};
 use fepre::pipeline::{Part, PipelineError};
 use glam::DVec3;
 use std::collections::BTreeMap;

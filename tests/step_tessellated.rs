@@ -15,7 +15,7 @@ use fepre::cad::step::{self, Shape};
 use fepre::core::FaceId;
 use fepre::io::{MeshData, ReadOptions};
 use fepre::mesh::TriSurface;
-use fepre::pipeline::tessellated::certify_surface;
+use fepre::pipeline::certify_surface;
 use fepre::tessellate::{TessellateOptions, tessellate};
 use std::path::Path;
 use std::process::{Command, Output};

@@ -1,4 +1,4 @@
-//! Warnings are the library's: `fepre::pipeline::mesh_file::mesh_file` (what `fepre mesh`
+//! Warnings are the library's: `fepre::pipeline::mesh_file` (what `fepre mesh`
 //! calls) gives them in its report, with their kind and place, and the binary prints the same
 //! messages on standard error, each after `WARNING: `.
 
@@ -7,9 +7,9 @@ mod common;
 use fepre::attributes::Density;
 use fepre::attributes::Positive;
 use fepre::pipeline::job::Method;
-use fepre::pipeline::mesh_file::{MeshFileReport, mesh_file};
-use fepre::pipeline::run::Plan;
-use fepre::pipeline::warning::{Place, WarningKind};
+use fepre::pipeline::{MeshFileReport, mesh_file};
+use fepre::pipeline::Plan;
+use fepre::pipeline::{Place, WarningKind};
 use std::path::Path;
 use std::process::Command;
 

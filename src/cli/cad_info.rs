@@ -2,7 +2,7 @@
 //! vertices (assembly instances expanded), units, faces per surface kind, and every item it
 //! left out with the reason.
 
-use crate::pipeline::cad_info::{BrepInfo, CadInfo, CadInfoOptions, TessellatedInfo, cad_info};
+use fepre::pipeline::{BrepInfo, CadInfo, CadInfoOptions, TessellatedInfo, cad_info};
 use anyhow::Result;
 use std::fmt::Write as _;
 use std::path::PathBuf;

@@ -1,6 +1,6 @@
 //! Printing the contacts between solids of a part (`fepre mesh`, `fepre run`).
 
-use crate::pipeline::assembly::{ContactReport, ContactSide};
+use fepre::pipeline::{ContactReport, ContactSide};
 
 /// One line per pair of touching faces: both solids and faces, the area, the shared area.
 pub(crate) fn print(contacts: &[ContactReport]) {

@@ -2,9 +2,9 @@
 
 use crate::cli::progress::Progress;
 use crate::cli::usage_error;
-use crate::core::Tolerance;
-use crate::pipeline::PipelineError;
-use crate::pipeline::convert::{ConvertOptions, convert_file};
+use fepre::core::Tolerance;
+use fepre::pipeline::PipelineError;
+use fepre::pipeline::{ConvertOptions, convert_file};
 use anyhow::Result;
 use std::path::PathBuf;
 

@@ -2,8 +2,8 @@
 
 use crate::cli::progress::Progress;
 use crate::cli::usage_error;
-use crate::io::{self, Format, MeshData, ReadOptions, WriteOptions};
-use crate::mesh3d::delaunay::{DelaunayOptions, KernelKind, count_tetrahedra, tetrahedralize};
+use fepre::io::{self, Format, MeshData, ReadOptions, WriteOptions};
+use fepre::mesh3d::delaunay::{DelaunayOptions, KernelKind, count_tetrahedra, tetrahedralize};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -44,7 +44,7 @@ struct Report {
     seconds: f64,
     read_seconds: f64,
     output: Option<String>,
-    timings: crate::mesh3d::delaunay::DelaunayTimings,
+    timings: fepre::mesh3d::delaunay::DelaunayTimings,
 }
 
 /// Runs `fepre delaunay`.

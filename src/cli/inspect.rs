@@ -2,10 +2,10 @@
 //! for tet meshes, element quality.
 
 use crate::cli::progress::Progress;
-use crate::core::Tolerance;
-use crate::pipeline::inspect::{InspectOptions, InspectReport, inspect_file};
-use crate::quality::mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH;
-use crate::quality::worst_tet::TetPlace;
+use fepre::core::Tolerance;
+use fepre::pipeline::{InspectOptions, InspectReport, inspect_file};
+use fepre::quality::NEAR_DEGENERATE_VOLUME_LENGTH;
+use fepre::quality::TetPlace;
 use anyhow::Result;
 use std::fmt::Write as _;
 use std::path::PathBuf;

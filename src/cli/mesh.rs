@@ -1,15 +1,15 @@
 //! `fepre mesh SURFACE -o OUT`: a quality tetrahedral mesh of the volume a closed surface
-//! encloses, boundary tags kept. Parses the arguments, runs [`crate::pipeline`] and prints.
+//! encloses, boundary tags kept. Parses the arguments, runs [`fepre::pipeline`] and prints.
 
-use crate::attributes::Density;
-use crate::attributes::density::Fraction;
-use crate::attributes::values::Positive;
+use fepre::attributes::Density;
+use fepre::attributes::Fraction;
+use fepre::attributes::Positive;
 use crate::cli::progress::Progress;
 use crate::cli::{positive, usage_error};
-use crate::mesh3d::mesher::{dihedral_bound, radius_edge_bound};
-use crate::pipeline::mesh_file::{MeshFileReport, mesh_file};
-use crate::pipeline::run::Plan;
-use crate::pipeline::PipelineError;
+use fepre::mesh3d::mesher::{dihedral_bound, radius_edge_bound};
+use fepre::pipeline::{MeshFileReport, mesh_file};
+use fepre::pipeline::Plan;
+use fepre::pipeline::PipelineError;
 use anyhow::Result;
 use std::path::PathBuf;
 
@@ -136,20 +136,20 @@ pub fn run(args: &Args) -> Result<()> {
     if args.octree_coarsen == "off" && (args.method != "octree" || args.octree_grading != "graded") {
         return Err(usage_error("--octree-coarsen off: only with --method octree --octree-grading graded".to_string()));
     }
-    let density = Density { size: args.size.and_then(Positive::new), deviation: args.deviation.map(Fraction), ..Density::default() };
+    let mut density = Density::default();
+    density.size = args.size.and_then(Positive::new);
+    density.deviation = args.deviation.map(Fraction);
     let plan = Plan {
         density,
         unit: 1.0,
-        mesh: crate::mesh3d::mesher::MeshOptions::default().with_max_radius_edge(args.max_radius_edge).with_min_dihedral(args.min_dihedral).with_keep_surface(args.keep_surface).with_narrow_tolerance(args.narrow_tol),
+        mesh: fepre::mesh3d::mesher::MeshOptions::default().with_max_radius_edge(args.max_radius_edge).with_min_dihedral(args.min_dihedral).with_keep_surface(args.keep_surface).with_narrow_tolerance(args.narrow_tol),
         require_min_dihedral: args.require_min_dihedral,
         require_max_radius_edge: args.require_max_radius_edge,
         require_volume_error: args.require_volume_error,
-        method: if args.method == "octree" { crate::pipeline::job::Method::Octree } else { crate::pipeline::job::Method::Delaunay },
-        octree: crate::mesh3d::octree::OctreeOptions {
-            grading: if args.octree_grading == "graded" { crate::mesh3d::octree::Grading::Graded } else { crate::mesh3d::octree::Grading::Uniform },
-            coarsen: args.octree_coarsen == "on",
-            ..Default::default()
-        },
+        method: if args.method == "octree" { fepre::pipeline::job::Method::Octree } else { fepre::pipeline::job::Method::Delaunay },
+        octree: fepre::mesh3d::octree::OctreeOptions::default()
+            .with_grading(if args.octree_grading == "graded" { fepre::mesh3d::octree::Grading::Graded } else { fepre::mesh3d::octree::Grading::Uniform })
+            .with_coarsen(args.octree_coarsen == "on"),
         ..Plan::default()
     };
     let progress = Progress::start(&format!("meshing {}", args.surface.display()));
@@ -174,7 +174,7 @@ fn print(r: &MeshFileReport) {
         let d = &o.deviation;
         outln!("octree           {} cell {:.4e}: {} lattice vertices, {} cut points ({} by bisection of the winding number), {} vertices warped", o.grading, o.cell_size, o.lattice_vertices, o.cut_points, o.bisected_cut_points, o.warped_vertices);
         outln!("                 {} boundary vertices snapped onto feature corners, {} onto feature edges ({} moves refused to keep the angle bounds and the boundary near the input)", o.snapped.corners, o.snapped.edge_vertices, o.snapped.refused);
-        if let Some(line) = crate::pipeline::describe::cell_choice(o) {
+        if let Some(line) = fepre::pipeline::cell_choice(o) {
             outln!("  cell chosen    {line}");
         }
         if o.solids > 1 {
@@ -195,8 +195,8 @@ fn print(r: &MeshFileReport) {
                     c.vertices,
                     c.tets,
                     c.passes,
-                    crate::mesh3d::octree::coarsen::FLOOR[0],
-                    crate::mesh3d::octree::coarsen::FLOOR[1],
+                    fepre::mesh3d::octree::COARSEN_FLOOR[0],
+                    fepre::mesh3d::octree::COARSEN_FLOOR[1],
                     o.tets
                 );
             }

@@ -1,17 +1,17 @@
 //! `fepre mesh2d CAD [--face N | --all-planar] [--size H] [-o OUT]`: the lecture's quadtree
 //! mesher on the planar faces of a STEP part.
 //!
-//! Parses, calls [`crate::pipeline::planar::mesh_planar_faces`], prints a summary (or one
+//! Parses, calls [`fepre::pipeline::mesh_planar_faces`], prints a summary (or one
 //! JSON object) and writes the faces' meshes lifted back onto their planes as one tagged
 //! surface. Exit codes: 0 done, 1 the file could not be read or a face asked for could not
 //! be meshed, 2 bad usage.
 
 use crate::cli::usage_error;
-use crate::core::FaceId;
-use crate::mesh2d::quadtree::QuadtreeOptions;
-use crate::pipeline::PipelineError;
-use crate::pipeline::mesh2d_file::mesh2d_file;
-use crate::pipeline::planar::FaceChoice;
+use fepre::core::FaceId;
+use fepre::mesh2d::quadtree::QuadtreeOptions;
+use fepre::pipeline::PipelineError;
+use fepre::pipeline::mesh2d_file;
+use fepre::pipeline::FaceChoice;
 use anyhow::Result;
 use std::path::PathBuf;
 

@@ -205,8 +205,8 @@ pub fn usage_error(message: impl Into<String>) -> anyhow::Error {
 ///
 /// `delaunay`: the mesh came from the Delaunay mesher, whose refinement and optimisation lines
 /// follow (the octree mesher has neither).
-pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay: bool) {
-    use crate::quality::worst_tet::{fmt_num, fmt_point};
+pub(crate) fn print_mesh_summary(m: &fepre::pipeline::MeshSummary, delaunay: bool) {
+    use fepre::quality::{fmt_num, fmt_point};
     outln!("nodes            {}", m.nodes);
     outln!("tets             {}", m.tets);
     outln!("regions          {}", m.regions);
@@ -264,7 +264,7 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
     if !delaunay {
         return;
     }
-    outln!("refinement       {}", crate::pipeline::describe::refinement_text(m));
+    outln!("refinement       {}", fepre::pipeline::refinement_text(m));
     if m.optimize_out_of_attempts {
         outln!("optimisation     stopped early: its budget of attempts (one per 8 tets, plus 10,000) ran out after {}", m.optimize_attempts);
     } else {
@@ -274,7 +274,7 @@ pub(crate) fn print_mesh_summary(m: &crate::pipeline::run::MeshSummary, delaunay
 
 /// Prints what the FE model holds: element kind, counts, second order, each selector's sets,
 /// each solid's material, each step's forces. Shared by `fepre run` and `fepre solve`.
-pub(crate) fn print_fe_summary(fe: &crate::pipeline::fe_model::FeSummary) {
+pub(crate) fn print_fe_summary(fe: &fepre::pipeline::FeSummary) {
     outln!("FE model         {} nodes, {} {} elements", fe.nodes, fe.elements, fe.element);
     if let Some(c) = &fe.curving {
         outln!("second order     {} mid nodes on CAD faces, {} on CAD edges, {} left on the chord; {} moved back to the chord in {} elements that curving would distort; smallest Jacobian ratio {:.3}", c.on_faces, c.on_edges, c.left_straight, c.straightened, c.straightened_elements, c.min_jacobian_ratio);
@@ -297,7 +297,7 @@ pub(crate) fn print_fe_summary(fe: &crate::pipeline::fe_model::FeSummary) {
 }
 
 /// Prints each warning on standard error, as `WARNING: ` and its message.
-pub(crate) fn print_warnings(warnings: &[crate::pipeline::warning::Warning]) {
+pub(crate) fn print_warnings(warnings: &[fepre::pipeline::Warning]) {
     for w in warnings {
         eprintln!("{w}");
     }

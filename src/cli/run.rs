@@ -1,7 +1,7 @@
-//! `fepre run job.toml`: runs a job file through [`crate::pipeline`] and prints what it did.
+//! `fepre run job.toml`: runs a job file through [`fepre::pipeline`] and prints what it did.
 
-use crate::pipeline::job::JobFile;
-use crate::pipeline::run::{RunReport, run_job};
+use fepre::pipeline::job::JobFile;
+use fepre::pipeline::{RunReport, run_job};
 use anyhow::Result;
 use std::path::PathBuf;
 

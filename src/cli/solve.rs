@@ -1,8 +1,8 @@
 //! `fepre solve job.toml`: the job's deck solved by CalculiX, results written for ParaView and
 //! summarised.
 
-use crate::pipeline::job::JobFile;
-use crate::pipeline::solve::{SolveReport, solve_job};
+use fepre::pipeline::job::JobFile;
+use fepre::pipeline::{SolveReport, solve_job};
 use anyhow::Result;
 use std::path::PathBuf;
 

@@ -2,7 +2,7 @@
 //! every triangle tagged with its B-rep face.
 //!
 //! Reads the STEP file, tessellates every face at the chord deviation asked for, checks the
-//! result with [`crate::tessellate::certificate`] and writes it only when the certificate
+//! result with [`fepre::tessellate::certificate`] and writes it only when the certificate
 //! passes (or with `--force`). Exit codes: 0 written, 1 the file could not be read or the
 //! certificate failed (the message names the face and its STEP `#id`, or the solid left open
 //! and its free edges; no file is written), 2 bad usage. A surface model left open after
@@ -11,8 +11,8 @@
 //! solids.
 
 use crate::cli::usage_error;
-use crate::pipeline::PipelineError;
-use crate::pipeline::tessellate_step::{BrepTessellation, TessellateFailure, TessellateReport, TessellateStepOptions, TessellatedFileReport, tessellate_step};
+use fepre::pipeline::PipelineError;
+use fepre::pipeline::{BrepTessellation, TessellateFailure, TessellateReport, TessellateStepOptions, TessellatedFileReport, tessellate_step};
 use anyhow::Result;
 use std::path::PathBuf;
 

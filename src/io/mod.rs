@@ -339,10 +339,10 @@ pub fn write(path: &Path, mesh: &MeshData, options: &WriteOptions) -> Result<(),
     write_ref(path, mesh.as_ref(), options)
 }
 
-/// [`write`] of a borrowed mesh.
+/// [`write()`] of a borrowed mesh.
 ///
 /// # Errors
-/// As [`write`].
+/// As [`write()`].
 pub fn write_ref(path: &Path, mesh: MeshRef<'_>, options: &WriteOptions) -> Result<(), IoError> {
     let Some(format) = Format::from_path(path).filter(|f| f.can_write()) else {
         return Err(IoError::UnknownFormat {

@@ -70,8 +70,8 @@ pub fn solids_of(model: Option<&Model>, seeded: bool, surface: &TriSurface) -> S
     }
 }
 
-/// The gap within which a part's solids touch: [`GAP_CHORDS`] times `chord`, the chord
-/// deviation of a CAD part's certified tessellation; otherwise [`GAP_RELATIVE`] of the
+/// The gap within which a part's solids touch: `GAP_CHORDS` times `chord`, the chord
+/// deviation of a CAD part's certified tessellation; otherwise `GAP_RELATIVE` of the
 /// part's `diagonal`.
 pub fn gap_of(chord: Option<f64>, diagonal: f64) -> f64 {
     match chord {

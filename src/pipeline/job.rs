@@ -20,7 +20,10 @@
 //! column ([`PipelineError::Job`]); paths are relative to the job file's folder.
 
 use super::PipelineError;
-use super::job_fe::{MaterialSpec, ModelSection, SectionSpec, SolveSection, StepSpec};
+pub use super::job_fe::{
+    DisplacementSpec, Dof, ElementChoice, FilmSpec, FixedSpec, ForceSpec, GravitySpec, MaterialSpec, ModelSection, Poisson, PressureSpec, SectionSpec,
+    SolidRef, SolveSection, StepKind, StepSpec, ValueOnFaces,
+};
 use crate::attributes::values::Positive;
 use crate::attributes::{Density, SelectError, Selector};
 use crate::mesh3d::mesher::{MeshOptions, dihedral_bound, radius_edge_bound};

@@ -20,28 +20,49 @@
 //! # Ok::<(), fepre::pipeline::PipelineError>(())
 //! ```
 
-pub mod assembly;
-pub mod cad_info;
-pub mod convert;
-pub mod default_size;
-pub mod describe;
+pub(crate) mod assembly;
+pub(crate) mod cad_info;
+pub(crate) mod convert;
+pub(crate) mod default_size;
+pub(crate) mod describe;
 mod error;
-pub mod fe_model;
-pub mod inspect;
+pub(crate) mod fe_model;
+pub(crate) mod inspect;
 pub mod job;
-pub mod job_fe;
-pub mod mesh2d_file;
-pub mod mesh_file;
-pub mod octree;
-pub mod part;
-pub mod plan;
-pub mod planar;
-pub mod run;
-pub mod solve;
+pub(crate) mod job_fe;
+pub(crate) mod mesh2d_file;
+pub(crate) mod mesh_file;
+pub(crate) mod octree;
+pub(crate) mod part;
+pub(crate) mod plan;
+pub(crate) mod planar;
+pub(crate) mod run;
+pub(crate) mod solve;
 mod summary;
-pub mod tessellate_step;
-pub mod tessellated;
-pub mod warning;
+pub(crate) mod tessellate_step;
+pub(crate) mod tessellated;
+pub(crate) mod warning;
 
+pub use assembly::{ContactReport, ContactSide, gap_of, solids_of};
+pub use cad_info::{BrepInfo, CadInfo, CadInfoOptions, MeshInfo, TessellatedInfo, cad_info};
+pub use convert::{ConvertOptions, ConvertReport, convert_file};
+pub use default_size::{DEFAULT_DIVISIONS, DefaultSize, default_size};
+pub use describe::{cell_choice, refinement_text};
 pub use error::{PipelineError, PlanarProblem, Requirement, SolverProblem, UsageProblem};
-pub use part::{Certified, Part, failure_message, tessellate_file, tessellate_model};
+pub use fe_model::{FeSummary, SolidSummary, StepSummary};
+pub use inspect::{InspectOptions, InspectReport, TagInfo, TetKeys, inspect_file};
+pub use job::{JobFile, Method};
+pub use mesh2d_file::{FaceReport, Mesh2dReport, mesh2d_file};
+pub use mesh_file::{MeshFileReport, mesh_file};
+pub use part::{Certified, Part, StageSeconds, failure_message, tessellate_file, tessellate_model};
+pub use plan::Plan;
+pub use planar::{FaceChoice, FailedPlanarFace, MeshedFace, PlanarFaces, mesh_planar_faces};
+pub use run::{JobOutcome, RunReport, carry_out, run_job, run_plan, run_plan_to};
+pub use solve::{AtNode, CCX_ENV, SolveReport, StepResults, solve_job};
+pub use summary::MeshSummary;
+pub use tessellate_step::{
+    BrepTessellation, EulerEntry, FailedFaceEntry, OpenSurface, TessellateFailure, TessellateReport, TessellateStepOptions, TessellatedFileReport,
+    tessellate_step,
+};
+pub use tessellated::{MeshCertificate, TessellatedSummary, certify_surface, mesh_failure_message};
+pub use warning::{Interface, Place, VOLUME_WARNING, Warning, WarningKind};

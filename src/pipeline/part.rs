@@ -219,8 +219,8 @@ impl Part {
 
     /// The default chord deviation of a CAD part's tessellation for meshing, a fraction of
     /// its diagonal: the inscribed tessellation loses about `(2/3) δ A_c` of volume (`A_c` the
-    /// curved area), so `δ` is what keeps that under [`MESH_VOLUME_ERROR`] of the volume,
-    /// between [`MESH_DEVIATION_MIN`] and [`MESH_DEVIATION`].
+    /// curved area), so `δ` is what keeps that under `MESH_VOLUME_ERROR` of the volume,
+    /// between `MESH_DEVIATION_MIN` and `MESH_DEVIATION`.
     pub fn mesh_deviation(&self) -> f64 {
         let cat = self.catalogue();
         let curved: f64 = cat.faces.iter().filter(|f| !matches!(f.shape, crate::attributes::FaceShape::Plane { .. })).map(|f| f.area).sum();

@@ -48,7 +48,7 @@ pub struct RunReport {
     pub fe: Option<super::fe_model::FeSummary>,
     /// What the octree mesher did (method octree).
     pub octree: Option<crate::mesh3d::octree::OctreeReport>,
-    /// What the run made but would rather not have ([`super::warning`]).
+    /// What the run made but would rather not have (`super::warning`).
     pub warnings: Vec<super::warning::Warning>,
 }
 

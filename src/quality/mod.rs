@@ -40,7 +40,9 @@ pub use mesh_quality::{
     PlanarQualityReport, QuadQualityReport, TetQualityReport, TriQualityReport, planar_mesh_quality, tet_mesh_quality,
     tri_surface_quality,
 };
+pub use mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH;
 pub use quad::{QuadMeasures, quad_measures};
+pub use worst_tet::{TetPlace, fmt_num, fmt_point};
 pub use summary::{Histogram, Stats, StatsAccumulator};
 pub use tetrahedron::{
     TetMeasures, tet_circumradius, tet_dihedral_angles, tet_inradius, tet_measures, tet_min_max_dihedral, tet_radius_edge, tet_scaled_jacobian,

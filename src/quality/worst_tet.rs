@@ -116,11 +116,11 @@ pub struct TetPlace {
     /// The nearest feature edge (none when the boundary has one tag).
     pub nearest_edge: Option<NearestEdge>,
     /// The smallest input angle the tet touches; else the smallest between whose sides it
-    /// lies; else the nearest whose edge or vertex lies within [`NEAR_REACH`] times the tet's
+    /// lies; else the nearest whose edge or vertex lies within `NEAR_REACH` times the tet's
     /// longest edge of one of its vertices (none when no small angle is that near).
     pub input_angle: Option<NearAngle>,
     /// The narrowest face at the tet's vertices, where its width is under
-    /// [`NARROW_RELATIVE`] of the tet's longest edge.
+    /// `NARROW_RELATIVE` of the tet's longest edge.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub narrow_face: Option<NarrowFace>,
 }

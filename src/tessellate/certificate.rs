@@ -205,7 +205,7 @@ pub struct Certificate {
     /// `open_solid` failure.
     pub open_solids: Vec<crate::cad::brep::Hole>,
     /// Closed shells the file oriented inside out (an outer shell enclosing negative volume, a
-    /// void positive), turned before this certificate was made ([`super::orient`]).
+    /// void positive), turned before this certificate was made (`super::orient`).
     pub reoriented: Vec<Reoriented>,
     /// Time spent, seconds.
     pub seconds: f64,
@@ -222,7 +222,7 @@ impl Certificate {
     }
 }
 
-/// A shell group turned ([`super::orient::turn_inside_out_shells`]).
+/// A shell group turned (`super::orient::turn_inside_out_shells`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Reoriented {
     /// Its B-rep shells (STEP `#id`s).

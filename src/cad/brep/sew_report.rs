@@ -5,7 +5,7 @@ use super::entity_ref::EntityRef;
 use crate::core::FaceId;
 use serde::Serialize;
 
-/// What [`Model::sew`] did.
+/// What [`Model::sew`](super::Model::sew) did.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct SewReport {
     /// The tolerance used, mm.

@@ -44,7 +44,7 @@ pub enum LatticeError {
     /// The box is empty: the surface has no vertices.
     #[error("the surface has no vertices")]
     NoVertices,
-    /// The lattice would have more than [`MAX_VERTICES`] vertices.
+    /// The lattice would have more than `MAX_VERTICES` vertices.
     #[error(
         "cell size {h:.4e} needs {count:.3e} lattice vertices over a box of {:.4e} x {:.4e} x {:.4e}; at most {MAX_VERTICES} (use a larger size)",
         extent[0],
@@ -83,7 +83,7 @@ impl Lattice {
     ///
     /// # Errors
     /// [`LatticeError`]: `h` is not positive and finite, the box is empty, or the lattice would
-    /// have more than [`MAX_VERTICES`] vertices.
+    /// have more than `MAX_VERTICES` vertices.
     pub fn covering(bbox: &Aabb, h: f64) -> Result<Lattice, LatticeError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(LatticeError::NotASize { h });

@@ -71,6 +71,7 @@ mod winding;
 mod winding_volume;
 
 pub use buried::{Buried, Side};
+pub use coarsen::FLOOR as COARSEN_FLOOR;
 pub use deviation::{Deviation, deviation};
 pub use lattice::{Lattice, LatticeError};
 pub use resolve::{RESOLVE, Resolve, mesh_octree_resolved};
@@ -135,6 +136,21 @@ pub struct OctreeOptions {
 impl Default for OctreeOptions {
     fn default() -> Self {
         OctreeOptions { grading: Grading::Uniform, alpha_long: ALPHA_LONG, alpha_short: ALPHA_SHORT, feature_angle_deg: 30.0, snap: true, coarsen: true }
+    }
+}
+
+impl OctreeOptions {
+    /// With cells of one size, or graded away from the boundary.
+    pub fn with_grading(mut self, grading: Grading) -> Self {
+        self.grading = grading;
+        self
+    }
+
+    /// With or without the graded mode's vertex collapses ([`COARSEN_FLOOR`] bounds the
+    /// angles of the tets they make).
+    pub fn with_coarsen(mut self, coarsen: bool) -> Self {
+        self.coarsen = coarsen;
+        self
     }
 }
 
