@@ -281,6 +281,9 @@ pub enum PlanarProblem {
     },
 }
 
+/// The environment variable that names the CalculiX binary (default `ccx` on the PATH).
+pub const CCX_ENV: &str = "FEPRE_CCX";
+
 /// Why the solver did not run or failed ([`PipelineError::Solver`]).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error, Serialize)]
 #[non_exhaustive]
@@ -288,7 +291,7 @@ pub enum SolverProblem {
     /// `ccx` cannot be started: how to install it.
     #[error(
         "CalculiX (ccx) cannot be run ({why}): install it (Debian/Ubuntu: `apt install calculix-ccx`; conda: `conda install -c conda-forge calculix`) or set {} to its path",
-        crate::pipeline::solve::CCX_ENV
+        CCX_ENV
     )]
     NotInstalled {
         /// The operating system's reason.

@@ -48,21 +48,21 @@ pub use cad_info::{BrepInfo, CadInfo, CadInfoOptions, MeshInfo, TessellatedInfo,
 pub use convert::{ConvertOptions, ConvertReport, convert_file};
 pub use default_size::{DEFAULT_DIVISIONS, DefaultSize, default_size};
 pub use describe::{cell_choice, refinement_text};
-pub use error::{PipelineError, PlanarProblem, Requirement, SolverProblem, UsageProblem};
+pub use error::{CCX_ENV, PipelineError, PlanarProblem, Requirement, SolverProblem, UsageProblem};
 pub use fe_model::{FeSummary, SolidSummary, StepSummary};
 pub use inspect::{InspectOptions, InspectReport, TagInfo, TetKeys, inspect_file};
 pub use job::{JobFile, Method};
 pub use mesh2d_file::{FaceReport, Mesh2dReport, mesh2d_file};
 pub use mesh_file::{MeshFileReport, mesh_file};
 pub use part::{Certified, Part, StageSeconds, failure_message, tessellate_file, tessellate_model};
-pub use plan::Plan;
+pub use plan::{Interface, Plan};
 pub use planar::{FaceChoice, FailedPlanarFace, MeshedFace, PlanarFaces, mesh_planar_faces};
 pub use run::{JobOutcome, RunReport, carry_out, run_job, run_plan, run_plan_to};
-pub use solve::{AtNode, CCX_ENV, SolveReport, StepResults, solve_job};
+pub use solve::{AtNode, SolveReport, StepResults, solve_job};
 pub use summary::MeshSummary;
 pub use tessellate_step::{
     BrepTessellation, EulerEntry, FailedFaceEntry, OpenSurface, TessellateFailure, TessellateReport, TessellateStepOptions, TessellatedFileReport,
     tessellate_step,
 };
 pub use tessellated::{MeshCertificate, TessellatedSummary, certify_surface, mesh_failure_message};
-pub use warning::{Interface, Place, VOLUME_WARNING, Warning, WarningKind};
+pub use warning::{Place, VOLUME_WARNING, Warning, WarningKind};

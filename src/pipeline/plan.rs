@@ -32,7 +32,7 @@ pub struct Plan {
     /// or the run fails.
     pub require_volume_error: Option<f64>,
     /// Where the options were given: the warnings name the option that makes one an error.
-    pub interface: super::warning::Interface,
+    pub interface: Interface,
 }
 
 impl Plan {
@@ -44,5 +44,26 @@ impl Plan {
         // mesh summary says what a solid loses, and `--require-volume-error` demands less
         let deviation = self.density.deviation.map_or_else(|| part.mesh_deviation(), |d| d.0);
         TessellateOptions::default().with_chord_relative(deviation).with_max_angle_deg(MESH_MAX_ANGLE_DEG).with_volume_relative(0.0)
+    }
+}
+
+/// Where a run's options were given: a warning names the option that makes it an error as
+/// the user writes it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Interface {
+    /// Command-line options (`fepre mesh`, a library caller).
+    #[default]
+    CommandLine,
+    /// A job file (`fepre run`, `fepre solve`).
+    JobFile,
+}
+
+impl Interface {
+    /// The option that sets the smallest dihedral angle required.
+    pub fn require_min_dihedral(self) -> &'static str {
+        match self {
+            Interface::CommandLine => "--require-min-dihedral D",
+            Interface::JobFile => "[require] min_dihedral",
+        }
     }
 }

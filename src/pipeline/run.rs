@@ -156,7 +156,7 @@ pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineE
         require_min_dihedral: job.require.min_dihedral.as_ref().map(|d| *d.get_ref()),
         require_max_radius_edge: job.require.max_radius_edge.map(|r| r.get()),
         require_volume_error: job.require.volume_error.map(|r| r.get()),
-        interface: super::warning::Interface::JobFile,
+        interface: super::plan::Interface::JobFile,
     };
     let run = part.groups(&plan.selectors).and_then(|groups| run_groups(&mut part, &plan, &groups, check_only, None).map(|r| (r, groups)));
     let (mut report, groups) = match run {

@@ -18,8 +18,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The environment variable that names the CalculiX binary (default `ccx` on the PATH).
-pub const CCX_ENV: &str = "FEPRE_CCX";
+use super::error::CCX_ENV;
 
 /// A value at a node.
 #[derive(Clone, Debug, Serialize)]

@@ -6,6 +6,7 @@
 //! standard error (`WARNING: ` and the message) and `--json` carries as they are. A batch
 //! runner, a binding or a test that calls the library gets the same warnings.
 
+use super::plan::Interface;
 use super::describe::kept_tries;
 use super::run::MeshSummary;
 use crate::mesh3d::octree::{CellTry, OctreeReport, RESOLVE};
@@ -72,27 +73,6 @@ impl std::fmt::Display for Warning {
     /// `WARNING: ` and the message, as the binary prints it on standard error.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "WARNING: {}", self.message)
-    }
-}
-
-/// Where a run's options were given: a warning names the option that makes it an error as
-/// the user writes it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Interface {
-    /// Command-line options (`fepre mesh`, a library caller).
-    #[default]
-    CommandLine,
-    /// A job file (`fepre run`, `fepre solve`).
-    JobFile,
-}
-
-impl Interface {
-    /// The option that sets the smallest dihedral angle required.
-    pub fn require_min_dihedral(self) -> &'static str {
-        match self {
-            Interface::CommandLine => "--require-min-dihedral D",
-            Interface::JobFile => "[require] min_dihedral",
-        }
     }
 }
 
