@@ -60,6 +60,14 @@ pub enum PipelineError {
         /// Why.
         source: MeshingError,
     },
+    /// The point set spans no tetrahedron.
+    #[error("{}: {source}", path.display())]
+    Delaunay {
+        /// The points' file.
+        path: PathBuf,
+        /// Why.
+        source: crate::mesh3d::delaunay::DelaunayError,
+    },
     /// The octree mesher made no mesh.
     #[error("{}: octree meshing: {source}", path.display())]
     Octree {
@@ -214,6 +222,12 @@ pub enum UsageProblem {
     /// An output file whose format holds neither tets nor surfaces.
     #[error("tets are written as .mesh, .ele/.node, .vtu or .msh, surfaces as .stl, .obj, .off, .vtu or .msh")]
     OutputFormat,
+    /// The worker threads asked for cannot start.
+    #[error("cannot start the worker threads: {why}")]
+    Threads {
+        /// The thread pool's reason.
+        why: String,
+    },
     /// A tet mesh's output file of a format that holds no tets.
     #[error("tets are written as .mesh, .ele/.node, .vtu or .msh")]
     TetFormat,
