@@ -84,10 +84,18 @@ impl TryFrom<f64> for Grading {
 #[serde(try_from = "f64")]
 pub struct Fraction(pub f64);
 
+impl Fraction {
+    /// `x` as a relative tolerance: `None` outside `(0, 0.1]` (the one place that range is
+    /// decided, for job files and the command line alike).
+    pub fn new(x: f64) -> Option<Fraction> {
+        (x.is_finite() && x > 0.0 && x <= 0.1).then_some(Fraction(x))
+    }
+}
+
 impl TryFrom<f64> for Fraction {
     type Error = String;
     fn try_from(x: f64) -> Result<Self, String> {
-        if x.is_finite() && x > 0.0 && x <= 0.1 { Ok(Fraction(x)) } else { Err(format!("{x} must be in (0, 0.1] (a fraction of the part's diagonal)")) }
+        Fraction::new(x).ok_or_else(|| format!("{x} must be in (0, 0.1] (a fraction of the part's diagonal)"))
     }
 }
 

@@ -111,9 +111,10 @@ pub struct Args {
     pub json: bool,
 }
 
+/// clap's adapter for [`Fraction::new`].
 fn deviation(s: &str) -> Result<f64, String> {
     let x = crate::cli::parse_fraction(s)?;
-    if x > 0.0 && x <= 0.1 { Ok(x) } else { Err(format!("'{s}' must be in (0, 0.1]")) }
+    Fraction::new(x).map(|f| f.0).ok_or_else(|| format!("'{s}' must be in (0, 0.1]"))
 }
 
 /// clap's adapter for [`radius_edge_bound`].

@@ -258,7 +258,7 @@ pub(crate) fn print_mesh_summary(m: &fepre::pipeline::MeshSummary, delaunay: boo
             list.join(", ")
         );
     }
-    if m.flattening_volume > 1e-9 * m.volume.abs() {
+    if m.flattening_moved_volume() {
         outln!("flat facets      input triangles flat within 0.1° merged and retriangulated (TetGen's -p rule): the volume moves by at most {} ({:.2e} of it)", fmt_num(m.flattening_volume), m.flattening_volume / m.volume.abs().max(f64::MIN_POSITIVE));
     }
     if !delaunay {

@@ -61,9 +61,10 @@ pub struct Args {
     pub force: bool,
 }
 
+/// clap's adapter for [`fepre::attributes::Fraction::new`].
 fn positive_fraction(s: &str) -> Result<f64, String> {
     let x = crate::cli::parse_fraction(s)?;
-    if x > 0.0 && x <= 0.1 { Ok(x) } else { Err(format!("'{s}' must be in (0, 0.1]")) }
+    fepre::attributes::Fraction::new(x).map(|f| f.0).ok_or_else(|| format!("'{s}' must be in (0, 0.1]"))
 }
 
 /// The lines that say where a surface is open.

@@ -113,6 +113,14 @@ pub struct MeshSummary {
     pub flattening_volume: f64,
 }
 
+impl MeshSummary {
+    /// Whether merging the input's flat facets moved the volume measurably (by more than 1e-9
+    /// of it): the text report then says by how much.
+    pub fn flattening_moved_volume(&self) -> bool {
+        self.flattening_volume > 1e-9 * self.volume.abs()
+    }
+}
+
 /// The summary of `mesh` (made from `surface` with `plan`, `report` the mesher's), and the
 /// indexes a requirement error needs again.
 pub(crate) struct Summarised {
