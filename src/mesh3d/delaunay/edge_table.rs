@@ -62,18 +62,19 @@ impl EdgeTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::ids::NONE;
 
     #[test]
     fn pairs_meet() {
         let mut t = EdgeTable::new();
         t.reset(100);
         for k in 0..100u64 {
-            assert_eq!(t.swap(k << 32 | (k + 1), k as u32, u32::MAX), u32::MAX);
+            assert_eq!(t.swap(k << 32 | (k + 1), k as u32, NONE), NONE);
         }
         for k in 0..100u64 {
-            assert_eq!(t.swap(k << 32 | (k + 1), 7, u32::MAX), k as u32);
+            assert_eq!(t.swap(k << 32 | (k + 1), 7, NONE), k as u32);
         }
         t.reset(10);
-        assert_eq!(t.swap(5 << 32 | 6, 1, u32::MAX), u32::MAX);
+        assert_eq!(t.swap(5 << 32 | 6, 1, NONE), NONE);
     }
 }
