@@ -274,7 +274,7 @@ pub fn shared(ia: [u32; 3], ib: [u32; 3]) -> Shared {
 /// (see the module docs). `ia`/`ib` are the vertex indices, `a`/`b` the corner positions.
 ///
 /// ```
-/// use fepre::core::intersection::triangle_pair_intersects;
+/// use fepre::core::triangle_pair_intersects;
 /// use glam::DVec3;
 /// let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
 /// let a = [p(0., 0., 0.), p(1., 0., 0.), p(0., 1., 0.)];

@@ -123,7 +123,7 @@ impl<T: Copy + Ord, S: Into<String>> Extend<(T, S)> for TagNames<T> {
 ///
 /// ```
 /// let mut names = vec!["hole_1".to_string(), "hole_1".into(), "hole_1.2".into(), "hole_1".into()];
-/// assert_eq!(fepre::core::tag_names::make_unique(names.iter_mut()), 2);
+/// assert_eq!(fepre::core::make_unique(names.iter_mut()), 2);
 /// assert_eq!(names, ["hole_1", "hole_1.3", "hole_1.2", "hole_1.4"]);
 /// ```
 pub fn make_unique<'a>(names: impl IntoIterator<Item = &'a mut String>) -> usize {

@@ -13,7 +13,7 @@
 //! prints on standard error and `--json` carries.
 //!
 //! ```no_run
-//! use fepre::pipeline::{Part, run::{Plan, run_plan}};
+//! use fepre::pipeline::{Part, Plan, run_plan};
 //! let mut part = Part::open("part.step".as_ref())?;
 //! let report = run_plan(&mut part, &Plan { unit: 1.0, ..Plan::default() }, false)?;
 //! part.write("part.msh".as_ref())?;

@@ -212,7 +212,7 @@ impl Acc {
 ///
 /// ```
 /// use fepre::mesh::TetMesh;
-/// use fepre::quality::extremes::tet_mesh_extremes;
+/// use fepre::quality::tet_mesh_extremes;
 /// use glam::DVec3;
 /// let m = TetMesh { vertices: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z], tets: vec![[0, 1, 2, 3]], ..Default::default() };
 /// let e = tet_mesh_extremes(&m, 60.0, 2.0);

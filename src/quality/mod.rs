@@ -40,6 +40,7 @@ pub use mesh_quality::{
     PlanarQualityReport, QuadQualityReport, TetQualityReport, TriQualityReport, planar_mesh_quality, tet_mesh_quality,
     tri_surface_quality,
 };
+pub use extremes::{TetExtremes, tet_mesh_extremes};
 pub use mesh_quality::NEAR_DEGENERATE_VOLUME_LENGTH;
 pub use quad::{QuadMeasures, quad_measures};
 pub use worst_tet::{TetPlace, fmt_num, fmt_point};

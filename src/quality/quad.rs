@@ -50,7 +50,7 @@ pub fn quad_angles(p: &[DVec2; 4]) -> Option<[f64; 4]> {
 /// All measures of the quadrilateral `p` (corners counter-clockwise for a positive area).
 ///
 /// ```
-/// use fepre::quality::quad::quad_measures;
+/// use fepre::quality::quad_measures;
 /// use glam::DVec2;
 /// let m = quad_measures(&[DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]);
 /// assert_eq!((m.min_angle, m.max_angle, m.aspect_ratio, m.scaled_jacobian), (90.0, 90.0, 1.0, 1.0));

@@ -38,7 +38,7 @@ impl Stats {
     /// Statistics of `values`, element `i` being `values[i]`.
     ///
     /// ```
-    /// use fepre::quality::summary::Stats;
+    /// use fepre::quality::Stats;
     /// let s = Stats::of(&[3.0, 1.0, 2.0, f64::INFINITY]);
     /// assert_eq!((s.min, s.argmin, s.max, s.argmax), (1.0, Some(1), f64::INFINITY, Some(3)));
     /// assert_eq!((s.mean, s.non_finite), (2.0, 1));
@@ -213,7 +213,7 @@ impl Histogram {
     /// If `bins == 0` or the range is empty or not finite.
     ///
     /// ```
-    /// use fepre::quality::summary::Histogram;
+    /// use fepre::quality::Histogram;
     /// let mut h = Histogram::uniform(0.0, 180.0, 18);
     /// for x in [0.0, 9.99, 10.0, 180.0, 181.0] { h.add(x); }
     /// assert_eq!((h.counts[0], h.counts[1], h.counts[17], h.above), (2, 1, 1, 1));

@@ -256,7 +256,7 @@ fn scaled_jacobian(l2: &[f64; 6], det: f64) -> f64 {
 /// All measures of the tet `p` (see [`TetMeasures`] for the definitions).
 ///
 /// ```
-/// use fepre::quality::tetrahedron::tet_measures;
+/// use fepre::quality::tet_measures;
 /// use glam::DVec3;
 /// let s = 0.5f64.sqrt();
 /// let p = [DVec3::new(1.0, 0.0, -s), DVec3::new(-1.0, 0.0, -s), DVec3::new(0.0, -1.0, s), DVec3::new(0.0, 1.0, s)];

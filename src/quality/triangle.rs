@@ -77,7 +77,7 @@ fn from_parts(l: [f64; 3], dots: [f64; 3], area2: f64) -> TriMeasures {
 /// All measures of the triangle `p` in space (area and scaled Jacobian non-negative).
 ///
 /// ```
-/// use fepre::quality::triangle::tri_measures;
+/// use fepre::quality::tri_measures;
 /// use glam::DVec3;
 /// let m = tri_measures(&[DVec3::ZERO, DVec3::X, DVec3::new(0.5, 0.75f64.sqrt(), 0.0)]);
 /// assert!((m.aspect_ratio - 1.0).abs() < 1e-12 && (m.min_angle - 60.0).abs() < 1e-12);
