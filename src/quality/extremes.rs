@@ -47,7 +47,7 @@ pub struct TetExtremes {
     /// Tets whose volume-length ratio is under [`NEAR_DEGENERATE_VOLUME_LENGTH`].
     pub near_degenerate: usize,
     /// The tets whose smallest dihedral angle is under the angle given or under 10°, whichever
-    /// is larger (ascending): those [`explained_among`](crate::quality::explained::explained_among)
+    /// is larger (ascending): those `explained_among`
     /// needs to look at.
     pub low: Vec<usize>,
 }
