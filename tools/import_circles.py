@@ -27,16 +27,10 @@ import re
 import sys
 from collections import defaultdict
 
-# The one exception issue 72 allows: a recursive type whose variants hold the type again, and
-# then only its files. `Curve::Offset` holds an `OffsetCurve` and `Curve::Replica` a
-# `CurveReplica`, each of which holds a `Curve`; `Surface::Offset` holds an `Offset` and
-# `Surface::Replica` a `SurfaceReplica`, each of which holds a `Surface`. (`Extrusion` and
-# `Revolution` hold a `Curve` but no `Surface`: they stand outside both circles.) Each entry
-# is the exact set of files its circle may span.
-ALLOWED = [
-    {"src/cad/geom/curve.rs", "src/cad/geom/curve_replica.rs", "src/cad/geom/offset_curve.rs"},
-    {"src/cad/geom/surface.rs", "src/cad/geom/surface_replica.rs", "src/cad/geom/offset.rs"},
-]
+# Circles allowed: none. (The recursive geometry types keep the variants that hold them again
+# in their own file: `Curve` with `OffsetCurve` and `CurveReplica` in curve.rs, `Surface` with
+# `Offset` and `SurfaceReplica` in surface.rs.)
+ALLOWED: list = []
 
 ITEM_DEF = r"(?:pub(?:\([^)]*\))?\s+)?(?:unsafe\s+|const\s+|async\s+|extern\s+\"[^\"]*\"\s+)*" \
            r"(?:fn|struct|enum|trait|type|const|static|union|mod|macro_rules!)\s+"

@@ -17,6 +17,7 @@
 //! so that outward normals stay outward. Images, materials, skins and morph targets are
 //! ignored. The reader returns every vertex of every instance; [`crate::io::read`] welds.
 
+use super::data_uri::{data_uri, percent_decode};
 use crate::core::FaceId;
 use crate::io::{Format, IoError, Loaded, Location, MeshData};
 use crate::mesh::TriSurface;
@@ -27,9 +28,6 @@ use ::gltf::json::validation::{Checked, Error as Invalid, Validate};
 use ::gltf::mesh::{Mode, Semantic};
 use ::gltf::scene::Transform;
 use ::gltf::{Accessor, Document, Node};
-use base64::Engine;
-use base64::engine::general_purpose::{GeneralPurpose, GeneralPurposeConfig};
-use base64::engine::DecodePaddingMode;
 use glam::{DMat3, DMat4, DQuat, DVec3};
 use std::borrow::Cow;
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -44,9 +42,6 @@ const MAX_DEPTH: usize = 512;
 const MAX_VISITS: usize = 1_000_000;
 /// Most elements of an accessor that has no buffer view (its values are zeros or sparse).
 const MAX_ZERO_ELEMENTS: usize = 1 << 26;
-
-const BASE64: GeneralPurpose =
-    GeneralPurpose::new(&base64::alphabet::STANDARD, GeneralPurposeConfig::new().with_decode_padding_mode(DecodePaddingMode::Indifferent));
 
 /// Required extensions that do not change geometry: read as if absent.
 const HARMLESS_EXTENSIONS: &[&str] =
@@ -199,42 +194,6 @@ fn local_f32(node: &Node<'_>) -> DMat4 {
         Transform::Matrix { matrix } => DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from))),
         Transform::Decomposed { translation: t, rotation: r, scale: s } => trs(t.map(f64::from), r.map(f64::from), s.map(f64::from)),
     }
-}
-
-/// Why a `data:` URI could not be decoded.
-#[derive(Debug, thiserror::Error)]
-enum DataUriError {
-    /// No `,` between the media type and the data.
-    #[error("a data: URI without ','")]
-    NoComma,
-    /// The payload is not base64.
-    #[error("bad base64 in its data: URI: {0}")]
-    Base64(#[from] base64::DecodeError),
-}
-
-/// Decodes a `data:` URI (base64 or percent-encoded).
-fn data_uri(uri: &str) -> Result<Vec<u8>, DataUriError> {
-    let rest = uri.strip_prefix("data:").unwrap_or(uri);
-    let (head, payload) = rest.split_once(',').ok_or(DataUriError::NoComma)?;
-    if head.ends_with(";base64") {
-        Ok(BASE64.decode(payload.trim())?)
-    } else {
-        Ok(percent_decode(payload))
-    }
-}
-
-/// `%XX` escapes to bytes; anything else is kept.
-fn percent_decode(s: &str) -> Vec<u8> {
-    let b = s.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while let Some(&c) = b.get(i) {
-        let hex = b.get(i + 1..i + 3).and_then(|h| std::str::from_utf8(h).ok()).and_then(|h| u8::from_str_radix(h, 16).ok());
-        let (byte, step) = if let (b'%', Some(x)) = (c, hex) { (x, 3) } else { (c, 1) };
-        out.push(byte);
-        i += step;
-    }
-    out
 }
 
 /// Buffers, loaded when first used.
@@ -620,6 +579,7 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use base64::Engine;
 
     /// Little-endian bytes of `f32` triples, then `u16` indices.
     fn bin(points: &[[f32; 3]], indices: &[u16]) -> Vec<u8> {

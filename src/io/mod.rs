@@ -29,6 +29,7 @@ pub(crate) mod atomic;
 pub(crate) mod common;
 pub(crate) mod error;
 pub(crate) mod ccx_dat;
+mod data_uri;
 pub mod frd;
 pub(crate) mod gltf;
 pub(crate) mod medit;

@@ -1,7 +1,7 @@
 //! Lines that say what a result means, for the text reports: how the octree's default cell
 //! was chosen, whether refinement ended or which budget stopped it.
 
-use super::run::MeshSummary;
+use super::summary::MeshSummary;
 use crate::mesh3d::octree::{CellTry, OctreeReport, RESOLVE};
 use crate::quality::worst_tet::fmt_num;
 

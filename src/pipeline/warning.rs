@@ -8,7 +8,7 @@
 
 use super::plan::Interface;
 use super::describe::kept_tries;
-use super::run::MeshSummary;
+use super::summary::MeshSummary;
 use crate::mesh3d::octree::{CellTry, OctreeReport, RESOLVE};
 use crate::quality::worst_tet::{fmt_num, fmt_point};
 use serde::Serialize;

@@ -9,12 +9,11 @@ use super::domain::{SurfaceDomain, unwrap_near};
 use super::extrusion::Extrusion;
 use super::frame::Rigid;
 use super::newton::{refine_surface, refine_surface_within};
-use super::offset::Offset;
 use super::plane::Plane;
-use super::surface_replica::SurfaceReplica;
 use super::revolution::Revolution;
 use super::sphere::Sphere;
 use super::torus::{Torus, TorusPart};
+use super::similarity::Similarity;
 use glam::{DVec2, DVec3};
 use std::fmt;
 
@@ -296,5 +295,122 @@ fn seam_side_near(x: f64, near: f64, lo: f64, hi: f64) -> f64 {
         x - len
     } else {
         x
+    }
+}
+
+// Offset surfaces (STEP `OFFSET_SURFACE`).
+
+/// `S(u, v) + d · N(u, v)`: a basis surface moved by `distance` along its unit normal.
+#[derive(Clone, Debug)]
+pub struct Offset {
+    /// The basis surface.
+    pub basis: Box<Surface>,
+    /// The offset distance in mm (signed, along the basis' parametric normal).
+    pub distance: f64,
+}
+
+impl Offset {
+    /// Point and first derivatives (exact, from the basis' second derivatives); the second
+    /// derivatives by central differences of the first.
+    pub fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        let (p, du, dv) = self.first(u, v);
+        let h = 1e-6;
+        let (_, du_p, dv_p) = self.first(u + h, v);
+        let (_, du_m, dv_m) = self.first(u - h, v);
+        let (_, _, dv_vp) = self.first(u, v + h);
+        let (_, _, dv_vm) = self.first(u, v - h);
+        SurfaceDerivs { p, du, dv, duu: (du_p - du_m) / (2.0 * h), duv: (dv_p - dv_m) / (2.0 * h), dvv: (dv_vp - dv_vm) / (2.0 * h) }
+    }
+
+    fn first(&self, u: f64, v: f64) -> (DVec3, DVec3, DVec3) {
+        let b = self.basis.derivs(u, v);
+        let n = b.du.cross(b.dv);
+        let len = n.length();
+        if !(len > 0.0) {
+            let nn = self.basis.normal(u, v).unwrap_or(DVec3::ZERO);
+            return (b.p + self.distance * nn, b.du, b.dv);
+        }
+        let unit = n / len;
+        let nu = b.duu.cross(b.dv) + b.du.cross(b.duv);
+        let nv = b.duv.cross(b.dv) + b.du.cross(b.dvv);
+        let unit_u = (nu - unit * unit.dot(nu)) / len;
+        let unit_v = (nv - unit * unit.dot(nv)) / len;
+        (b.p + self.distance * unit, b.du + self.distance * unit_u, b.dv + self.distance * unit_v)
+    }
+
+    /// Point at `(u, v)`.
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        let n = self.basis.normal(u, v).unwrap_or(DVec3::ZERO);
+        self.basis.point(u, v) + self.distance * n
+    }
+
+    /// The basis' domain.
+    pub fn domain(&self) -> SurfaceDomain {
+        self.basis.domain()
+    }
+
+    /// The basis' closest point (the same parameters for offsets smaller than the curvature
+    /// radius), refined by Newton on the offset surface.
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        let start = self.basis.project(p);
+        refine_surface(|u, v| self.derivs(u, v), &self.domain(), p, start)
+    }
+
+    /// The surface moved.
+    pub fn transformed(&self, t: &Rigid) -> Offset {
+        Offset { basis: Box::new(self.basis.transformed(t)), distance: self.distance }
+    }
+}
+
+
+// Surface replicas (STEP `SURFACE_REPLICA`): a parent surface under a [`Similarity`].
+
+/// A surface under a similarity (same parameters as the parent; a reflection turns the
+/// parametric normal `∂S/∂u × ∂S/∂v` round with it).
+#[derive(Clone, Debug)]
+pub struct SurfaceReplica {
+    /// The parent surface.
+    pub parent: Box<Surface>,
+    /// The transformation.
+    pub map: Similarity,
+}
+
+impl SurfaceReplica {
+    /// Point and derivatives.
+    pub fn derivs(&self, u: f64, v: f64) -> SurfaceDerivs {
+        let d = self.parent.derivs(u, v);
+        let m = |x: DVec3| self.map.apply_vector(x);
+        SurfaceDerivs { p: self.map.apply_point(d.p), du: m(d.du), dv: m(d.dv), duu: m(d.duu), duv: m(d.duv), dvv: m(d.dvv) }
+    }
+
+    /// Point at `(u, v)`.
+    pub fn point(&self, u: f64, v: f64) -> DVec3 {
+        self.map.apply_point(self.parent.point(u, v))
+    }
+
+    /// The unit normal: the parent's, turned (and reversed by a reflection).
+    pub fn normal(&self, u: f64, v: f64) -> Option<DVec3> {
+        let n = self.map.axes * self.parent.normal(u, v)?;
+        Some(if self.map.reflects() { -n } else { n })
+    }
+
+    /// The parent's domain.
+    pub fn domain(&self) -> SurfaceDomain {
+        self.parent.domain()
+    }
+
+    /// The parent's closest point to the point moved back.
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        self.parent.project(self.map.invert_point(p))
+    }
+
+    /// Like [`SurfaceReplica::project`], near `near`.
+    pub fn project_near(&self, p: DVec3, near: DVec2) -> DVec2 {
+        self.parent.project_near(self.map.invert_point(p), near)
+    }
+
+    /// The replica moved.
+    pub fn transformed(&self, t: &Rigid) -> SurfaceReplica {
+        SurfaceReplica { parent: self.parent.clone(), map: self.map.then(t) }
     }
 }
