@@ -14,7 +14,7 @@
 //!   caller's tolerance (at least `1e-6` of the face's size) of the plane, otherwise the
 //!   face is refused as not planar.
 
-use super::quadtree::{Domain, DomainError};
+use super::domain::{Domain, DomainError};
 use crate::core::FaceId;
 use crate::mesh::TriSurface;
 use glam::{DVec2, DVec3};

@@ -1,10 +1,31 @@
-//! Layer 4: 2D meshing. Algorithms that take a planar domain and a size and return a
-//! [`PlanarMesh`](crate::mesh::PlanarMesh).
+//! Layer 4: 2D meshing, the lecture's generators (section 23.2). Every method takes a planar
+//! [`Domain`] (a polygon with holes, tagged segments) and a size `h(p)`, and returns a
+//! [`PlanarMesh`](crate::mesh::PlanarMesh) that passes `validate()`.
 //!
-//! - [`quadtree`]: the lecture's quadtree mesher (Yerry and Shephard's modified quadtree,
-//!   2:1 balanced, templates inside, cut quadrants at the boundary);
+//! - [`Domain`]: the input, checked exactly; [`boundary`]: its segments divided by the size
+//!   (the first stage of the methods that keep their boundary points); [`measure`]: the
+//!   quality figures every method reports;
+//! - [`quadtree`]: Yerry and Shephard's modified quadtree (2:1 balanced, templates inside,
+//!   cut quadrants at the boundary);
+//! - [`delaunay`]: constrained Delaunay triangulation and Ruppert/Chew refinement;
+//! - [`ear`]: topology decomposition (ear cutting, holes bridged), then refinement;
+//! - [`recursive`]: geometry decomposition by recursive subdivision (Bykat);
+//! - [`removal`]: geometry decomposition by iterative removal of elements (Sadek);
+//! - [`front`]: iterative removal of a boundary layer (the advancing front);
+//! - [`quads`]: all-quadrilateral meshes;
 //! - `face`: the planar faces of a tagged surface (a CAD part's tessellation) as domains
 //!   in their planes' coordinates, and the way back to 3D.
 
+pub mod boundary;
+pub mod delaunay;
+pub(crate) mod domain;
+pub mod ear;
 pub(crate) mod face;
+pub mod front;
+pub mod measure;
+pub mod quads;
 pub mod quadtree;
+pub mod recursive;
+pub mod removal;
+
+pub use domain::{Domain, DomainError};

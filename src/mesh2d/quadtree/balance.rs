@@ -11,7 +11,7 @@
 //! With sides balanced, a leaf has at most one hanging node per side, the midpoint, which is
 //! what the interior templates (`templates.rs`) are made for.
 
-use super::domain::Domain;
+use crate::mesh2d::domain::Domain;
 use super::tree::{Quadtree, DIRECTIONS};
 use super::QuadtreeError;
 

@@ -25,7 +25,7 @@
 //! 4. the faces an odd number of constraints away from the convex hull's outside are the
 //!    band (inside the domain, outside the interior leaves).
 
-use super::domain::{point_segment_distance, Domain};
+use crate::mesh2d::domain::{point_segment_distance, Domain};
 use super::tree::{lattice, Quadtree, Status, MAX_LEVEL};
 use super::vertices::Vertices;
 use super::QuadtreeError;

@@ -11,7 +11,7 @@
 //!   the domain on its left; each segment's pieces run from its start to its end, its
 //!   interior points on the segment within `1e-12` of the domain's size.
 
-use super::domain::{point_segment_distance, Domain};
+use crate::mesh2d::domain::{point_segment_distance, Domain};
 use super::QuadtreeMesh;
 use crate::mesh::MeshError;
 use glam::DVec2;

@@ -3,7 +3,8 @@
 //! quadrants split by templates, boundary quadrants cut and triangulated conformingly.
 //!
 //! Stages, one file each:
-//! 1. `domain`: the input, a polygon with holes whose segments carry tags, checked exactly;
+//! 1. the input, [`Domain`](crate::mesh2d::Domain): a polygon with holes whose segments carry
+//!    tags, checked exactly;
 //! 2. `tree`: the quadtree, refined until each quadrant is no larger than the size at its
 //!    centre and around boundary features (two segments that share no point within a
 //!    quadrant's clearance, two boundary points in one quadrant);
@@ -34,7 +35,6 @@
 pub(crate) mod balance;
 pub(crate) mod band;
 pub(crate) mod check;
-pub(crate) mod domain;
 pub(crate) mod templates;
 pub(crate) mod tree;
 mod vertices;
@@ -44,7 +44,7 @@ mod tests;
 
 pub use balance::{balance as balance_tree, check_balance, Unbalanced};
 pub use check::{angles, check_conforming, Angles, CheckError};
-pub use domain::{Domain, DomainError};
+pub use crate::mesh2d::domain::{Domain, DomainError};
 pub use tree::{Params, Quadtree, Status};
 
 use crate::core::ids::NONE;

@@ -16,7 +16,7 @@
 //! square holds two boundary points (every polygon vertex gets a quadrant of its own):
 //! Yerry and Shephard's modified-quadtree refinement, with the clearance band of the lecture.
 
-use super::domain::{Domain, segment_square_distance};
+use crate::mesh2d::domain::{Domain, segment_square_distance};
 use super::QuadtreeError;
 use crate::core::ids::NONE;
 use glam::DVec2;
