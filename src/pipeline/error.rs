@@ -261,6 +261,8 @@ pub enum Requirement {
     VolumeError,
     /// `require_max_radius_edge`: the largest radius-edge ratio.
     MaxRadiusEdge,
+    /// `--require-min-angle` of `mesh2d`: the smallest angle of a 2D mesh, in degrees.
+    MinAngle2d,
 }
 
 /// Why the 2D mesher could not take a face ([`PipelineError::Planar`]).

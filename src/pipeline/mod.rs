@@ -54,7 +54,7 @@ pub use error::{CCX_ENV, PipelineError, PlanarProblem, Requirement, SolverProble
 pub use fe_model::{FeSummary, SolidSummary, StepSummary};
 pub use inspect::{InspectOptions, InspectReport, TagInfo, TetKeys, inspect_file};
 pub use job::{JobFile, Method};
-pub use mesh2d_file::{FaceReport, Mesh2dReport, mesh2d_file};
+pub use mesh2d_file::{FaceReport, Mesh2dReport, Mesh2dRequest, mesh2d_file};
 pub use mesh_file::{MeshFileReport, mesh_file};
 pub use part::{Certified, Part, StageSeconds, failure_message, tessellate_file, tessellate_model};
 pub use plan::{Interface, Plan};
