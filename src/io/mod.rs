@@ -17,6 +17,10 @@
 //! | VTK XML unstructured grid (`.vtu`) | no | yes | cell data |
 //! | points (`.xyz`) | yes | no | none |
 //!
+//! Triangle's 2D `.poly` (a planar graph with holes and regions, for `crate::mesh2d`) has its
+//! own reader and writer, [`read_poly`] and [`write_poly`], and
+//! [`PolyFile::to_domains`] turns it into checked 2D domains, one per region.
+//!
 //! Results: [`frd`] reads CalculiX's ASCII `.frd` result file into plain arrays (nodes, steps,
 //! fields); [`vtu::write_grid_with_data`] writes FE results (linear or quadratic tets with
 //! point and cell arrays) for ParaView.
@@ -36,6 +40,7 @@ pub(crate) mod medit;
 pub(crate) mod msh;
 pub(crate) mod obj;
 pub(crate) mod off;
+pub(crate) mod poly;
 pub(crate) mod polygon;
 pub(crate) mod point_lines;
 pub(crate) mod stl;
@@ -47,6 +52,7 @@ pub mod vtu;
 pub(crate) mod xyz;
 
 pub use error::{IoError, Location};
+pub use poly::{PolyError, PolyFile, PolyRegion, RegionSeed, read as read_poly, write as write_poly};
 
 use crate::core::{RegionId, Tolerance};
 use crate::mesh::{MixedSurface, TetMesh, TriSurface};
