@@ -1,5 +1,5 @@
 //! `fepre mesh2d INPUT [--method M] [--quads] [--size H] [--min-angle A] [-o OUT]`: the
-//! lecture's 2D methods on the planar faces of a STEP part.
+//! lecture's 2D methods on the planar faces of a STEP part or the regions of a `.poly` file.
 //!
 //! Parses, calls [`fepre::pipeline::mesh2d_file`], prints a summary (or one JSON object) and
 //! writes the meshes (a part's faces lifted back onto their planes) as one tagged surface of
@@ -10,7 +10,7 @@ use crate::cli::usage_error;
 use anyhow::Result;
 use fepre::core::FaceId;
 use fepre::mesh2d::{Mesh2dOptions, Method};
-use fepre::pipeline::{mesh2d_file, FaceChoice, Mesh2dRequest, PipelineError};
+use fepre::pipeline::{mesh2d_file, mesh2d_poly, FaceChoice, Mesh2dRequest, PipelineError};
 use std::path::PathBuf;
 
 /// Examples shown by `fepre mesh2d --help`.
@@ -21,6 +21,8 @@ Examples:
   fepre mesh2d part.step --method quadtree --quads -o faces.mesh
   fepre mesh2d part.step --size 2 --json               no file: the JSON summary only
   fepre mesh2d part.step --require-min-angle 20 -o f.inp   exit 1, nothing written, under 20 deg
+  fepre mesh2d plate.poly --method delaunay --min-angle 33 --max-area 0.01 -o plate.msh
+                                                       Triangle's .poly (holes, regions), like -pq33a0.01
 
 Methods (the lecture's section 23.2):
   quadtree    Yerry and Shephard's modified quadtree: 2:1 balanced, 45-degree templates
@@ -34,7 +36,7 @@ Quadrilaterals, .inp S4), as two triangles in .obj and .stl.";
 /// Arguments of `fepre mesh2d`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// STEP file (.step, .stp).
+    /// STEP file (.step, .stp): its planar faces; or Triangle's .poly: its regions.
     pub cad: PathBuf,
     /// The 2D method.
     #[arg(long, short = 'm', value_name = "METHOD", default_value = "quadtree", value_parser = parse_method)]
@@ -81,7 +83,12 @@ pub fn run(args: &Args) -> Result<()> {
     let faces = if args.face.is_empty() { FaceChoice::AllPlanar } else { FaceChoice::Faces(args.face.iter().map(|&f| FaceId(f)).collect()) };
     let options = Mesh2dOptions { method: args.method, quads: args.quads, min_angle: args.min_angle, max_area: args.max_area, ..Mesh2dOptions::default() };
     let request = Mesh2dRequest { faces, size: args.size, options, require_min_angle: args.require_min_angle };
-    let rep = mesh2d_file(&args.cad, &request, args.output.as_deref()).map_err(|e| match e {
+    let is_poly = args.cad.extension().is_some_and(|e| e.eq_ignore_ascii_case("poly"));
+    if is_poly && !args.face.is_empty() {
+        return Err(usage_error("--face picks faces of a STEP part; a .poly file's regions are all meshed"));
+    }
+    let result = if is_poly { mesh2d_poly(&args.cad, &request, args.output.as_deref()) } else { mesh2d_file(&args.cad, &request, args.output.as_deref()) };
+    let rep = result.map_err(|e| match e {
         PipelineError::Usage { .. } => usage_error(e.to_string()),
         e => anyhow::Error::new(e),
     })?;
@@ -90,7 +97,11 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         let q = &rep.quality;
         outln!("method       {}{}", rep.method, if rep.all_quads { " (quads)" } else { "" });
-        outln!("faces        {} ({} planar, {} meshed, {} failed)", rep.faces, rep.planar_faces, rep.meshed, rep.failed.len());
+        if is_poly {
+            outln!("regions      {}", rep.meshed);
+        } else {
+            outln!("faces        {} ({} planar, {} meshed, {} failed)", rep.faces, rep.planar_faces, rep.meshed, rep.failed.len());
+        }
         for f in &rep.failed {
             outln!("  failed face {} ({}): {}", f.face.0, f.step_id, f.reason);
         }

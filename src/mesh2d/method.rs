@@ -3,7 +3,8 @@
 //!
 //! - Stage: between a domain (a planar CAD face, a `.poly` region, a job's polygon) and its
 //!   [`PlanarMesh`].
-//! - The boundary: [`Boundary::Split`] divides the domain's segments by the size first
+//! - The boundary: [`Boundary::Free`] lets a method that can split segments do so (a lone
+//!   region; the others get it divided by the size); [`Boundary::Split`] divides the domain's segments by the size first
 //!   ([`split_boundary`]), for regions whose segments are long; [`Boundary::Keep`] keeps the
 //!   given points as the boundary (a CAD face: the tessellation's edge points, so that
 //!   neighbouring faces conform). Quadrilaterals halve every boundary segment (listed in
@@ -64,7 +65,11 @@ impl FromStr for Method {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Boundary {
-    /// Divide the segments by the size first.
+    /// A lone region: the method may put points on the segments where it needs them
+    /// (Delaunay refinement splits encroached segments); methods that cannot get the
+    /// segments divided by the size first.
+    Free,
+    /// Divide the segments by the size first, then keep them (regions sharing segments).
     Split,
     /// Keep the given boundary points.
     Keep,
@@ -137,7 +142,7 @@ pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2
     domain.validate()?;
     let split;
     let domain = match options.boundary {
-        Boundary::Split if options.method != Method::Quadtree => {
+        Boundary::Split | Boundary::Free if options.method != Method::Quadtree => {
             split = split_boundary(domain, size)?;
             &split.domain
         }

@@ -79,7 +79,7 @@ pub struct Mesh2dReport {
 }
 
 /// The formats `mesh2d` writes (quads as quads in .msh, .vtu, .mesh and .inp).
-fn check_output(out: &Path) -> Result<(), PipelineError> {
+pub(crate) fn check_output(out: &Path) -> Result<(), PipelineError> {
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or_default().to_ascii_lowercase();
     if ext == "inp" || matches!(Format::from_path(out), Some(Format::Msh | Format::Vtu | Format::Medit | Format::Obj | Format::Stl)) {
         Ok(())
