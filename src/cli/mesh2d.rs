@@ -95,6 +95,15 @@ pub fn run(args: &Args) -> Result<()> {
     if args.json {
         outln!("{}", serde_json::to_string_pretty(&rep)?);
     } else {
+        print(&rep, is_poly);
+    }
+    crate::cli::print_warnings(&rep.warnings);
+    Ok(())
+}
+
+/// The summary `fepre mesh2d` (and `fepre run` on a `[mesh2d]` job) prints.
+pub fn print(rep: &fepre::pipeline::Mesh2dReport, is_poly: bool) {
+    {
         let q = &rep.quality;
         outln!("method       {}{}", rep.method, if rep.all_quads { " (quads)" } else { "" });
         if is_poly {
@@ -117,6 +126,4 @@ pub fn run(args: &Args) -> Result<()> {
             outln!("wrote        {o}");
         }
     }
-    crate::cli::print_warnings(&rep.warnings);
-    Ok(())
 }

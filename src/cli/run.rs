@@ -51,6 +51,18 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let progress = crate::cli::progress::Progress::start(&format!("running {}", args.job.display()));
     let jf = JobFile::read(&args.job)?;
+    if jf.job.mesh2d.is_some() && !args.check {
+        // a 2D job: the lecture's 2D methods on the part's planar faces or a .poly's regions
+        let report = fepre::pipeline::mesh2d_job(&jf)?;
+        progress.finish();
+        if args.json {
+            outln!("{}", serde_json::to_string_pretty(&report)?);
+        } else {
+            crate::cli::mesh2d::print(&report, report.input.to_ascii_lowercase().ends_with(".poly"));
+        }
+        crate::cli::print_warnings(&report.warnings);
+        return Ok(());
+    }
     let report = run_job(&jf, args.check)?;
     progress.finish();
     if args.json {

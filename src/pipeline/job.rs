@@ -71,6 +71,31 @@ pub struct Job {
     /// What `fepre solve` writes.
     #[serde(default)]
     pub solve: SolveSection,
+    /// A 2D mesh of the part's planar faces (or a `.poly` file's regions) instead of a
+    /// volume mesh.
+    pub mesh2d: Option<Mesh2dSection>,
+}
+
+/// `[mesh2d]`: the lecture's 2D methods on the planar faces of a part or the regions of a
+/// Triangle `.poly` file; the size comes from `[density]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mesh2dSection {
+    /// `delaunay`, `ear`, `recursive`, `removal`, `front` or `quadtree`, as `fepre mesh2d
+    /// --method`.
+    pub method: Option<Spanned<String>>,
+    /// All quadrilaterals.
+    #[serde(default)]
+    pub quads: bool,
+    /// The smallest angle Delaunay refinement aims at, degrees.
+    pub min_angle: Option<Positive>,
+    /// The largest triangle area.
+    pub max_area: Option<Positive>,
+    /// The faces to mesh (ids; default every planar face).
+    #[serde(default)]
+    pub faces: Vec<u32>,
+    /// Fail, writing nothing, when an angle is under this, degrees.
+    pub require_min_angle: Option<Positive>,
 }
 
 /// A length unit.
@@ -276,6 +301,11 @@ impl JobFile {
     }
 
     fn check_values(&self) -> Result<(), PipelineError> {
+        if let Some(m) = self.job.mesh2d.as_ref().and_then(|m| m.method.as_ref()) {
+            if let Err(e) = m.get_ref().parse::<crate::mesh2d::Method>() {
+                return Err(self.error_at(m.span().start, format!("key `method`: {e}")));
+            }
+        }
         let m = &self.job.mesh;
         if let Some(g) = &m.grading {
             if self.method() != Method::Octree {

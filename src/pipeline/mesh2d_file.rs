@@ -4,7 +4,7 @@
 //! [`Quality2d`] over all faces and per face, each method's own figures).
 
 use super::PipelineError;
-use super::planar::{FaceChoice, FailedPlanarFace, mesh_planar_faces};
+use super::planar::{FaceChoice, FailedPlanarFace, mesh_planar_faces_sized};
 use super::warning::{Place, Warning, WarningKind};
 use crate::core::FaceId;
 use crate::io::{self, Format, MeshRef, WriteOptions};
@@ -101,7 +101,7 @@ pub(crate) fn write_faces(out: &Path, s: &MixedSurface, title: &str) -> Result<(
 }
 
 /// One face's report entry.
-pub(crate) fn face_report(face: FaceId, step_id: Option<crate::cad::brep::EntityRef>, segments: usize, mesh: &PlanarMesh, stats: &serde_json::Value, size: f64, seconds: f64) -> FaceReport {
+pub(crate) fn face_report(face: FaceId, step_id: Option<crate::cad::brep::EntityRef>, segments: usize, mesh: &PlanarMesh, stats: &serde_json::Value, size: &dyn Fn(glam::DVec2) -> f64, seconds: f64) -> FaceReport {
     FaceReport {
         face,
         step_id,
@@ -109,7 +109,7 @@ pub(crate) fn face_report(face: FaceId, step_id: Option<crate::cad::brep::Entity
         vertices: mesh.vertices.len(),
         triangles: mesh.triangles.len(),
         quads: mesh.quads.len(),
-        quality: measure(mesh, &|_| size),
+        quality: measure(mesh, size),
         stats: stats.clone(),
         seconds,
     }
@@ -185,23 +185,32 @@ pub(crate) fn check_min_angle(input: &Path, required: Option<f64>, quality: &Qua
 /// is read); an unreadable file, a face asked for that cannot be meshed, an angle under the
 /// one required (nothing written), a failed write.
 pub fn mesh2d_file(cad: &Path, request: &Mesh2dRequest, output: Option<&Path>) -> Result<Mesh2dReport, PipelineError> {
-    if let Some(out) = output {
+    mesh2d_step(cad, request, None, output.as_slice())
+}
+
+/// [`mesh2d_file`] with a size field (a job's density) and any number of outputs.
+pub(crate) fn mesh2d_step(cad: &Path, request: &Mesh2dRequest, field: Option<&dyn crate::core::SizeField>, outputs: &[&Path]) -> Result<Mesh2dReport, PipelineError> {
+    for out in outputs {
         check_output(out)?;
     }
     let options = &request.options;
     let t0 = Instant::now();
-    let r = mesh_planar_faces(cad, &request.faces, request.size, options)?;
+    let r = mesh_planar_faces_sized(cad, &request.faces, request.size, field, options)?;
     let surface = r.surface();
     let per_face: Vec<FaceReport> = r
         .meshed
         .iter()
-        .map(|m| face_report(m.planar.face, Some(r.model.face(m.planar.face).source), m.planar.domain.segments.len(), &m.meshed.mesh, &m.meshed.stats, r.size, m.seconds))
+        .map(|m| {
+            let frame = m.planar.frame;
+            let h = |p: glam::DVec2| field.map_or(r.size, |f| f.size_at(frame.lift(p)));
+            face_report(m.planar.face, Some(r.model.face(m.planar.face).source), m.planar.domain.segments.len(), &m.meshed.mesh, &m.meshed.stats, &h, m.seconds)
+        })
         .collect();
     let all = concatenate(r.meshed.iter().map(|m| &m.meshed.mesh));
-    let quality = measure(&all, &|_| r.size);
+    let quality = overall(&per_face, &all, r.size, field.is_some());
     check_min_angle(cad, request.require_min_angle, &quality, &per_face)?;
     let t_write = Instant::now();
-    if let Some(out) = output {
+    for out in outputs {
         write_faces(out, &surface, &format!("{}: planar faces meshed by fepre mesh2d --method {}", cad.display(), options.method))?;
     }
     let write = t_write.elapsed().as_secs_f64();
@@ -212,7 +221,7 @@ pub fn mesh2d_file(cad: &Path, request: &Mesh2dRequest, output: Option<&Path>) -
     }
     Ok(Mesh2dReport {
         input: cad.display().to_string(),
-        output: output.map(|o| o.display().to_string()),
+        output: outputs.first().map(|o| o.display().to_string()),
         method: options.method,
         all_quads: options.quads,
         size: r.size,
@@ -229,4 +238,19 @@ pub fn mesh2d_file(cad: &Path, request: &Mesh2dRequest, output: Option<&Path>) -
         warnings,
         total_seconds: t0.elapsed().as_secs_f64(),
     })
+}
+
+/// The figures over every face: measured on all faces' meshes at the uniform size, or, with a
+/// size field, the size ratios' quantiles taken as the faces' (the median of their medians).
+fn overall(faces: &[FaceReport], all: &PlanarMesh, size: f64, field: bool) -> Quality2d {
+    let mut q = measure(all, &|_| size);
+    if field && !faces.is_empty() {
+        let pick = |k: usize| {
+            let mut v: Vec<f64> = faces.iter().map(|f| f.quality.size_ratio[k]).filter(|x| x.is_finite()).collect();
+            v.sort_by(f64::total_cmp);
+            v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+        };
+        q.size_ratio = [pick(0), pick(1), pick(2)];
+    }
+    q
 }

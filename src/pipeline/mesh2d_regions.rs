@@ -32,7 +32,12 @@ fn size_of_area(a: f64) -> f64 {
 /// region the method cannot mesh (naming it); an angle under the one required (nothing
 /// written); a failed write.
 pub fn mesh2d_poly(poly: &Path, request: &Mesh2dRequest, output: Option<&Path>) -> Result<Mesh2dReport, PipelineError> {
-    if let Some(out) = output {
+    mesh2d_poly_to(poly, request, output.as_slice())
+}
+
+/// [`mesh2d_poly`] with any number of outputs.
+pub(crate) fn mesh2d_poly_to(poly: &Path, request: &Mesh2dRequest, outputs: &[&Path]) -> Result<Mesh2dReport, PipelineError> {
+    for out in outputs {
         super::mesh2d_file::check_output(out)?;
     }
     let t0 = Instant::now();
@@ -60,7 +65,7 @@ pub fn mesh2d_poly(poly: &Path, request: &Mesh2dRequest, output: Option<&Path>) 
             ..request.options.clone()
         };
         let m = mesh_domain(&r.domain, &|_| size, &options).map_err(|e| PipelineError::Region2d { path: poly.to_path_buf(), region: r.tag.0, source: e })?;
-        per_face.push(face_report(FaceId(r.tag.0), None, r.domain.segments.len(), &m.mesh, &m.stats, size, t.elapsed().as_secs_f64()));
+        per_face.push(face_report(FaceId(r.tag.0), None, r.domain.segments.len(), &m.mesh, &m.stats, &|_| size, t.elapsed().as_secs_f64()));
         meshes.push(m.mesh);
     }
     // one mesh: regions side by side, the points they share merged (the same coordinates)
@@ -70,13 +75,13 @@ pub fn mesh2d_poly(poly: &Path, request: &Mesh2dRequest, output: Option<&Path>) 
     check_min_angle(poly, request.require_min_angle, &quality, &per_face)?;
     let t2 = Instant::now();
     let surface = MixedSurface::from_planar(&merged);
-    if let Some(out) = output {
+    for out in outputs {
         write_faces(out, &surface, &format!("{}: regions meshed by fepre mesh2d --method {}", poly.display(), request.options.method))?;
     }
     let write = t2.elapsed().as_secs_f64();
     Ok(Mesh2dReport {
         input: poly.display().to_string(),
-        output: output.map(|o| o.display().to_string()),
+        output: outputs.first().map(|o| o.display().to_string()),
         method: request.options.method,
         all_quads: request.options.quads,
         size,

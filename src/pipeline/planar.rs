@@ -16,7 +16,7 @@ use super::part::tessellate_file;
 use super::{PipelineError, PlanarProblem};
 use crate::cad::brep::{EntityRef, Model};
 use crate::cad::geom::Surface;
-use crate::core::{FaceId, RegionId};
+use crate::core::{FaceId, RegionId, SizeField};
 use crate::mesh::{MixedSurface, TriSurface};
 use crate::mesh2d::face::{planar_face, PlanarFace};
 use crate::mesh2d::{mesh_domain, Boundary, Mesh2dOptions, Meshed2d, Method as Method2d};
@@ -86,6 +86,16 @@ pub struct PlanarFaces {
 /// # Errors
 /// The file cannot be read; a face asked for is missing, not planar or cannot be meshed.
 pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, options: &Mesh2dOptions) -> Result<PlanarFaces, PipelineError> {
+    mesh_planar_faces_sized(path, choice, size, None, options)
+}
+
+/// [`mesh_planar_faces`] with the size of a size field (a job's density) where `field` is
+/// given: each face's size at a point is the field's at the point lifted onto the plane;
+/// `size` (or the default) is the size reported and the field's floor of nothing.
+///
+/// # Errors
+/// As [`mesh_planar_faces`].
+pub fn mesh_planar_faces_sized(path: &Path, choice: &FaceChoice, size: Option<f64>, field: Option<&dyn SizeField>, options: &Mesh2dOptions) -> Result<PlanarFaces, PipelineError> {
     let t0 = Instant::now();
     let (model, certified, _) = tessellate_file(path, &TessellateOptions::default(), None, &CertifyOptions::default())?;
     let t1 = Instant::now();
@@ -137,10 +147,12 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
             // neighbouring faces share its points; the quadtree cuts its own boundary by its
             // leaves (its band needs that for its angles), which neighbours do not share
             let quadtree = options.method == Method2d::Quadtree;
-            let planar = if quadtree { planar } else { divide_edges(&planar, size, &mut points, &mut pieces).map_err(|e| format!("{f}: {e}"))? };
+            let h3 = |p: DVec3| field.map_or(size, |fd| fd.size_at(p));
+            let planar = if quadtree { planar } else { divide_edges(&planar, &h3, &mut points, &mut pieces).map_err(|e| format!("{f}: {e}"))? };
             let boundary = if quadtree { Boundary::Split } else { Boundary::Keep };
             let o = Mesh2dOptions { region: RegionId(f.0), boundary, ..options.clone() };
-            let meshed = mesh_domain(&planar.domain, &|_| size, &o).map_err(|e| format!("{f}: {e}"))?;
+            let frame = planar.frame;
+            let meshed = mesh_domain(&planar.domain, &|p| h3(frame.lift(p)), &o).map_err(|e| format!("{f}: {e}"))?;
             Ok(MeshedFace { planar, meshed, seconds: t.elapsed().as_secs_f64() })
         });
         match result {
@@ -156,11 +168,11 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
     Ok(PlanarFaces { model, tessellation: tess.surface, points, size, planar_faces, meshed, failed, seconds: [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()] })
 }
 
-/// `planar` with each boundary segment divided into pieces of about `size`, the dividing
+/// `planar` with each boundary segment divided into pieces of about `size` at its middle, the dividing
 /// points made in 3D between the segment's two surface vertices (so the face on the other
 /// side of the edge gets the same points: `pieces` keeps them by edge) and appended to
 /// `points`.
-fn divide_edges(planar: &PlanarFace, size: f64, points: &mut Vec<DVec3>, pieces: &mut BTreeMap<(u32, u32), Vec<u32>>) -> Result<PlanarFace, crate::mesh2d::DomainError> {
+fn divide_edges(planar: &PlanarFace, size: &dyn Fn(DVec3) -> f64, points: &mut Vec<DVec3>, pieces: &mut BTreeMap<(u32, u32), Vec<u32>>) -> Result<PlanarFace, crate::mesh2d::DomainError> {
     let d = &planar.domain;
     let mut out_points = d.points.clone();
     let mut surface_vertex = planar.surface_vertex.clone();
@@ -171,7 +183,8 @@ fn divide_edges(planar: &PlanarFace, size: f64, points: &mut Vec<DVec3>, pieces:
         let key = (sa.min(sb), sa.max(sb));
         let inner = pieces.entry(key).or_insert_with(|| {
             let (p0, p1) = (points[key.0 as usize], points[key.1 as usize]);
-            let n = ((p0.distance(p1) / size).round() as usize).max(1);
+            let h = size(0.5 * (p0 + p1));
+            let n = if h.is_finite() && h > 0.0 { ((p0.distance(p1) / h).round() as usize).max(1) } else { 1 };
             (1..n)
                 .map(|k| {
                     points.push(p0.lerp(p1, k as f64 / n as f64));
