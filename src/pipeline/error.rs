@@ -134,6 +134,14 @@ pub enum PipelineError {
     /// the line, vertex, segment or seed).
     #[error(transparent)]
     Poly(#[from] crate::io::PolyError),
+    /// A `.poly` file whose segments, holes or regions do not make valid regions.
+    #[error("{}: {source}", path.display())]
+    PolyRegions {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, naming the vertex, segment or seed.
+        source: crate::io::PolyError,
+    },
     /// A region of a `.poly` file the 2D method could not mesh.
     #[error("{}: region {region}: {source}", path.display())]
     Region2d {

@@ -42,7 +42,7 @@ pub(crate) fn mesh2d_poly_to(poly: &Path, request: &Mesh2dRequest, outputs: &[&P
     }
     let t0 = Instant::now();
     let file = read_poly(poly)?;
-    let regions = file.to_regions()?;
+    let regions = file.to_regions().map_err(|source| PipelineError::PolyRegions { path: poly.to_path_buf(), source })?;
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
     for p in &file.points {
         lo = lo.min(*p);
