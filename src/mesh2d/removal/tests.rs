@@ -146,3 +146,50 @@ fn refusals_are_named() {
     let bad = Domain { points: vec![d(0.0, 0.0), d(1.0, 0.0)], segments: vec![[0, 1], [1, 0]], tags: vec![0, 0] };
     assert!(matches!(mesh(&bad, &|_| 0.1, &Options::default()), Err(Error::Domain(_))));
 }
+
+/// A small deterministic generator for the random regions.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn random_star_regions_with_holes() {
+    let mut r = Lcg(7);
+    let mut meshed = 0;
+    for t in 0..24 {
+        let n = 5 + (r.next() * 40.0) as usize;
+        let outer: Vec<DVec2> = (0..n).map(|k| (0.5 + r.next()) * DVec2::from_angle(TAU * k as f64 / n as f64)).collect();
+        let mut loops = vec![outer];
+        if t % 2 == 0 {
+            let m = 3 + (r.next() * 10.0) as usize;
+            loops.push((0..m).map(|k| 0.2 * DVec2::from_angle(TAU * k as f64 / m as f64 + r.next())).collect());
+        }
+        let Ok(dom) = Domain::from_loops(&loops, None) else { continue };
+        let h = 0.03 + 0.1 * r.next();
+        // every third region keeps its coarse boundary (points final, not divided)
+        let dom = if t % 3 == 0 { dom } else { split_boundary(&dom, &|_| h).unwrap().domain };
+        let out = mesh(&dom, &|_| h, &Options::default()).unwrap();
+        assert_eq!(check_cover(&out.mesh, &dom), Ok(()), "region {t}");
+        meshed += 1;
+    }
+    assert!(meshed >= 20, "{meshed}");
+}
+
+#[test]
+fn a_hole_near_the_outer_loop_and_a_pinch() {
+    let hole = polygon(d(2.0, 0.52), 0.5, 20, 0.0);
+    let dom = Domain::from_loops(&[rectangle(4.0, 3.0), hole], None).unwrap();
+    let (_, q) = accept(&dom, &|_| 0.1, &Options::default());
+    sized(&q);
+    // a hole touching the outer loop at point 0 (two segments in and two out there)
+    let pts = vec![d(0.0, 0.0), d(4.0, 0.0), d(4.0, 4.0), d(0.0, 4.0), d(2.0, 1.0), d(1.0, 2.0)];
+    let segs = vec![[0, 1], [1, 2], [2, 3], [3, 0], [0, 5], [5, 4], [4, 0]];
+    let pinch = Domain::new(pts, segs, vec![1; 7]).unwrap();
+    let (_, q) = accept(&pinch, &|_| 0.2, &Options::default());
+    sized(&q);
+}
