@@ -124,11 +124,12 @@ macro_rules! method_tests {
 
 method_tests! {
     quadtree_on_regions, quadtree_on_corpus_faces, "quadtree";
+    removal_on_regions, removal_on_corpus_faces, "removal";
 }
 
 #[test]
 fn every_method_is_tested_here() {
-    let tested = ["quadtree"];
+    let tested = ["quadtree", "removal"];
     for m in Method::ALL {
         assert!(tested.contains(&m.name()), "{} has no tests in this file", m.name());
     }

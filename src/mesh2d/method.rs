@@ -24,17 +24,20 @@ use std::str::FromStr;
 #[serde(rename_all = "lowercase")]
 #[non_exhaustive]
 pub enum Method {
+    /// Geometry decomposition by iterative removal of elements (Sadek).
+    Removal,
     /// Yerry and Shephard's modified quadtree.
     Quadtree,
 }
 
 impl Method {
     /// Every method, in the order `--help` lists them.
-    pub const ALL: &'static [Method] = &[Method::Quadtree];
+    pub const ALL: &'static [Method] = &[Method::Removal, Method::Quadtree];
 
     /// The name the CLI and job files use.
     pub fn name(self) -> &'static str {
         match self {
+            Method::Removal => "removal",
             Method::Quadtree => "quadtree",
         }
     }
@@ -119,6 +122,9 @@ pub enum Mesh2dError {
     /// The quadtree failed.
     #[error("quadtree: {0}")]
     Quadtree(#[from] QuadtreeError),
+    /// Element removal failed.
+    #[error("removal: {0}")]
+    Removal(#[from] super::removal::Error),
 }
 
 /// A meshed domain.
@@ -131,6 +137,19 @@ pub struct Meshed2d {
     pub midpoints: Vec<(u32, [u32; 2])>,
     /// The method's own figures, as JSON.
     pub stats: serde_json::Value,
+}
+
+/// The method's figures as JSON (a serialisation that cannot fail: plain numbers and lists).
+fn json<T: serde::Serialize>(stats: &T) -> serde_json::Value {
+    serde_json::to_value(stats).unwrap_or(serde_json::Value::Null)
+}
+
+/// Refuses `--min-angle` and `--max-area` for a method that sizes by the size field only.
+fn no_angle_or_area(options: &Mesh2dOptions) -> Result<(), Mesh2dError> {
+    if options.min_angle.is_some() || options.max_area.is_some() {
+        return Err(Mesh2dError::Option { method: options.method, what: "--min-angle or --max-area (it sizes by the size field only)".into() });
+    }
+    Ok(())
 }
 
 /// Meshes `domain` by `options.method` at the size `size` (see the module docs).
@@ -148,18 +167,21 @@ pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2
         }
         _ => domain,
     };
-    let unsupported = |what: &str| Mesh2dError::Option { method: options.method, what: what.to_string() };
     match options.method {
         Method::Quadtree => {
-            if options.min_angle.is_some() || options.max_area.is_some() {
-                return Err(unsupported("--min-angle or --max-area (it sizes by the size field only)"));
-            }
+            no_angle_or_area(options)?;
             let mut o = QuadtreeOptions { quads: options.quads, region: options.region, ..QuadtreeOptions::default() };
             o.band.keep_boundary = options.boundary == Boundary::Keep;
             let m = quadtree::mesh(domain, size, &o)?;
             let angles = quadtree::angles(&m, domain);
             let stats = serde_json::json!({ "tree": m.stats, "inside_triangles": m.inside_triangles, "angles": angles });
             Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats })
+        }
+        Method::Removal => {
+            no_angle_or_area(options)?;
+            let o = super::removal::Options { region: options.region, ..Default::default() };
+            let m = super::removal::mesh(domain, size, &o)?;
+            Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
         }
     }
 }
