@@ -5,7 +5,10 @@ CGAL Mesh_2 and gmsh on the same .poly regions; prints a markdown table.
 Usage (Python with triangle, numpy and meshio: tools/install_refs_2d.sh VENV makes one):
   VENV/bin/python tools/bench_mesh2d_anchors.py [--fepre target/release/fepre]
       [--cgal tools/cgal_mesh2/cgal_mesh2] [--gmsh gmsh] [--regions cad_fixtures/regions]
-      [--triangles 20000] [--only large,convex] [--million] [--json-out results.json]
+      [--triangles 20000] [--only large,convex] [--methods delaunay,front] [--no-quads]
+      [--million] [--json-out results.json]
+  --million: the region 'large' at about a million triangles, fepre's delaunay only, no quads
+  (the speed acceptance: fepre's whole run against Triangle's triangulate call).
 
 For each region (every .poly in --regions, or --only), with the maximum area
 A = 0.6 * region area / --triangles (--million: the region 'large' at a million triangles):
@@ -264,11 +267,15 @@ def main():
     ap.add_argument("--only", default="")
     ap.add_argument("--million", action="store_true", help="only the region 'large', at about a million triangles")
     ap.add_argument("--no-quads", action="store_true")
+    ap.add_argument("--methods", default=",".join(METHODS), help="fepre's methods to run (default: all six)")
     ap.add_argument("--json-out")
     a = ap.parse_args()
     names = sorted(f[:-5] for f in os.listdir(a.regions) if f.endswith(".poly"))
     if a.million:
-        names, a.triangles = ["large"], 1e6
+        names, a.triangles, a.no_quads = ["large"], 1e6, True
+        if a.methods == ",".join(METHODS):
+            a.methods = "delaunay"
+    methods = [m for m in a.methods.split(",") if m]
     if a.only:
         names = [n for n in names if n in a.only.split(",")]
     results = []
@@ -280,7 +287,7 @@ def main():
             pts, segs, _ = read_poly(path)
             A = float(f"{0.6 * region_area(pts, segs) / a.triangles:.3g}")
             rows = [("Triangle -q33", run_triangle(path, A))]
-            for m in METHODS:
+            for m in methods:
                 rows.append((f"fepre {m} -q33", run_fepre(a.fepre, path, m, A, 33, False)))
             built = os.path.exists(a.cgal)
             rows.append(("CGAL Mesh_2 30° area", run_cgal(a.cgal, path, A) if built else dict(error="not built (make -C tools/cgal_mesh2)")))
@@ -300,7 +307,7 @@ def main():
                 except (OSError, ValueError) as e:
                     rows.append((label, dict(error=str(e)[:160])))
             if not a.no_quads:
-                for m in METHODS:
+                for m in methods:
                     rows.append((f"fepre {m} --quads", run_fepre(a.fepre, path, m, A, 33, True)))
             ref = rows[0][1]
             for tool, r in rows:
