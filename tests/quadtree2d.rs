@@ -5,14 +5,17 @@
 
 mod common;
 
+use fepre::core::RegionId;
 use fepre::mesh2d::quadtree::{self, check_balance, check_conforming, QuadtreeOptions};
+use fepre::mesh2d::{Mesh2dOptions, Method};
 use fepre::pipeline::{mesh_planar_faces, FaceChoice};
 
 /// Meshes every planar face of `name` and asserts the acceptance on each; returns the
 /// number of faces meshed and the smallest band angle.
 fn accept(name: &str, size: Option<f64>) -> Option<(usize, f64)> {
     let path = common::corpus_file(name)?;
-    let r = mesh_planar_faces(&path, &FaceChoice::AllPlanar, size, &QuadtreeOptions::default()).unwrap();
+    let options = Mesh2dOptions { method: Method::Quadtree, ..Mesh2dOptions::default() };
+    let r = mesh_planar_faces(&path, &FaceChoice::AllPlanar, size, &options).unwrap();
     assert!(r.failed.is_empty(), "{name}: {:?}", r.failed);
     assert_eq!(r.meshed.len(), r.planar_faces, "{name}");
     let mut band_min = f64::INFINITY;
@@ -21,20 +24,26 @@ fn accept(name: &str, size: Option<f64>) -> Option<(usize, f64)> {
         let dom = &m.planar.domain;
         let tree = quadtree::build_tree(dom, &|_| r.size, QuadtreeOptions::default().tree).unwrap();
         check_balance(&tree).unwrap_or_else(|e| panic!("{name} face {face}: {e}"));
-        assert!(m.mesh.stats.balanced);
-        check_conforming(&m.mesh, dom).unwrap_or_else(|e| panic!("{name} face {face}: {e}"));
-        if m.mesh.inside_triangles > 0 {
-            assert!(m.angles.inside[0] >= 45.0 - 1e-9, "{name} face {face}: inside angle {}", m.angles.inside[0]);
+        // the pipeline's mesh is the quadtree's on the face's domain
+        let qo = QuadtreeOptions { region: RegionId(face), ..QuadtreeOptions::default() };
+        let q = quadtree::mesh(dom, &|_| r.size, &qo).unwrap();
+        assert_eq!(q.mesh, m.meshed.mesh, "{name} face {face}");
+        assert!(q.stats.balanced);
+        assert_eq!(m.meshed.stats["tree"]["balanced"], true);
+        check_conforming(&q, dom).unwrap_or_else(|e| panic!("{name} face {face}: {e}"));
+        let angles = quadtree::angles(&q, dom);
+        if q.inside_triangles > 0 {
+            assert!(angles.inside[0] >= 45.0 - 1e-9, "{name} face {face}: inside angle {}", angles.inside[0]);
         }
-        let rel = (m.mesh.mesh.area() - dom.area()).abs() / dom.area();
+        let rel = (q.mesh.area() - dom.area()).abs() / dom.area();
         assert!(rel < 1e-9, "{name} face {face}: area off by {rel:e}");
         // every CAD edge point of the face's boundary is a mesh vertex, in place
-        for (s, chain) in m.mesh.boundary.iter().enumerate() {
+        for (s, chain) in q.boundary.iter().enumerate() {
             let (a, b) = dom.ends(s);
-            assert_eq!(m.mesh.mesh.vertices[chain[0] as usize], a);
-            assert_eq!(m.mesh.mesh.vertices[*chain.last().unwrap() as usize], b);
+            assert_eq!(q.mesh.vertices[chain[0] as usize], a);
+            assert_eq!(q.mesh.vertices[*chain.last().unwrap() as usize], b);
         }
-        band_min = band_min.min(m.angles.band[0]);
+        band_min = band_min.min(angles.band[0]);
     }
     // the lifted surface is valid and tagged with the faces
     let s = r.surface();
@@ -70,12 +79,13 @@ fn cli_mesh2d_writes_and_reports() {
     let dir = std::env::temp_dir().join(format!("fepre-mesh2d-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("cube.msh");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fepre")).args(["mesh2d", path.to_str().unwrap(), "--face", "1", "--size", "2", "--json", "-o", out.to_str().unwrap()]).output().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_fepre")).args(["mesh2d", path.to_str().unwrap(), "--method", "quadtree", "--face", "1", "--size", "2", "--json", "-o", out.to_str().unwrap()]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["meshed"], 1);
-    assert_eq!(v["balanced"], true);
-    assert!(v["inside_angles"][0].as_f64().unwrap() >= 45.0 - 1e-9);
+    assert_eq!(v["method"], "quadtree");
+    assert_eq!(v["per_face"][0]["stats"]["tree"]["balanced"], true);
+    assert!(v["per_face"][0]["stats"]["angles"]["inside"][0].as_f64().unwrap() >= 45.0 - 1e-9);
     assert!(out.is_file());
     // a face that is not there is an error naming it; a bad extension is bad usage
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_fepre")).args(["mesh2d", path.to_str().unwrap(), "--face", "99"]).output().unwrap();

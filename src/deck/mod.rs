@@ -4,11 +4,13 @@
 //! `crate::io::atomic` and refuses, before writing a byte, what its format cannot hold.
 
 pub(crate) mod inp;
+pub(crate) mod inp_faces;
 pub(crate) mod msh;
 pub(crate) mod nastran;
 pub(crate) mod vtu;
 
 pub use inp::{deck_text, num as inp_number, write_inp};
+pub use inp_faces::{inp_faces_text, write_inp_faces};
 pub use msh::write_msh;
 pub use nastran::{NastranOptions, NastranSummary, write_nastran};
 pub use vtu::write_vtu;

@@ -20,7 +20,7 @@ use crate::io::atomic::{write_atomic, write_err};
 use crate::io::common::{Num, orient_tets, unused_vertices_note, write_int_line, write_lines};
 use crate::io::text::Tokens;
 use crate::io::{Format, IoError, Loaded, Location, MeshData};
-use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh::{MixedSurface, TetMesh, TriSurface};
 use glam::DVec3;
 use std::io::Write;
 use std::path::Path;
@@ -218,7 +218,16 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
 /// # Errors
 /// [`IoError::Write`].
 pub fn write_surface(path: &Path, s: &TriSurface) -> Result<(), IoError> {
-    write_mesh(path, &s.vertices, &s.triangles, &s.face_tags, &[], &[])
+    write_mesh(path, &s.vertices, (&s.triangles, &s.face_tags), (&[], &[]), &[], &[])
+}
+
+/// Writes a surface of triangles and quads: vertices, `Triangles` and `Quadrilaterals` with
+/// their tags as references.
+///
+/// # Errors
+/// [`IoError::Write`].
+pub fn write_mixed(path: &Path, s: &MixedSurface) -> Result<(), IoError> {
+    write_mesh(path, &s.vertices, (&s.triangles, &s.triangle_tags), (&s.quads, &s.quad_tags), &[], &[])
 }
 
 /// Writes a tet mesh: vertices, the boundary triangles with their face tags as references and
@@ -227,14 +236,14 @@ pub fn write_surface(path: &Path, s: &TriSurface) -> Result<(), IoError> {
 /// # Errors
 /// [`IoError::Write`].
 pub fn write_volume(path: &Path, m: &TetMesh) -> Result<(), IoError> {
-    write_mesh(path, &m.vertices, &m.boundary, &m.face_tags, &m.tets, &m.region_tags)
+    write_mesh(path, &m.vertices, (&m.boundary, &m.face_tags), (&[], &[]), &m.tets, &m.region_tags)
 }
 
 fn write_mesh(
     path: &Path,
     vertices: &[DVec3],
-    tris: &[[u32; 3]],
-    tri_tags: &[FaceId],
+    (tris, tri_tags): (&[[u32; 3]], &[FaceId]),
+    (quads, quad_tags): (&[[u32; 4]], &[FaceId]),
     tets: &[[u32; 4]],
     tet_tags: &[RegionId],
 ) -> Result<(), IoError> {
@@ -246,6 +255,11 @@ fn write_mesh(
             writeln!(w, "\nTriangles\n{}", tris.len()).map_err(&e)?;
             let tri_tags = |i: usize| tri_tags.get(i).map_or(0, |t| t.0 as u64);
             write_lines(w, tris, |b, i, t| write_int_line(b, &[t[0] as u64 + 1, t[1] as u64 + 1, t[2] as u64 + 1, tri_tags(i)])).map_err(&e)?;
+        }
+        if !quads.is_empty() {
+            writeln!(w, "\nQuadrilaterals\n{}", quads.len()).map_err(&e)?;
+            let quad_tags = |i: usize| quad_tags.get(i).map_or(0, |t| t.0 as u64);
+            write_lines(w, quads, |b, i, q| write_int_line(b, &[q[0] as u64 + 1, q[1] as u64 + 1, q[2] as u64 + 1, q[3] as u64 + 1, quad_tags(i)])).map_err(&e)?;
         }
         if !tets.is_empty() {
             writeln!(w, "\nTetrahedra\n{}", tets.len()).map_err(&e)?;

@@ -55,7 +55,7 @@ pub use error::{IoError, Location};
 pub use poly::{PolyError, PolyFile, PolyRegion, RegionSeed, read as read_poly, write as write_poly};
 
 use crate::core::{RegionId, Tolerance};
-use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh::{MixedSurface, TetMesh, TriSurface};
 use glam::DVec3;
 use std::path::Path;
 
@@ -169,6 +169,8 @@ pub enum MeshRef<'a> {
     Volume(&'a TetMesh),
     /// A point set.
     Points(&'a [DVec3]),
+    /// A surface of triangles and quads.
+    Mixed(&'a MixedSurface),
 }
 
 impl MeshRef<'_> {
@@ -178,6 +180,7 @@ impl MeshRef<'_> {
             MeshRef::Surface(_) => "surface",
             MeshRef::Volume(_) => "tetrahedral mesh",
             MeshRef::Points(_) => "point set",
+            MeshRef::Mixed(_) => "surface of triangles and quads",
         }
     }
 }
@@ -370,6 +373,10 @@ pub fn write_ref(path: &Path, mesh: MeshRef<'_>, options: &WriteOptions) -> Resu
         (Format::TetGen, MeshRef::Points(p)) => tetgen::write_points(path, p),
         (Format::Msh, MeshRef::Surface(s)) => msh::write_surface(path, s),
         (Format::Msh, MeshRef::Volume(m)) => msh::write_volume(path, m),
+        (Format::Msh, MeshRef::Mixed(s)) => msh::write_mixed(path, s),
+        (Format::Vtu, MeshRef::Mixed(s)) => vtu::write_mixed(path, s, options),
+        (Format::Medit, MeshRef::Mixed(s)) => medit::write_mixed(path, s),
+        (Format::Stl | Format::Obj | Format::Off, MeshRef::Mixed(s)) => write_ref(path, MeshRef::Surface(&s.to_triangles()), options),
         (Format::Vtu, MeshRef::Surface(s)) => vtu::write_surface(path, s, options),
         (Format::Vtu, MeshRef::Volume(m)) => vtu::write_volume(path, m, options),
         (Format::Stl | Format::Obj | Format::Off, MeshRef::Volume(_)) => {

@@ -24,7 +24,7 @@ mod read;
 pub(crate) mod write;
 
 use crate::io::{IoError, Loaded};
-use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh::{MixedSurface, TetMesh, TriSurface};
 use std::path::Path;
 
 /// Reads an MSH file's bytes (4.1 ASCII or binary, 2.2 ASCII).
@@ -42,6 +42,15 @@ pub fn read(path: &Path, bytes: &[u8]) -> Result<Loaded, IoError> {
 /// [`IoError::Write`].
 pub fn write_surface(path: &Path, s: &TriSurface) -> Result<(), IoError> {
     write::write(path, &write::Layout::surface(s))
+}
+
+/// Writes a surface of triangles and quads as ASCII MSH 4.1: an entity and physical group per
+/// tag, with a block of triangles (type 2) and one of quads (type 3).
+///
+/// # Errors
+/// [`IoError::Write`].
+pub fn write_mixed(path: &Path, s: &MixedSurface) -> Result<(), IoError> {
+    write::write(path, &write::Layout::mixed(s))
 }
 
 /// Writes a tet mesh as ASCII MSH 4.1: a surface entity per boundary face tag and a volume

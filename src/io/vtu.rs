@@ -20,7 +20,7 @@ use crate::core::{FaceId, RegionId};
 use crate::io::atomic::{write_atomic, write_err};
 use crate::io::common::Num;
 use crate::io::{IoError, WriteOptions};
-use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh::{MixedSurface, TetMesh, TriSurface};
 use base64::Engine;
 use glam::DVec3;
 use std::fs::File;
@@ -28,6 +28,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 const VTK_TRIANGLE: u8 = 5;
+const VTK_QUAD: u8 = 9;
 const VTK_TETRA: u8 = 10;
 const VTK_QUADRATIC_TETRA: u8 = 24;
 
@@ -36,7 +37,16 @@ const VTK_QUADRATIC_TETRA: u8 = 24;
 /// # Errors
 /// [`IoError::NotRepresentable`] for a tag above `i32::MAX`, [`IoError::Write`].
 pub fn write_surface(path: &Path, s: &TriSurface, options: &WriteOptions) -> Result<(), IoError> {
-    let cells = Cells { tets: &[], tet_tags: &[], tris: &s.triangles, tri_tags: &s.face_tags, kind: false };
+    let cells = Cells { tets: &[], tet_tags: &[], tris: &s.triangles, tri_tags: &s.face_tags, quads: &[], quad_tags: &[], kind: false };
+    write_grid(path, &s.vertices, &cells, options)
+}
+
+/// Writes a surface of triangles and quads (VTK types 5 and 9), with a `tag` cell array.
+///
+/// # Errors
+/// [`IoError::NotRepresentable`] for a tag above `i32::MAX`, [`IoError::Write`].
+pub fn write_mixed(path: &Path, s: &MixedSurface, options: &WriteOptions) -> Result<(), IoError> {
+    let cells = Cells { tets: &[], tet_tags: &[], tris: &s.triangles, tri_tags: &s.triangle_tags, quads: &s.quads, quad_tags: &s.quad_tags, kind: false };
     write_grid(path, &s.vertices, &cells, options)
 }
 
@@ -45,7 +55,7 @@ pub fn write_surface(path: &Path, s: &TriSurface, options: &WriteOptions) -> Res
 /// # Errors
 /// [`IoError::NotRepresentable`] for a tag above `i32::MAX`, [`IoError::Write`].
 pub fn write_volume(path: &Path, m: &TetMesh, options: &WriteOptions) -> Result<(), IoError> {
-    let cells = Cells { tets: &m.tets, tet_tags: &m.region_tags, tris: &m.boundary, tri_tags: &m.face_tags, kind: true };
+    let cells = Cells { tets: &m.tets, tet_tags: &m.region_tags, tris: &m.boundary, tri_tags: &m.face_tags, quads: &[], quad_tags: &[], kind: true };
     write_grid(path, &m.vertices, &cells, options)
 }
 
@@ -230,6 +240,8 @@ struct Cells<'a> {
     tet_tags: &'a [RegionId],
     tris: &'a [[u32; 3]],
     tri_tags: &'a [FaceId],
+    quads: &'a [[u32; 4]],
+    quad_tags: &'a [FaceId],
     /// Write `cell_kind`.
     kind: bool,
 }
@@ -318,7 +330,7 @@ fn tag_i32(path: &Path, t: u32) -> Result<i32, IoError> {
 }
 
 fn write_grid(path: &Path, vertices: &[DVec3], c: &Cells, options: &WriteOptions) -> Result<(), IoError> {
-    let ncells = c.tets.len() + c.tris.len();
+    let ncells = c.tets.len() + c.tris.len() + c.quads.len();
     let mut conn = Vec::with_capacity(4 * c.tets.len() + 3 * c.tris.len());
     let mut offsets = Vec::with_capacity(ncells);
     let mut types = Vec::with_capacity(ncells);
@@ -333,6 +345,12 @@ fn write_grid(path: &Path, vertices: &[DVec3], c: &Cells, options: &WriteOptions
         conn.extend(t.iter().map(|&v| v as i64));
         offsets.push(conn.len() as i64);
         types.push(VTK_TRIANGLE);
+        tags.push(tag_i32(path, f.0)?);
+    }
+    for (q, f) in c.quads.iter().zip(c.quad_tags) {
+        conn.extend(q.iter().map(|&v| v as i64));
+        offsets.push(conn.len() as i64);
+        types.push(VTK_QUAD);
         tags.push(tag_i32(path, f.0)?);
     }
     let kind: Vec<u8> = types.iter().map(|&t| if t == VTK_TETRA { 3 } else { 2 }).collect();

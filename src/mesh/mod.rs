@@ -7,6 +7,7 @@
 pub(crate) mod caps;
 pub(crate) mod narrow;
 pub(crate) mod error;
+pub(crate) mod mixed_surface;
 pub(crate) mod planar_mesh;
 pub mod shapes;
 pub(crate) mod tet_mesh;
@@ -15,6 +16,7 @@ pub(crate) mod tri_surface;
 pub(crate) mod weld;
 
 pub use error::{Element, MeshError};
+pub use mixed_surface::MixedSurface;
 pub use planar_mesh::PlanarMesh;
 pub use tet_mesh::TetMesh;
 pub use tri_surface::TriSurface;

@@ -4,7 +4,8 @@
 //!
 //! - [`Domain`]: the input, checked exactly; [`boundary`]: its segments divided by the size
 //!   (the first stage of the methods that keep their boundary points); [`measure`]: the
-//!   quality figures every method reports;
+//!   quality figures every method reports; `method`: the method switch and [`mesh_domain`],
+//!   the one call that runs any of them;
 //! - [`quadtree`]: Yerry and Shephard's modified quadtree (2:1 balanced, templates inside,
 //!   cut quadrants at the boundary);
 //! - [`delaunay`]: constrained Delaunay triangulation and Ruppert/Chew refinement;
@@ -23,9 +24,11 @@ pub mod ear;
 pub(crate) mod face;
 pub mod front;
 pub mod measure;
+pub(crate) mod method;
 pub mod quads;
 pub mod quadtree;
 pub mod recursive;
 pub mod removal;
 
 pub use domain::{Domain, DomainError};
+pub use method::{mesh_domain, Boundary, Mesh2dError, Mesh2dOptions, Meshed2d, Method, UnknownMethod};

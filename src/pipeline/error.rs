@@ -130,6 +130,20 @@ pub enum PipelineError {
         /// What falls short, with the worst tet's place.
         message: String,
     },
+    /// A Triangle `.poly` file that cannot be read or has no valid regions (the error names
+    /// the line, vertex, segment or seed).
+    #[error(transparent)]
+    Poly(#[from] crate::io::PolyError),
+    /// A region of a `.poly` file the 2D method could not mesh.
+    #[error("{}: region {region}: {source}", path.display())]
+    Region2d {
+        /// The file.
+        path: PathBuf,
+        /// The region's tag.
+        region: u32,
+        /// Why.
+        source: crate::mesh2d::Mesh2dError,
+    },
     /// A face asked for by the 2D mesher is missing, not planar, or could not be meshed.
     #[error("{}: {problem}", path.display())]
     Planar {
@@ -261,6 +275,8 @@ pub enum Requirement {
     VolumeError,
     /// `require_max_radius_edge`: the largest radius-edge ratio.
     MaxRadiusEdge,
+    /// `--require-min-angle` of `mesh2d`: the smallest angle of a 2D mesh, in degrees.
+    MinAngle2d,
 }
 
 /// Why the 2D mesher could not take a face ([`PipelineError::Planar`]).

@@ -32,6 +32,7 @@ pub(crate) mod inspect;
 pub mod job;
 pub(crate) mod job_fe;
 pub(crate) mod mesh2d_file;
+pub(crate) mod mesh2d_regions;
 pub(crate) mod mesh_file;
 pub(crate) mod octree;
 pub(crate) mod part;
@@ -54,7 +55,8 @@ pub use error::{CCX_ENV, PipelineError, PlanarProblem, Requirement, SolverProble
 pub use fe_model::{FeSummary, SolidSummary, StepSummary};
 pub use inspect::{InspectOptions, InspectReport, TagInfo, TetKeys, inspect_file};
 pub use job::{JobFile, Method};
-pub use mesh2d_file::{FaceReport, Mesh2dReport, mesh2d_file};
+pub use mesh2d_file::{FaceReport, Mesh2dReport, Mesh2dRequest, mesh2d_file};
+pub use mesh2d_regions::mesh2d_poly;
 pub use mesh_file::{MeshFileReport, mesh_file};
 pub use part::{Certified, Part, StageSeconds, failure_message, tessellate_file, tessellate_model};
 pub use plan::{Interface, Plan};

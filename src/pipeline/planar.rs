@@ -1,10 +1,11 @@
-//! `mesh2d` on a CAD part: the quadtree mesher on the planar faces of a STEP file.
+//! `mesh2d` on a CAD part: a 2D method on the planar faces of a STEP file.
 //!
 //! Reads and tessellates the file ([`super::tessellate_file`]: the tessellation's edges on a
 //! face's boundary are the discretised CAD edges), takes the faces whose B-rep surface is a
 //! plane, makes each a domain in its plane's frame (vertices within the tessellation's chord
 //! tolerance of the plane: the file's edge curves on a plane are only that planar) (`crate::mesh2d::face`), meshes it with
-//! [`crate::mesh2d::quadtree`] at a uniform size, checks it, and lifts the meshes back to
+//! the method asked ([`crate::mesh2d::mesh_domain`]) at a uniform size, the face's boundary
+//! points kept, checks it, and lifts the meshes back to
 //! one tagged 3D surface (boundary vertices are the tessellation's own, so the faces meet
 //! where they meet in the part). A face that fails is listed with its STEP `#id`; a face
 //! asked for by number that is missing, not planar or fails is an error.
@@ -16,9 +17,9 @@ use super::{PipelineError, PlanarProblem};
 use crate::cad::brep::{EntityRef, Model};
 use crate::cad::geom::Surface;
 use crate::core::{FaceId, RegionId};
-use crate::mesh::TriSurface;
+use crate::mesh::{MixedSurface, TriSurface};
 use crate::mesh2d::face::{planar_face, PlanarFace};
-use crate::mesh2d::quadtree::{self, Angles, QuadtreeMesh, QuadtreeOptions};
+use crate::mesh2d::{mesh_domain, Boundary, Mesh2dOptions, Meshed2d, Method as Method2d};
 use crate::tessellate::certificate::CertifyOptions;
 use crate::tessellate::TessellateOptions;
 use glam::DVec3;
@@ -40,10 +41,8 @@ pub enum FaceChoice {
 pub struct MeshedFace {
     /// The face as a domain, with its frame.
     pub planar: PlanarFace,
-    /// Its mesh (region tag: the face's id).
-    pub mesh: QuadtreeMesh,
-    /// Its angles.
-    pub angles: Angles,
+    /// Its mesh (region tag: the face's id) and the method's figures.
+    pub meshed: Meshed2d,
     /// Seconds spent meshing it.
     pub seconds: f64,
 }
@@ -66,6 +65,9 @@ pub struct PlanarFaces {
     pub model: Model,
     /// Its tessellation (the faces' boundaries come from it).
     pub tessellation: TriSurface,
+    /// The faces' boundary points in 3D: the tessellation's vertices, then the points that
+    /// divide its boundary edges by the size (shared by the faces on both sides).
+    pub points: Vec<DVec3>,
     /// The size used.
     pub size: f64,
     /// How many faces of the part are planar.
@@ -83,7 +85,7 @@ pub struct PlanarFaces {
 ///
 /// # Errors
 /// The file cannot be read; a face asked for is missing, not planar or cannot be meshed.
-pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, options: &QuadtreeOptions) -> Result<PlanarFaces, PipelineError> {
+pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, options: &Mesh2dOptions) -> Result<PlanarFaces, PipelineError> {
     let t0 = Instant::now();
     let (model, certified, _) = tessellate_file(path, &TessellateOptions::default(), None, &CertifyOptions::default())?;
     let t1 = Instant::now();
@@ -120,6 +122,8 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
     let tag = |a: u32, b: u32| edge_of.get(&(a.min(b), a.max(b))).copied().unwrap_or(0);
     let mut meshed = Vec::new();
     let mut failed = Vec::new();
+    let mut points = surface.vertices.clone();
+    let mut pieces: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
     for f in faces {
         let face = model.face(f);
         let frame = match model.surface(face.surface) {
@@ -129,10 +133,15 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
         let t = Instant::now();
         let tris = by_face.get(&f).map(Vec::as_slice).unwrap_or(&[]);
         let result = planar_face(surface, f, tris, frame, tess.chord, &tag).map_err(|e| e.to_string()).and_then(|planar| {
-            let o = QuadtreeOptions { region: RegionId(f.0), ..*options };
-            let mesh = quadtree::mesh_uniform(&planar.domain, size, &o).map_err(|e| format!("{f}: {e}"))?;
-            let angles = quadtree::angles(&mesh, &planar.domain);
-            Ok(MeshedFace { planar, mesh, angles, seconds: t.elapsed().as_secs_f64() })
+            // the boundary: the tessellation's edges divided by the size in 3D, kept, so that
+            // neighbouring faces share its points; the quadtree cuts its own boundary by its
+            // leaves (its band needs that for its angles), which neighbours do not share
+            let quadtree = options.method == Method2d::Quadtree;
+            let planar = if quadtree { planar } else { divide_edges(&planar, size, &mut points, &mut pieces).map_err(|e| format!("{f}: {e}"))? };
+            let boundary = if quadtree { Boundary::Split } else { Boundary::Keep };
+            let o = Mesh2dOptions { region: RegionId(f.0), boundary, ..options.clone() };
+            let meshed = mesh_domain(&planar.domain, &|_| size, &o).map_err(|e| format!("{f}: {e}"))?;
+            Ok(MeshedFace { planar, meshed, seconds: t.elapsed().as_secs_f64() })
         });
         match result {
             Ok(m) => meshed.push(m),
@@ -144,60 +153,146 @@ pub fn mesh_planar_faces(path: &Path, choice: &FaceChoice, size: Option<f64>, op
             }
         }
     }
-    Ok(PlanarFaces { model, tessellation: tess.surface, size, planar_faces, meshed, failed, seconds: [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()] })
+    Ok(PlanarFaces { model, tessellation: tess.surface, points, size, planar_faces, meshed, failed, seconds: [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()] })
+}
+
+/// `planar` with each boundary segment divided into pieces of about `size`, the dividing
+/// points made in 3D between the segment's two surface vertices (so the face on the other
+/// side of the edge gets the same points: `pieces` keeps them by edge) and appended to
+/// `points`.
+fn divide_edges(planar: &PlanarFace, size: f64, points: &mut Vec<DVec3>, pieces: &mut BTreeMap<(u32, u32), Vec<u32>>) -> Result<PlanarFace, crate::mesh2d::DomainError> {
+    let d = &planar.domain;
+    let mut out_points = d.points.clone();
+    let mut surface_vertex = planar.surface_vertex.clone();
+    let mut segments = Vec::with_capacity(d.segments.len());
+    let mut tags = Vec::with_capacity(d.segments.len());
+    for (s, &[a, b]) in d.segments.iter().enumerate() {
+        let (sa, sb) = (planar.surface_vertex[a as usize], planar.surface_vertex[b as usize]);
+        let key = (sa.min(sb), sa.max(sb));
+        let inner = pieces.entry(key).or_insert_with(|| {
+            let (p0, p1) = (points[key.0 as usize], points[key.1 as usize]);
+            let n = ((p0.distance(p1) / size).round() as usize).max(1);
+            (1..n)
+                .map(|k| {
+                    points.push(p0.lerp(p1, k as f64 / n as f64));
+                    (points.len() - 1) as u32
+                })
+                .collect()
+        });
+        let mut chain = vec![a];
+        let mut add = |id: u32, chain: &mut Vec<u32>| {
+            out_points.push(planar.frame.project(points[id as usize]));
+            surface_vertex.push(id);
+            chain.push((out_points.len() - 1) as u32);
+        };
+        if sa < sb {
+            inner.iter().for_each(|&id| add(id, &mut chain));
+        } else {
+            inner.iter().rev().for_each(|&id| add(id, &mut chain));
+        }
+        chain.push(b);
+        for w in chain.windows(2) {
+            segments.push([w[0], w[1]]);
+            tags.push(d.tags[s]);
+        }
+    }
+    let domain = crate::mesh2d::Domain::new(out_points, segments, tags)?;
+    Ok(PlanarFace { face: planar.face, domain, frame: planar.frame, surface_vertex })
 }
 
 impl PlanarFaces {
-    /// The meshes lifted onto their planes as one surface, each triangle tagged with its
-    /// face (quads split into two triangles); boundary vertices are the tessellation's
-    /// points, shared between faces that share an edge.
-    pub fn surface(&self) -> TriSurface {
-        let tessellation_vertices: Option<&[DVec3]> = Some(&self.tessellation.vertices);
-        let mut out = TriSurface::default();
+    /// The meshes lifted onto their planes as one surface of triangles and quads, each
+    /// element tagged with its face. The faces' boundary points are the tessellation's,
+    /// shared between faces that share an edge; a point a method put at the middle of a
+    /// boundary segment (quadrilaterals) is the middle of the two shared points, shared too.
+    pub fn surface(&self) -> MixedSurface {
+        self.lift().0
+    }
+
+    /// Boundary vertices of the faces' meshes that are neither a point of the face's domain
+    /// nor listed as a midpoint: points a method added on a face's boundary that the face on
+    /// the other side of the edge does not have (the quadtree's cuts), where the lifted
+    /// surface does not conform.
+    pub fn unshared_boundary_points(&self) -> usize {
+        self.lift().1
+    }
+
+    fn lift(&self) -> (MixedSurface, usize) {
+        let mut unshared = 0;
+        let mut out = MixedSurface::default();
         let mut shared: BTreeMap<u32, u32> = BTreeMap::new();
+        let mut shared_mid: BTreeMap<(u32, u32), u32> = BTreeMap::new();
         for m in &self.meshed {
-            let pm = &m.mesh.mesh;
-            // mesh vertex -> domain point, for the boundary
-            let mut domain_point = vec![crate::core::ids::NONE; pm.vertices.len()];
-            for (s, chain) in m.mesh.boundary.iter().enumerate() {
-                let [a, b] = m.planar.domain.segments[s];
-                domain_point[chain[0] as usize] = a;
-                domain_point[*chain.last().unwrap_or(&chain[0]) as usize] = b;
+            let pm = &m.meshed.mesh;
+            let domain = &m.planar.domain;
+            // domain points are mesh vertices at the same coordinates
+            let at: BTreeMap<[u64; 2], u32> = domain.points.iter().enumerate().map(|(i, p)| ([p.x.to_bits(), p.y.to_bits()], i as u32)).collect();
+            let mut mid = vec![None; pm.vertices.len()];
+            for &(v, ends) in &m.meshed.midpoints {
+                if let Some(slot) = mid.get_mut(v as usize) {
+                    *slot = Some(ends);
+                }
             }
-            let ids: Vec<u32> = (0..pm.vertices.len())
-                .map(|i| {
-                    let dp = domain_point[i];
-                    if dp != crate::core::ids::NONE {
-                        let sv = m.planar.surface_vertex[dp as usize];
-                        if let Some(&id) = shared.get(&sv) {
-                            return id;
-                        }
-                        let p = tessellation_vertices.and_then(|v| v.get(sv as usize).copied()).unwrap_or_else(|| m.planar.frame.lift(pm.vertices[i]));
-                        out.vertices.push(p);
-                        let id = (out.vertices.len() - 1) as u32;
-                        shared.insert(sv, id);
-                        id
-                    } else {
-                        out.vertices.push(m.planar.frame.lift(pm.vertices[i]));
-                        (out.vertices.len() - 1) as u32
-                    }
+            let sv = |mesh_vertex: u32| -> Option<u32> {
+                let p = pm.vertices.get(mesh_vertex as usize)?;
+                at.get(&[p.x.to_bits(), p.y.to_bits()]).map(|&d| m.planar.surface_vertex[d as usize])
+            };
+            let mut share = |key: u32, p: DVec3, out: &mut MixedSurface| -> u32 {
+                *shared.entry(key).or_insert_with(|| {
+                    out.vertices.push(p);
+                    (out.vertices.len() - 1) as u32
                 })
-                .collect();
+            };
+            let mut on_boundary = vec![false; pm.vertices.len()];
+            let mut edges: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+            for e in pm.triangles.iter().map(|t| t.as_slice()).chain(pm.quads.iter().map(|q| q.as_slice())) {
+                for k in 0..e.len() {
+                    let (a, b) = (e[k], e[(k + 1) % e.len()]);
+                    *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+                }
+            }
+            for (&(a, b), &n) in &edges {
+                if n == 1 {
+                    on_boundary[a as usize] = true;
+                    on_boundary[b as usize] = true;
+                }
+            }
+            let mut ids = Vec::with_capacity(pm.vertices.len());
+            for (i, p) in pm.vertices.iter().enumerate() {
+                let id = if let Some(s) = sv(i as u32) {
+                    let q = self.points.get(s as usize).copied().unwrap_or_else(|| m.planar.frame.lift(*p));
+                    share(s, q, &mut out)
+                } else if let Some((a, b)) = mid[i].and_then(|[a, b]| Some((sv(a)?, sv(b)?))) {
+                    let key = (a.min(b), a.max(b));
+                    let v = &self.points;
+                    let q = match (v.get(a as usize), v.get(b as usize)) {
+                        (Some(&pa), Some(&pb)) => 0.5 * (pa + pb),
+                        _ => m.planar.frame.lift(*p),
+                    };
+                    *shared_mid.entry(key).or_insert_with(|| {
+                        out.vertices.push(q);
+                        (out.vertices.len() - 1) as u32
+                    })
+                } else {
+                    unshared += usize::from(on_boundary[i]);
+                    out.vertices.push(m.planar.frame.lift(*p));
+                    (out.vertices.len() - 1) as u32
+                };
+                ids.push(id);
+            }
             let tag = m.planar.face;
             for t in &pm.triangles {
                 out.triangles.push(t.map(|i| ids[i as usize]));
-                out.face_tags.push(tag);
+                out.triangle_tags.push(tag);
             }
             for q in &pm.quads {
-                let q = q.map(|i| ids[i as usize]);
-                out.triangles.push([q[0], q[1], q[2]]);
-                out.triangles.push([q[0], q[2], q[3]]);
-                out.face_tags.extend([tag, tag]);
+                out.quads.push(q.map(|i| ids[i as usize]));
+                out.quad_tags.push(tag);
             }
             if let Some(name) = self.model.face(tag).name.clone() {
                 out.face_names.insert(tag, name);
             }
         }
-        out
+        (out, unshared)
     }
 }

@@ -36,6 +36,11 @@ pub enum WarningKind {
     /// The boundary strays farther from the input than the cell size (sampled or bounded), or
     /// feature edges lie farther than a cell from it.
     OctreeBoundaryStrays,
+    /// A 2D mesh whose smallest angle is under the one asked (near a smaller input angle, or
+    /// a boundary kept as given).
+    MinAngle2d,
+    /// Faces meshed in 2D whose boundary points are not shared with their neighbours.
+    FacesNotConforming,
 }
 
 /// Where a warning points.
@@ -64,7 +69,7 @@ pub struct Warning {
 }
 
 impl Warning {
-    fn new(kind: WarningKind, message: String, place: Option<Place>) -> Warning {
+    pub(crate) fn new(kind: WarningKind, message: String, place: Option<Place>) -> Warning {
         Warning { kind, message, place }
     }
 }

@@ -239,3 +239,27 @@ fn points_only_and_empty_meshes() {
     let e = crate::io::read(&p, &ReadOptions::default()).unwrap_err();
     assert!(e.to_string().ends_with("the file has no nodes"), "{e}");
 }
+
+#[test]
+fn mixed_surface_lists_each_entity_once_with_a_block_per_type() {
+    use crate::mesh::{MixedSurface, PlanarMesh};
+    use glam::DVec2;
+    let m = PlanarMesh {
+        vertices: vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y, DVec2::new(2.0, 0.5), DVec2::new(2.0, 2.0)],
+        triangles: vec![[1, 4, 2], [2, 4, 5]],
+        triangle_tags: vec![RegionId(1), RegionId(2)],
+        quads: vec![[0, 1, 2, 3]],
+        quad_tags: vec![RegionId(1)],
+        region_names: [(RegionId(1), "plate")].into_iter().collect(),
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("m.msh");
+    write_mixed(&p, &MixedSurface::from_planar(&m)).unwrap();
+    let t = std::fs::read_to_string(&p).unwrap();
+    assert!(t.contains("$PhysicalNames\n1\n2 1 \"plate\"\n$EndPhysicalNames"), "{t}");
+    assert!(t.contains("$Entities\n0 0 2 0\n1 0 0 0 2 1 0 1 1 0\n2 1 0.5 0 2 2 0 1 2 0\n$EndEntities"), "{t}");
+    // entity 1 holds its triangle (type 2) and its quad (type 3); element tags: triangles first
+    assert!(t.contains("$Elements\n3 3 1 3\n2 1 2 1\n1 2 5 3\n2 2 2 1\n2 3 5 6\n2 1 3 1\n3 1 2 3 4\n$EndElements"), "{t}");
+    // every node in exactly one block
+    assert!(t.contains("$Nodes\n2 6 1 6\n2 1 0 5\n"), "{t}");
+}

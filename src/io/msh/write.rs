@@ -8,7 +8,7 @@ use crate::core::{Aabb, TagNames};
 use crate::io::IoError;
 use crate::io::atomic::{write_atomic, write_err};
 use crate::io::common::Num;
-use crate::mesh::{TetMesh, TriSurface};
+use crate::mesh::{MixedSurface, TetMesh, TriSurface};
 use glam::DVec3;
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -73,6 +73,7 @@ pub(crate) struct Layout<'a> {
 /// volume group may share a name). Boxes are filled in by [`Layout::of_mesh`].
 fn group<'a, T: Copy + Ord, const N: usize>(
     dim: u8,
+    kind: u8,
     conn: &'a [[u32; N]],
     first_id: usize,
     tags: &[T],
@@ -84,7 +85,6 @@ fn group<'a, T: Copy + Ord, const N: usize>(
         by_tag.entry(*t).or_default().push(i);
     }
     let max = by_tag.keys().next_back().map_or(0, |t| number(*t));
-    let kind = if dim == 2 { 2 } else { 4 };
     let mut out: Vec<Entity> = by_tag
         .into_iter()
         .map(|(t, elements)| {
@@ -101,15 +101,23 @@ fn group<'a, T: Copy + Ord, const N: usize>(
 impl<'a> Layout<'a> {
     /// A surface: an entity and physical group per face tag.
     pub(crate) fn surface(s: &'a TriSurface) -> Self {
-        Self::of_mesh(&s.vertices, group(2, &s.triangles, 1, &s.face_tags, |t| t.0, &s.face_names))
+        Self::of_mesh(&s.vertices, group(2, 2, &s.triangles, 1, &s.face_tags, |t| t.0, &s.face_names))
     }
 
     /// A tet mesh: an entity and physical group per boundary face tag, then per region tag.
     /// Element tags follow the mesh's order (triangles, then tets), which the reader restores.
     pub(crate) fn volume(m: &'a TetMesh) -> Self {
-        let mut entities = group(2, &m.boundary, 1, &m.face_tags, |t| t.0, &m.face_names);
-        entities.extend(group(3, &m.tets, 1 + m.boundary.len(), &m.region_tags, |t| t.0, &m.region_names));
+        let mut entities = group(2, 2, &m.boundary, 1, &m.face_tags, |t| t.0, &m.face_names);
+        entities.extend(group(3, 4, &m.tets, 1 + m.boundary.len(), &m.region_tags, |t| t.0, &m.region_names));
         Self::of_mesh(&m.vertices, entities)
+    }
+
+    /// A surface of triangles and quads: per tag an entity and physical group, holding a block
+    /// of triangles (type 2) and one of quads (type 3). Element tags: triangles, then quads.
+    pub(crate) fn mixed(s: &'a MixedSurface) -> Self {
+        let mut entities = group(2, 2, &s.triangles, 1, &s.triangle_tags, |t| t.0, &s.face_names);
+        entities.extend(group(2, 3, &s.quads, 1 + s.triangles.len(), &s.quad_tags, |t| t.0, &s.face_names));
+        Self::of_mesh(&s.vertices, entities)
     }
 
     /// Each node goes in the block of the first entity using it; unused nodes in the first
@@ -123,10 +131,12 @@ impl<'a> Layout<'a> {
         }
         let mut owner = vec![usize::MAX; nv];
         for (k, e) in entities.iter().enumerate() {
+            // element blocks of one entity (several element types) share its node block
+            let first = entities.iter().position(|x| (x.dim, x.tag) == (e.dim, e.tag)).unwrap_or(k);
             for i in 0..e.elements.len() {
                 for &v in e.nodes(i) {
                     if let Some(o) = owner.get_mut(v as usize).filter(|o| **o == usize::MAX) {
-                        *o = k;
+                        *o = first;
                     }
                 }
             }
@@ -148,6 +158,14 @@ impl<'a> Layout<'a> {
                 }
             }
             e.bbox = b;
+        }
+        // an entity listed once: its box holds every block of its tag
+        for k in 0..entities.len() {
+            let key = (entities[k].dim, entities[k].tag);
+            if let Some(first) = entities[..k].iter().position(|x| (x.dim, x.tag) == key) {
+                let b = entities[k].bbox;
+                entities[first].bbox = entities[first].bbox.union(&b);
+            }
         }
         let blocks = owned.into_iter().enumerate().filter(|(_, o)| !o.is_empty()).collect();
         Layout { vertices, entities, blocks, empty_sections: false }
@@ -188,7 +206,9 @@ pub(crate) fn write(path: &Path, layout: &Layout) -> Result<(), IoError> {
     write_atomic(path, |w| {
         let e = write_err(path);
         writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat").map_err(&e)?;
-        let named: Vec<&Entity> = entities.iter().filter(|x| x.physical && x.name.is_some()).collect();
+        // several element blocks (types) of one entity: the entity is listed once
+        let listed: Vec<&Entity> = entities.iter().enumerate().filter(|(k, x)| !entities[..*k].iter().any(|y| (y.dim, y.tag) == (x.dim, x.tag))).map(|(_, x)| x).collect();
+        let named: Vec<&Entity> = listed.iter().copied().filter(|x| x.physical && x.name.is_some()).collect();
         if !named.is_empty() {
             writeln!(w, "$PhysicalNames\n{}", named.len()).map_err(&e)?;
             for x in named {
@@ -196,10 +216,10 @@ pub(crate) fn write(path: &Path, layout: &Layout) -> Result<(), IoError> {
             }
             writeln!(w, "$EndPhysicalNames").map_err(&e)?;
         }
-        let count = |d: u8| entities.iter().filter(|x| x.dim == d).count();
+        let count = |d: u8| listed.iter().filter(|x| x.dim == d).count();
         writeln!(w, "$Entities\n0 0 {} {}", count(2), count(3)).map_err(&e)?;
         for d in [2, 3] {
-            for x in entities.iter().filter(|x| x.dim == d) {
+            for x in listed.iter().filter(|x| x.dim == d) {
                 let (lo, hi) = if x.bbox.is_empty() { (DVec3::ZERO, DVec3::ZERO) } else { (x.bbox.min, x.bbox.max) };
                 write!(w, "{} {} {} {} {} {} {}", x.tag, Num(lo.x), Num(lo.y), Num(lo.z), Num(hi.x), Num(hi.y), Num(hi.z)).map_err(&e)?;
                 if x.physical { writeln!(w, " 1 {} 0", x.tag) } else { writeln!(w, " 0 0") }.map_err(&e)?;

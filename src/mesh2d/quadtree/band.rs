@@ -76,11 +76,14 @@ pub struct BandParams {
     pub refine: bool,
     /// Rounds of halving the segment pieces that bad triangles encroach.
     pub split_rounds: usize,
+    /// Keep the domain's segments whole: no cut by the leaf size, no halving (a CAD face
+    /// whose boundary points are shared with its neighbours).
+    pub keep_boundary: bool,
 }
 
 impl Default for BandParams {
     fn default() -> BandParams {
-        BandParams { keep: 0.35, refine: true, split_rounds: 6 }
+        BandParams { keep: 0.35, refine: true, split_rounds: 6, keep_boundary: false }
     }
 }
 
@@ -138,8 +141,10 @@ pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interfac
         let [ia, ib] = domain.segments[s];
         let (a, b) = domain.ends(s);
         let mut chain = vec![point_ids[ia as usize]];
-        for t in cuts(tree, a, b) {
-            chain.push(vertices.push(a + t * (b - a)));
+        if !params.keep_boundary {
+            for t in cuts(tree, a, b) {
+                chain.push(vertices.push(a + t * (b - a)));
+            }
         }
         chain.push(point_ids[ib as usize]);
         chains.push(chain);
@@ -177,7 +182,7 @@ pub fn build(tree: &Quadtree, domain: &Domain, vertices: &mut Vertices, interfac
     loop {
         let (cdt, refinement_points) = triangulate(vertices, &chains, interface, &lattice_ids, params)?;
         let parity = parity(&cdt)?;
-        let split = if round < params.split_rounds { encroached_pieces(&cdt, &parity, vertices, &chains) } else { Vec::new() };
+        let split = if round < params.split_rounds && !params.keep_boundary { encroached_pieces(&cdt, &parity, vertices, &chains) } else { Vec::new() };
         if split.is_empty() {
             let triangles = extract(&cdt, &parity, vertices);
             return Ok(Band { triangles, chains, refinement_points });

@@ -1,0 +1,165 @@
+//! The method switch shared by the CLI and the job file: which of the lecture's 2D methods
+//! meshes a [`Domain`], with what options, and one call, [`mesh_domain`], that runs it.
+//!
+//! - Stage: between a domain (a planar CAD face, a `.poly` region, a job's polygon) and its
+//!   [`PlanarMesh`].
+//! - The boundary: [`Boundary::Free`] lets a method that can split segments do so (a lone
+//!   region; the others get it divided by the size); [`Boundary::Split`] divides the domain's segments by the size first
+//!   ([`split_boundary`]), for regions whose segments are long; [`Boundary::Keep`] keeps the
+//!   given points as the boundary (a CAD face: the tessellation's edge points, so that
+//!   neighbouring faces conform). Quadrilaterals halve every boundary segment (listed in
+//!   [`Meshed2d::midpoints`]).
+
+use super::boundary::{split_boundary, SizeError};
+use super::domain::{Domain, DomainError};
+use super::quadtree::{self, QuadtreeError, QuadtreeOptions};
+use crate::core::RegionId;
+use crate::mesh::PlanarMesh;
+use glam::DVec2;
+use std::fmt;
+use std::str::FromStr;
+
+/// One of the lecture's 2D methods (section 23.2).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+#[non_exhaustive]
+pub enum Method {
+    /// Yerry and Shephard's modified quadtree.
+    Quadtree,
+}
+
+impl Method {
+    /// Every method, in the order `--help` lists them.
+    pub const ALL: &'static [Method] = &[Method::Quadtree];
+
+    /// The name the CLI and job files use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Quadtree => "quadtree",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A method name that is not one of [`Method::ALL`].
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
+#[error("unknown 2D method '{given}' (one of: {})", Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>().join(", "))]
+pub struct UnknownMethod {
+    /// What was given.
+    pub given: String,
+}
+
+impl FromStr for Method {
+    type Err = UnknownMethod;
+    fn from_str(s: &str) -> Result<Method, UnknownMethod> {
+        Method::ALL.iter().copied().find(|m| m.name().eq_ignore_ascii_case(s.trim())).ok_or_else(|| UnknownMethod { given: s.to_string() })
+    }
+}
+
+/// How the domain's boundary is treated (see the module docs).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Boundary {
+    /// A lone region: the method may put points on the segments where it needs them
+    /// (Delaunay refinement splits encroached segments); methods that cannot get the
+    /// segments divided by the size first.
+    Free,
+    /// Divide the segments by the size first, then keep them (regions sharing segments).
+    Split,
+    /// Keep the given boundary points.
+    Keep,
+}
+
+/// Options of [`mesh_domain`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh2dOptions {
+    /// The method.
+    pub method: Method,
+    /// All quadrilaterals (the method's triangles paired and split).
+    pub quads: bool,
+    /// The smallest angle asked of Delaunay refinement, degrees (`None`: its default).
+    pub min_angle: Option<f64>,
+    /// A bound on every triangle's area (Triangle's `-a`), besides the size.
+    pub max_area: Option<f64>,
+    /// The boundary rule.
+    pub boundary: Boundary,
+    /// The tag of every element.
+    pub region: RegionId,
+}
+
+impl Default for Mesh2dOptions {
+    fn default() -> Self {
+        Mesh2dOptions { method: Method::Quadtree, quads: false, min_angle: None, max_area: None, boundary: Boundary::Split, region: RegionId(1) }
+    }
+}
+
+/// Why a domain could not be meshed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
+#[non_exhaustive]
+pub enum Mesh2dError {
+    /// The domain is invalid.
+    #[error("invalid domain: {0}")]
+    Domain(#[from] DomainError),
+    /// The size field is not positive and finite somewhere it was asked.
+    #[error(transparent)]
+    Size(#[from] SizeError),
+    /// An option the method cannot take.
+    #[error("{method} cannot take {what}")]
+    Option {
+        /// The method.
+        method: Method,
+        /// The option and why.
+        what: String,
+    },
+    /// The quadtree failed.
+    #[error("quadtree: {0}")]
+    Quadtree(#[from] QuadtreeError),
+}
+
+/// A meshed domain.
+#[derive(Clone, Debug)]
+pub struct Meshed2d {
+    /// The mesh (every element tagged with the options' region).
+    pub mesh: PlanarMesh,
+    /// Vertices added at the middle of a boundary segment (quadrilaterals): the vertex and the
+    /// two mesh vertices, domain points, of the segment it halves.
+    pub midpoints: Vec<(u32, [u32; 2])>,
+    /// The method's own figures, as JSON.
+    pub stats: serde_json::Value,
+}
+
+/// Meshes `domain` by `options.method` at the size `size` (see the module docs).
+///
+/// # Errors
+/// [`Mesh2dError`]: an invalid domain, a bad size, an option the method cannot take, or the
+/// method's own error.
+pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2dOptions) -> Result<Meshed2d, Mesh2dError> {
+    domain.validate()?;
+    let split;
+    let domain = match options.boundary {
+        Boundary::Split | Boundary::Free if options.method != Method::Quadtree => {
+            split = split_boundary(domain, size)?;
+            &split.domain
+        }
+        _ => domain,
+    };
+    let unsupported = |what: &str| Mesh2dError::Option { method: options.method, what: what.to_string() };
+    match options.method {
+        Method::Quadtree => {
+            if options.min_angle.is_some() || options.max_area.is_some() {
+                return Err(unsupported("--min-angle or --max-area (it sizes by the size field only)"));
+            }
+            let mut o = QuadtreeOptions { quads: options.quads, region: options.region, ..QuadtreeOptions::default() };
+            o.band.keep_boundary = options.boundary == Boundary::Keep;
+            let m = quadtree::mesh(domain, size, &o)?;
+            let angles = quadtree::angles(&m, domain);
+            let stats = serde_json::json!({ "tree": m.stats, "inside_triangles": m.inside_triangles, "angles": angles });
+            Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats })
+        }
+    }
+}
