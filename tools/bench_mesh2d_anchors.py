@@ -183,7 +183,7 @@ def run_fepre(fepre, poly_path, method, A, angle, quads, size=None):
         return dict(error="no JSON on stdout: " + r.stdout[:120], cmd=" ".join(cmd[1:]))
     q = j.get("quality", {})
     tris, nq = j.get("triangles", q.get("triangles", 0)), j.get("quads", q.get("quads", 0))
-    own = j.get("seconds")
+    own = j.get("total_seconds", j.get("seconds"))
     if isinstance(own, list):
         own = sum(own)
     ar = q.get("angle_range", [float("nan")] * 2)
