@@ -4,8 +4,8 @@
 //!   Triangle's triangles with every angle ≥ 33° away from small input angles;
 //! - CGAL Mesh_2 (`tools/cgal_mesh2`, 30° and the same maximum area): counts within 15 %,
 //!   fepre's smallest angle no worse;
-//! - quads written as quads: meshio reads fepre's MSH and VTU quads as `quad` cells, and gmsh
-//!   reads the MSH back with quadrangles only.
+//! - quads written as quads: meshio reads fepre's MSH and VTU quads as `quad` cells (and its
+//!   triangles as triangles, the same counts), and gmsh reads the MSH back alike.
 //!
 //! The tools are found as `tests/common/tools.rs` says (Python with `triangle`, `numpy` and
 //! `meshio` through `FEPRE_PYTHON` or `.venv/bin/python`; `gmsh` on `PATH`; the CGAL driver
@@ -141,17 +141,18 @@ fn delaunay_is_within_15_percent_of_cgal_mesh2_and_no_worse() {
     }
 }
 
-/// Writes `name`'s all-quad mesh as `stem.msh` and `stem.vtu` in `dir`; its quad count.
-fn quads(dir: &Path, name: &str, method: &str) -> u64 {
+/// Writes `name`'s `--quads` mesh as `stem.msh` and `stem.vtu` in `dir`; its (triangles,
+/// quads) (the quadtree's `--quads` keeps triangles in its boundary band).
+fn quads(dir: &Path, name: &str, method: &str) -> (u64, u64) {
     let path = region(name);
-    let a = (4.0 * max_area(name)).to_string();
+    // about TARGET / 4 quads: the edge of an equilateral triangle of twice the test's max area
+    let h = format!("{:.2e}", (8.0 * max_area(name) / 3f64.sqrt()).sqrt());
     let mut quads = None;
     for ext in ["msh", "vtu"] {
         let out = dir.join(format!("{name}.{ext}"));
-        let j = fepre_json(&[path.to_str().unwrap(), "--method", method, "--quads", "--max-area", &a, "-o", out.to_str().unwrap()]);
-        assert_eq!(j["triangles"].as_u64(), Some(0), "{name} --quads: {j}");
-        let q = j["quads"].as_u64().unwrap();
-        assert!(q > 0 && quads.is_none_or(|p| p == q), "{name}: {q} quads");
+        let j = fepre_json(&[path.to_str().unwrap(), "--method", method, "--quads", "--size", &h, "-o", out.to_str().unwrap()]);
+        let q = (j["triangles"].as_u64().unwrap(), j["quads"].as_u64().unwrap());
+        assert!(q.1 > 0 && quads.is_none_or(|p| p == q), "{name}: {q:?} triangles and quads");
         quads = Some(q);
     }
     quads.unwrap()
@@ -161,20 +162,21 @@ fn quads(dir: &Path, name: &str, method: &str) -> u64 {
 fn meshio_and_gmsh_read_the_quads_as_quads() {
     let dir = tempfile::tempdir().unwrap();
     let names = ["convex", "l_shape", "two_holes"];
-    let counts: Vec<u64> = names.iter().map(|n| quads(dir.path(), n, "quadtree")).collect();
+    let counts: Vec<(u64, u64)> = names.iter().map(|n| quads(dir.path(), n, "quadtree")).collect();
     if let Some(py) = require(tools::meshio_python(), "python with meshio", "meshio reading the quads") {
         let script = "import sys, meshio
 for p in sys.argv[1:]:
     m = meshio.read(p)
     kinds = sorted(set(c.type for c in m.cells if c.type not in ('vertex', 'line')))
-    print(p, ','.join(kinds), sum(len(c.data) for c in m.cells if c.type == 'quad'))";
+    count = lambda t: sum(len(c.data) for c in m.cells if c.type == t)
+    print(p, ','.join(kinds), count('triangle'), count('quad'))";
         for (n, q) in names.iter().zip(&counts) {
             for ext in ["msh", "vtu"] {
                 let p = dir.path().join(format!("{n}.{ext}"));
                 let out = python(&py, script, &[p.to_str().unwrap()]);
                 let v: Vec<&str> = out.split_whitespace().collect();
-                assert_eq!(v[1], "quad", "meshio reads {n}.{ext} as {out}");
-                assert_eq!(v[2].parse::<u64>().unwrap(), *q, "{n}.{ext}: {out}");
+                assert_eq!(v[1], if q.0 > 0 { "quad,triangle" } else { "quad" }, "meshio reads {n}.{ext} as {out}");
+                assert_eq!((v[2].parse::<u64>().unwrap(), v[3].parse::<u64>().unwrap()), *q, "{n}.{ext}: {out}");
             }
         }
     }
@@ -195,6 +197,7 @@ for p in sys.argv[1:]:
         }
         kinds.remove(&1); // boundary lines, if written
         kinds.remove(&15); // points
-        assert_eq!(kinds.into_iter().collect::<Vec<_>>(), vec![(3, *q)], "gmsh reads {n}.msh back with other elements than {q} quadrangles");
+        let want: Vec<(u32, u64)> = [(2, q.0), (3, q.1)].into_iter().filter(|k| k.1 > 0).collect();
+        assert_eq!(kinds.into_iter().collect::<Vec<_>>(), want, "gmsh reads {n}.msh back with other elements than {q:?} triangles and quadrangles");
     }
 }
