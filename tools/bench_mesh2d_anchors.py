@@ -12,7 +12,8 @@ Usage (Python with triangle, numpy and meshio: tools/install_refs_2d.sh VENV mak
   triangulate call).
 
 For each region (every .poly in --regions, or --only), with the maximum area
-A = 0.6 * region area / --triangles (--million: the region 'large' at a million triangles):
+A = 1.7 * region area / --triangles (Triangle's -q33 triangles average about 0.58 A, so
+about --triangles of them; --million: the region 'large' at a million triangles):
   - Triangle: triangle.triangulate(poly, 'pq33a<A>Q'); only that call is timed (Python's
     start and the import excluded). Every ratio in the table is to this row.
   - fepre: `fepre mesh2d REGION.poly --method M --json --max-area A --min-angle 33` for M in
@@ -153,13 +154,19 @@ def quad_quality(p, q):
     return float(angs.min()), float(angs.max()), float(np.median(sj)), float(sj.min())
 
 
+def fixed(x):
+    """x in fixed-point decimals (no exponent), as Triangle's switches need."""
+    return f"{x:.15f}".rstrip("0").rstrip(".")
+
+
 def run_triangle(poly_path, A, angle=33):
     import triangle
     pts, segs, holes = read_poly(poly_path)
     d = {"vertices": pts, "segments": segs}
     if len(holes):
         d["holes"] = holes
-    opts = f"pq{angle}a{A!r}Q"
+    # fixed-point: Triangle reads the digits and '.' after 'a', and 'e' is its own switch
+    opts = f"pq{angle}a{fixed(A)}Q"
     t0 = time.perf_counter()
     m = triangle.triangulate(d, opts)
     t = time.perf_counter() - t0
@@ -293,10 +300,10 @@ def main():
         for name in names:
             path = os.path.join(a.regions, name + ".poly")
             pts, segs, _ = read_poly(path)
-            A = float(f"{0.6 * region_area(pts, segs) / a.triangles:.3g}")
+            A = float(f"{1.7 * region_area(pts, segs) / a.triangles:.3g}")
             rows = [("Triangle -q33", run_triangle(path, A))]
             for m in methods:
-                rows.append((f"fepre {m} -q33", run_fepre(a.fepre, path, m, A, 33, False)))
+                rows.append((f"fepre {m} -q33" if m != "quadtree" else "fepre quadtree (--size h)", run_fepre(a.fepre, path, m, A, 33, False)))
             built = os.path.exists(a.cgal)
             rows.append(("CGAL Mesh_2 30° area", run_cgal(a.cgal, path, A) if built else dict(error="not built (make -C tools/cgal_mesh2)")))
             rows.append(("fepre delaunay 30°", run_fepre(a.fepre, path, "delaunay", A, 30, False)))
