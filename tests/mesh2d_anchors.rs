@@ -138,6 +138,11 @@ fn delaunay_is_within_15_percent_of_cgal_mesh2_and_no_worse() {
         eprintln!("{name}: max area {a}: CGAL {theirs} (min {their_min:.2}), fepre {ours} (min {min:.2}), {:.1} %", 100.0 * rel);
         assert!(rel <= 0.15, "{name}: fepre {ours} triangles, CGAL Mesh_2 {theirs}");
         assert!(min >= their_min - 1e-6, "{name}: fepre's smallest angle {min} < CGAL's {their_min}");
+        // CGAL's area mode leaves some angles under 30 (21 to 28 deg here), its size mode does
+        // not: fepre must reach the asked 30 wherever no input angle is smaller
+        if name != "small_angle" {
+            assert!(min >= 30.0 - 1e-9, "{name}: fepre's smallest angle {min} < 30");
+        }
     }
 }
 
