@@ -5,16 +5,22 @@ CGAL Mesh_2 and gmsh on the same .poly regions; prints a markdown table.
 Usage (Python with triangle, numpy and meshio: tools/install_refs_2d.sh VENV makes one):
   VENV/bin/python tools/bench_mesh2d_anchors.py [--fepre target/release/fepre]
       [--cgal tools/cgal_mesh2/cgal_mesh2] [--gmsh gmsh] [--regions cad_fixtures/regions]
-      [--triangles 20000] [--only large,convex] [--million] [--json-out results.json]
+      [--triangles 20000] [--only large,convex] [--methods delaunay,front] [--no-quads]
+      [--million] [--json-out results.json]
+  --million: the region 'large' at about a million triangles, fepre's delaunay only, no quads,
+  no gmsh, no CGAL size row (the speed acceptance: fepre's whole run against Triangle's
+  triangulate call).
 
 For each region (every .poly in --regions, or --only), with the maximum area
-A = 0.6 * region area / --triangles (--million: the region 'large' at a million triangles):
+A = 1.7 * region area / --triangles (Triangle's -q33 triangles average about 0.58 A, so
+about --triangles of them; --million: the region 'large' at a million triangles):
   - Triangle: triangle.triangulate(poly, 'pq33a<A>Q'); only that call is timed (Python's
     start and the import excluded). Every ratio in the table is to this row.
   - fepre: `fepre mesh2d REGION.poly --method M --json --max-area A --min-angle 33` for M in
     delaunay ear recursive removal front quadtree, and `--quads` (max area only) for each M;
-    the whole process is timed (its start and the file read included), and its own `seconds`
-    is shown beside.
+    the whole process is timed (its start and the file read included), and its own
+    `total_seconds` is shown beside; the quadtree and the --quads runs get `--size h` (h as
+    for gmsh below) instead, as the quadtree sizes by the size field only.
   - CGAL Mesh_2 at 30 deg (its refinement is not sure to end at 33), timed inside
     (refine_Delaunay_mesh_2 alone; the CDT's time in brackets): `cgal_mesh2 REGION.poly
     --area A --min-angle 30` (the driver's area criteria, Triangle's -a: CGAL leaves some
@@ -148,13 +154,19 @@ def quad_quality(p, q):
     return float(angs.min()), float(angs.max()), float(np.median(sj)), float(sj.min())
 
 
+def fixed(x):
+    """x in fixed-point decimals (no exponent), as Triangle's switches need."""
+    return f"{x:.15f}".rstrip("0").rstrip(".")
+
+
 def run_triangle(poly_path, A, angle=33):
     import triangle
     pts, segs, holes = read_poly(poly_path)
     d = {"vertices": pts, "segments": segs}
     if len(holes):
         d["holes"] = holes
-    opts = f"pq{angle}a{A!r}Q"
+    # fixed-point: Triangle reads the digits and '.' after 'a', and 'e' is its own switch
+    opts = f"pq{angle}a{fixed(A)}Q"
     t0 = time.perf_counter()
     m = triangle.triangulate(d, opts)
     t = time.perf_counter() - t0
@@ -163,9 +175,14 @@ def run_triangle(poly_path, A, angle=33):
 
 
 def run_fepre(fepre, poly_path, method, A, angle, quads, size=None):
+    """quadtree and --quads runs take the size h (as gmsh) instead of A and the angle: the
+    quadtree sizes by the size field only."""
     cmd = [fepre, "mesh2d", poly_path, "--method", method, "--json"]
-    cmd += ["--max-area", repr(A)] if A is not None else ["--size", repr(size)]
-    cmd += ["--quads"] if quads else ["--min-angle", str(angle)]
+    if quads or method == "quadtree":
+        cmd += ["--size", repr(size if size is not None else float(f"{math.sqrt(4 * 0.6 * A / math.sqrt(3)):.3g}"))] + (["--quads"] if quads else [])
+    else:
+        cmd += ["--max-area", repr(A)] if A is not None else ["--size", repr(size)]
+        cmd += ["--min-angle", str(angle)]
     t0 = time.perf_counter()
     try:
         r = subprocess.run(cmd, capture_output=True, text=True)
@@ -180,7 +197,7 @@ def run_fepre(fepre, poly_path, method, A, angle, quads, size=None):
         return dict(error="no JSON on stdout: " + r.stdout[:120], cmd=" ".join(cmd[1:]))
     q = j.get("quality", {})
     tris, nq = j.get("triangles", q.get("triangles", 0)), j.get("quads", q.get("quads", 0))
-    own = j.get("seconds")
+    own = j.get("total_seconds", j.get("seconds"))
     if isinstance(own, list):
         own = sum(own)
     ar = q.get("angle_range", [float("nan")] * 2)
@@ -264,11 +281,16 @@ def main():
     ap.add_argument("--only", default="")
     ap.add_argument("--million", action="store_true", help="only the region 'large', at about a million triangles")
     ap.add_argument("--no-quads", action="store_true")
+    ap.add_argument("--no-gmsh", action="store_true")
+    ap.add_argument("--methods", default=",".join(METHODS), help="fepre's methods to run (default: all six)")
     ap.add_argument("--json-out")
     a = ap.parse_args()
     names = sorted(f[:-5] for f in os.listdir(a.regions) if f.endswith(".poly"))
     if a.million:
-        names, a.triangles = ["large"], 1e6
+        names, a.triangles, a.no_quads, a.no_gmsh = ["large"], 1e6, True, True
+        if a.methods == ",".join(METHODS):
+            a.methods = "delaunay"
+    methods = [m for m in a.methods.split(",") if m]
     if a.only:
         names = [n for n in names if n in a.only.split(",")]
     results = []
@@ -278,17 +300,18 @@ def main():
         for name in names:
             path = os.path.join(a.regions, name + ".poly")
             pts, segs, _ = read_poly(path)
-            A = float(f"{0.6 * region_area(pts, segs) / a.triangles:.3g}")
+            A = float(f"{1.7 * region_area(pts, segs) / a.triangles:.3g}")
             rows = [("Triangle -q33", run_triangle(path, A))]
-            for m in METHODS:
-                rows.append((f"fepre {m} -q33", run_fepre(a.fepre, path, m, A, 33, False)))
+            for m in methods:
+                rows.append((f"fepre {m} -q33" if m != "quadtree" else "fepre quadtree (--size h)", run_fepre(a.fepre, path, m, A, 33, False)))
             built = os.path.exists(a.cgal)
             rows.append(("CGAL Mesh_2 30° area", run_cgal(a.cgal, path, A) if built else dict(error="not built (make -C tools/cgal_mesh2)")))
             rows.append(("fepre delaunay 30°", run_fepre(a.fepre, path, "delaunay", A, 30, False)))
             S = float(f"{math.sqrt(4 * 0.6 * A / math.sqrt(3)):.3g}")
-            rows.append((f"CGAL Mesh_2 30° size {S:g}", run_cgal(a.cgal, path, S, "size") if built else dict(error="not built (make -C tools/cgal_mesh2)")))
-            rows.append((f"fepre delaunay 30° --size {S:g}", run_fepre(a.fepre, path, "delaunay", None, 30, False, size=S)))
-            for alg, rec in ((5, False), (6, False), (8, True)):
+            if not a.million:
+                rows.append((f"CGAL Mesh_2 30° size {S:g}", run_cgal(a.cgal, path, S, "size") if built else dict(error="not built (make -C tools/cgal_mesh2)")))
+                rows.append((f"fepre delaunay 30° --size {S:g}", run_fepre(a.fepre, path, "delaunay", None, 30, False, size=S)))
+            for alg, rec in () if a.no_gmsh else ((5, False), (6, False), (8, True)):
                 label = {5: "gmsh Delaunay (5)", 6: "gmsh Frontal-Delaunay (6)", 8: "gmsh Blossom quads (8)"}[alg]
                 try:
                     r = run_gmsh(a.gmsh, path, A, alg, rec, tmp)
@@ -300,7 +323,7 @@ def main():
                 except (OSError, ValueError) as e:
                     rows.append((label, dict(error=str(e)[:160])))
             if not a.no_quads:
-                for m in METHODS:
+                for m in methods:
                     rows.append((f"fepre {m} --quads", run_fepre(a.fepre, path, m, A, 33, True)))
             ref = rows[0][1]
             for tool, r in rows:

@@ -71,7 +71,7 @@ impl PolyFile {
         let mut label = vec![UNSEEN; tri.num_all_faces()];
         label[tri.outer_face().fix().index()] = OUTSIDE;
         // the convex hull's side: faces reached from the outer face without crossing a segment
-        let hull: Vec<FixedFaceHandle<PossiblyOuterTag>> = tri.convex_hull().filter(|e| !e.as_undirected().is_constraint_edge()).map(|e| e.rev().face().fix()).collect();
+        let hull: Vec<FixedFaceHandle<PossiblyOuterTag>> = tri.convex_hull().filter(|e| !e.as_undirected().is_constraint_edge()).flat_map(|e| [e.face().fix(), e.rev().face().fix()]).collect();
         flood(&tri, &hull, &mut label, OUTSIDE);
         for (k, &h) in self.holes.iter().enumerate() {
             let face = locate(&tri, h, "hole", k)?;

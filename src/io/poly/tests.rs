@@ -231,3 +231,18 @@ fn islands_in_holes_and_nested_regions() {
     // the output is the same every time
     assert_eq!(q.to_regions().unwrap(), r);
 }
+
+#[test]
+fn a_non_convex_outline_loses_what_lies_between_it_and_the_hull() {
+    let p = |x: f64, y: f64| DVec2::new(x, y);
+    // a comb: the gaps between the teeth are inside the hull but outside the region
+    let pts = vec![p(0.0, 0.0), p(3.0, 0.0), p(3.0, 2.0), p(2.0, 2.0), p(2.0, 1.0), p(1.0, 1.0), p(1.0, 2.0), p(0.0, 2.0)];
+    let n = pts.len() as u32;
+    let q = PolyFile { points: pts, segments: (0..n).map(|k| [k, (k + 1) % n]).collect(), markers: vec![4; n as usize], ..Default::default() };
+    let r = q.to_regions().unwrap();
+    assert_eq!(r.len(), 1);
+    check(&r, 5.0);
+    let mut q = q;
+    q.holes.push(p(1.5, 1.5));
+    assert!(matches!(q.to_regions(), Err(PolyError::HoleOutside { hole: 0, .. })));
+}
