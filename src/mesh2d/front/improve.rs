@@ -11,7 +11,9 @@
 //!   triangulation of the points), with a cap proportional to the triangle count.
 //! - Smoothing: each point not on the boundary, in index order, moves to the mean of its
 //!   neighbours (half way if that fails); a move is kept only if every triangle around the
-//!   point stays positive (exact) and the smallest angle there does not decrease.
+//!   point stays positive (exact) and the smallest angle there increases; a point whose
+//!   star still has an angle under 34° then gets a pattern search (eight directions, the
+//!   step halved when none improves its smallest angle).
 
 use crate::core::predicates::{incircle, orient2d};
 use crate::core::Sign;
@@ -19,6 +21,9 @@ use glam::DVec2;
 use rustc_hash::FxHashSet;
 
 const NONE: u32 = u32::MAX;
+/// Points whose star keeps an angle under this (degrees) after the Laplacian step get the
+/// pattern search.
+const SEARCH_BELOW: f64 = 34.0;
 
 /// A triangulation with neighbours, for flips.
 pub(crate) struct Improve<'a> {
@@ -179,16 +184,57 @@ impl<'a> Improve<'a> {
             mean /= (2 * around.len()) as f64;
             let old = self.pts[v];
             let before = self.star_angle(around);
+            let mut moved = false;
             for target in [mean, 0.5 * (old + mean)] {
                 self.pts[v] = target;
                 if self.star_positive(around) && self.star_angle(around) > before {
-                    moves += 1;
+                    moved = true;
                     break;
                 }
                 self.pts[v] = old;
             }
+            if self.star_angle(around) < SEARCH_BELOW {
+                moved |= self.search(v, around, mean);
+            }
+            moves += usize::from(moved);
         }
         moves
+    }
+
+    /// The optimisation-based step for a point whose worst angle is still small: a pattern
+    /// search over eight directions, the step halved when none improves the smallest angle
+    /// of the star; returns whether the point moved.
+    fn search(&mut self, v: usize, around: &[u32], mean: DVec2) -> bool {
+        let reach = around.iter().flat_map(|&t| self.tris[t as usize]).map(|w| self.pts[w as usize].distance(mean)).fold(0.0, f64::max);
+        let mut step = 0.1 * reach;
+        let mut best = self.star_angle(around);
+        let mut moved = false;
+        for _ in 0..12 {
+            let here = self.pts[v];
+            let mut found: Option<(f64, DVec2)> = None;
+            for k in 0..8 {
+                let q = here + step * DVec2::from_angle(k as f64 * std::f64::consts::FRAC_PI_4);
+                self.pts[v] = q;
+                if self.star_positive(around) {
+                    let a = self.star_angle(around);
+                    if a > found.map_or(best, |f| f.0) {
+                        found = Some((a, q));
+                    }
+                }
+            }
+            match found {
+                Some((a, q)) => {
+                    self.pts[v] = q;
+                    best = a;
+                    moved = true;
+                }
+                None => {
+                    self.pts[v] = here;
+                    step *= 0.5;
+                }
+            }
+        }
+        moved
     }
 
     fn star_positive(&self, around: &[u32]) -> bool {

@@ -24,6 +24,14 @@ fn accept(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Options, name:
     let q = measure(&out.mesh, size);
     eprintln!("{name}: {} triangles, angles {:.1}..{:.1} (front's worst {:.1}), size ratio {:.2?}, input angle {:.1}, {:?}", q.triangles, q.angle_range[0], q.angle_range[1], out.improve.worst_angle_before, q.size_ratio, split.smallest_angle_deg(), out.front);
     assert!((q.angle_range[0] - out.improve.worst_angle_after).abs() < 1e-9);
+    let worst = out.mesh.triangles.iter().min_by(|s, t| {
+        let a = |t: &[u32; 3]| improve::min_angle(out.mesh.vertices[t[0] as usize], out.mesh.vertices[t[1] as usize], out.mesh.vertices[t[2] as usize]);
+        a(s).total_cmp(&a(t))
+    });
+    if let Some(t) = worst {
+        let fixed = t.iter().filter(|&&i| (i as usize) < split.points.len()).count();
+        eprintln!("{name}: the worst triangle has {fixed} boundary vertices");
+    }
     (out, q, split)
 }
 
