@@ -21,10 +21,10 @@ fn region_file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("cad_fixtures/regions").join(format!("{name}.poly"))
 }
 
-/// The size each test region is meshed at: a tenth of its shorter side's scale.
-fn region_size(d: &Domain) -> f64 {
-    let (lo, hi) = d.bounds();
-    (hi - lo).min_element().max((hi - lo).max_element() / 20.0) / 8.0
+/// The size each test region is meshed at: its narrowest feature (the strip's 0.2, the
+/// comb's 0.5-wide teeth, the holes' 0.2 clearance) over at least four elements.
+fn region_size(name: &str) -> f64 {
+    if name == "strip" { 0.05 } else { 0.1 }
 }
 
 /// Methods whose median element size the issue bounds (within 20 % of the size field).
@@ -48,7 +48,7 @@ fn regions_by(method: Method) {
     for name in REGIONS {
         let file = read_poly(&region_file(name)).unwrap();
         for r in file.to_regions().unwrap() {
-            let h = region_size(&r.domain);
+            let h = region_size(name);
             let what = format!("{} on {name} at {h}", method.name());
             // boundary divided by the size and kept (as for regions sharing segments)
             let o = Mesh2dOptions { method, boundary: Boundary::Split, region: RegionId(7), ..Mesh2dOptions::default() };
@@ -125,11 +125,12 @@ macro_rules! method_tests {
 method_tests! {
     quadtree_on_regions, quadtree_on_corpus_faces, "quadtree";
     removal_on_regions, removal_on_corpus_faces, "removal";
+    front_on_regions, front_on_corpus_faces, "front";
 }
 
 #[test]
 fn every_method_is_tested_here() {
-    let tested = ["quadtree", "removal"];
+    let tested = ["quadtree", "removal", "front"];
     for m in Method::ALL {
         assert!(tested.contains(&m.name()), "{} has no tests in this file", m.name());
     }

@@ -26,18 +26,21 @@ use std::str::FromStr;
 pub enum Method {
     /// Geometry decomposition by iterative removal of elements (Sadek).
     Removal,
+    /// Iterative removal of a boundary layer: the advancing front (Lo, Löhner).
+    Front,
     /// Yerry and Shephard's modified quadtree.
     Quadtree,
 }
 
 impl Method {
     /// Every method, in the order `--help` lists them.
-    pub const ALL: &'static [Method] = &[Method::Removal, Method::Quadtree];
+    pub const ALL: &'static [Method] = &[Method::Removal, Method::Front, Method::Quadtree];
 
     /// The name the CLI and job files use.
     pub fn name(self) -> &'static str {
         match self {
             Method::Removal => "removal",
+            Method::Front => "front",
             Method::Quadtree => "quadtree",
         }
     }
@@ -125,6 +128,9 @@ pub enum Mesh2dError {
     /// Element removal failed.
     #[error("removal: {0}")]
     Removal(#[from] super::removal::Error),
+    /// The advancing front failed.
+    #[error("front: {0}")]
+    Front(#[from] super::front::Error),
 }
 
 /// A meshed domain.
@@ -182,6 +188,11 @@ pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2
             let o = super::removal::Options { region: options.region, ..Default::default() };
             let m = super::removal::mesh(domain, size, &o)?;
             Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
+        }
+        Method::Front => {
+            no_angle_or_area(options)?;
+            let m = super::front::mesh(domain, size, &super::front::Options::default().with_region(options.region))?;
+            Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: serde_json::json!({ "front": m.front, "improve": m.improve }) })
         }
     }
 }
