@@ -86,3 +86,11 @@ pub(crate) fn check_cover(domain: &Domain, mesh: &PlanarMesh, region: RegionId) 
     segments.sort_unstable();
     assert_eq!(boundary, segments, "the mesh's boundary edges are not the domain's segments");
 }
+
+/// A CAD-like hard case: a 4.9° input angle, a reflex corner, and a square hole 0.03 to 0.07
+/// from the outer loop (closer than the size), every segment divided by the size.
+pub(crate) fn hard() -> Region {
+    let outer = vec![d(0.0, 0.0), d(4.0, 0.0), d(4.2, 1.5), d(2.0, 1.5), d(3.5, 0.3)];
+    let hole = vec![d(3.75, 0.6), d(4.05, 0.6), d(4.05, 0.9), d(3.75, 0.9)];
+    Region { name: "hard", domain: Domain::from_loops(&[outer, hole], None).unwrap(), size: Box::new(|_: DVec2| 0.1) }
+}

@@ -94,3 +94,14 @@ fn collinear_points_and_a_comb() {
     let q = measure(&out.mesh, &size);
     assert!(q.size_ratio[1] > 0.8 && q.size_ratio[1] < 1.2, "{:?}", q.size_ratio);
 }
+
+#[test]
+fn a_tiny_angle_and_a_hole_near_the_boundary() {
+    let r = super::testkit::hard();
+    let dom = prepared(&r);
+    let out = mesh(&dom, &r.size, &Options::default()).unwrap();
+    check_cover(&dom, &out.mesh, RegionId(1));
+    let q = measure(&out.mesh, &r.size);
+    eprintln!("ear hard tris {} angles {:.1}..{:.1} size ratio {:?} {:?}", q.triangles, q.angle_range[0], q.angle_range[1], q.size_ratio, out.stats);
+    assert!(q.size_ratio[1] > 0.8 && q.size_ratio[1] < 1.2, "{:?}", q.size_ratio);
+}

@@ -63,3 +63,14 @@ fn the_same_input_gives_the_same_mesh() {
     let dom = prepared(r);
     assert_eq!(mesh(&dom, &r.size, &Options::default()).unwrap(), mesh(&dom, &r.size, &Options::default()).unwrap());
 }
+
+#[test]
+fn a_tiny_angle_and_a_hole_near_the_boundary() {
+    let r = crate::mesh2d::ear::testkit::hard();
+    let dom = prepared(&r);
+    let out = mesh(&dom, &r.size, &Options::default()).unwrap();
+    check_cover(&dom, &out.mesh, RegionId(1));
+    let q = measure(&out.mesh, &r.size);
+    eprintln!("recursive hard tris {} angles {:.1}..{:.1} size ratio {:?} {:?}", q.triangles, q.angle_range[0], q.angle_range[1], q.size_ratio, out.stats);
+    assert!(q.size_ratio[1] > 0.8 && q.size_ratio[1] < 1.2, "{:?}", q.size_ratio);
+}
