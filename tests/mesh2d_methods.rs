@@ -126,11 +126,13 @@ method_tests! {
     quadtree_on_regions, quadtree_on_corpus_faces, "quadtree";
     removal_on_regions, removal_on_corpus_faces, "removal";
     front_on_regions, front_on_corpus_faces, "front";
+    ear_on_regions, ear_on_corpus_faces, "ear";
+    recursive_on_regions, recursive_on_corpus_faces, "recursive";
 }
 
 #[test]
 fn every_method_is_tested_here() {
-    let tested = ["quadtree", "removal", "front"];
+    let tested = ["quadtree", "removal", "front", "ear", "recursive"];
     for m in Method::ALL {
         assert!(tested.contains(&m.name()), "{} has no tests in this file", m.name());
     }

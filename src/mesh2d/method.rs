@@ -24,6 +24,11 @@ use std::str::FromStr;
 #[serde(rename_all = "lowercase")]
 #[non_exhaustive]
 pub enum Method {
+    /// Topology decomposition: ear cutting (holes bridged), then Delaunay insertion to the
+    /// size.
+    Ear,
+    /// Geometry decomposition by recursive subdivision (Bykat).
+    Recursive,
     /// Geometry decomposition by iterative removal of elements (Sadek).
     Removal,
     /// Iterative removal of a boundary layer: the advancing front (Lo, Löhner).
@@ -34,11 +39,13 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order `--help` lists them.
-    pub const ALL: &'static [Method] = &[Method::Removal, Method::Front, Method::Quadtree];
+    pub const ALL: &'static [Method] = &[Method::Ear, Method::Recursive, Method::Removal, Method::Front, Method::Quadtree];
 
     /// The name the CLI and job files use.
     pub fn name(self) -> &'static str {
         match self {
+            Method::Ear => "ear",
+            Method::Recursive => "recursive",
             Method::Removal => "removal",
             Method::Front => "front",
             Method::Quadtree => "quadtree",
@@ -125,6 +132,12 @@ pub enum Mesh2dError {
     /// The quadtree failed.
     #[error("quadtree: {0}")]
     Quadtree(#[from] QuadtreeError),
+    /// Ear cutting failed.
+    #[error("ear: {0}")]
+    Ear(#[from] super::ear::Error),
+    /// Recursive subdivision failed.
+    #[error("recursive: {0}")]
+    Recursive(#[from] super::recursive::Error),
     /// Element removal failed.
     #[error("removal: {0}")]
     Removal(#[from] super::removal::Error),
@@ -187,6 +200,16 @@ pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2
             no_angle_or_area(options)?;
             let o = super::removal::Options { region: options.region, ..Default::default() };
             let m = super::removal::mesh(domain, size, &o)?;
+            Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
+        }
+        Method::Ear => {
+            no_angle_or_area(options)?;
+            let m = super::ear::mesh(domain, size, &super::ear::Options::default().with_region(options.region))?;
+            Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
+        }
+        Method::Recursive => {
+            no_angle_or_area(options)?;
+            let m = super::recursive::mesh(domain, size, &super::recursive::Options::default().with_region(options.region))?;
             Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
         }
         Method::Front => {
