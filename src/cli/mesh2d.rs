@@ -25,8 +25,16 @@ Examples:
                                                        Triangle's .poly (holes, regions), like -pq33a0.01
 
 Methods (the lecture's section 23.2):
+  ear         topology decomposition: holes bridged, ears cut, then Delaunay insertion to
+              the size and smoothing
+  recursive   geometry decomposition by recursive subdivision (Bykat): convex pieces cut
+              across their longest axis, nodes on the cuts by the size
+  removal     geometry decomposition by iterative removal of elements (Sadek): vertex
+              angles under 90 deg cut off, two triangles at angles up to 180 deg
+  front       iterative removal of a boundary layer: the advancing front (Lo, Loehner),
+              every new triangle checked to be Delaunay, then flips and smoothing
   quadtree    Yerry and Shephard's modified quadtree: 2:1 balanced, 45-degree templates
-              inside, the boundary band triangulated with every CAD edge point kept
+              inside, the boundary band triangulated (its own cuts of the boundary)
 
 A face's boundary points are the part's tessellation's, so neighbouring faces conform.
 The output (.msh, .vtu, .mesh, .inp, .obj, .stl) is the faces' meshes on their planes,
