@@ -128,11 +128,12 @@ method_tests! {
     front_on_regions, front_on_corpus_faces, "front";
     ear_on_regions, ear_on_corpus_faces, "ear";
     recursive_on_regions, recursive_on_corpus_faces, "recursive";
+    delaunay_on_regions, delaunay_on_corpus_faces, "delaunay";
 }
 
 #[test]
 fn every_method_is_tested_here() {
-    let tested = ["quadtree", "removal", "front", "ear", "recursive"];
+    let tested = ["quadtree", "removal", "front", "ear", "recursive", "delaunay"];
     for m in Method::ALL {
         assert!(tested.contains(&m.name()), "{} has no tests in this file", m.name());
     }

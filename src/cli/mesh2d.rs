@@ -25,6 +25,9 @@ Examples:
                                                        Triangle's .poly (holes, regions), like -pq33a0.01
 
 Methods (the lecture's section 23.2):
+  delaunay    constrained Delaunay triangulation refined (Ruppert/Chew, off-centers) until
+              every angle is at least --min-angle (30 deg; at most 34) away from input angles
+              under 60 deg, and triangles are within --size and --max-area
   ear         topology decomposition: holes bridged, ears cut, then Delaunay insertion to
               the size and smoothing
   recursive   geometry decomposition by recursive subdivision (Bykat): convex pieces cut
@@ -47,7 +50,7 @@ pub struct Args {
     /// STEP file (.step, .stp): its planar faces; or Triangle's .poly: its regions.
     pub cad: PathBuf,
     /// The 2D method.
-    #[arg(long, short = 'm', value_name = "METHOD", default_value = "quadtree", value_parser = parse_method)]
+    #[arg(long, short = 'm', value_name = "METHOD", default_value = "delaunay", value_parser = parse_method)]
     pub method: Method,
     /// Mesh this face (its id, as `fepre cad-info --json` lists them); may be repeated.
     #[arg(long, value_name = "N", conflicts_with = "all_planar")]

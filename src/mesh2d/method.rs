@@ -24,6 +24,8 @@ use std::str::FromStr;
 #[serde(rename_all = "lowercase")]
 #[non_exhaustive]
 pub enum Method {
+    /// Constrained Delaunay triangulation and Ruppert/Chew refinement to a minimum angle.
+    Delaunay,
     /// Topology decomposition: ear cutting (holes bridged), then Delaunay insertion to the
     /// size.
     Ear,
@@ -39,11 +41,12 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order `--help` lists them.
-    pub const ALL: &'static [Method] = &[Method::Ear, Method::Recursive, Method::Removal, Method::Front, Method::Quadtree];
+    pub const ALL: &'static [Method] = &[Method::Delaunay, Method::Ear, Method::Recursive, Method::Removal, Method::Front, Method::Quadtree];
 
     /// The name the CLI and job files use.
     pub fn name(self) -> &'static str {
         match self {
+            Method::Delaunay => "delaunay",
             Method::Ear => "ear",
             Method::Recursive => "recursive",
             Method::Removal => "removal",
@@ -101,13 +104,16 @@ pub struct Mesh2dOptions {
     pub max_area: Option<f64>,
     /// The boundary rule.
     pub boundary: Boundary,
+    /// Whether the size bounds Delaunay refinement's triangles (false: the angle and
+    /// `max_area` only, as Triangle's `-q -a`); the other methods always follow the size.
+    pub use_size: bool,
     /// The tag of every element.
     pub region: RegionId,
 }
 
 impl Default for Mesh2dOptions {
     fn default() -> Self {
-        Mesh2dOptions { method: Method::Quadtree, quads: false, min_angle: None, max_area: None, boundary: Boundary::Split, region: RegionId(1) }
+        Mesh2dOptions { method: Method::Delaunay, quads: false, min_angle: None, max_area: None, boundary: Boundary::Split, use_size: true, region: RegionId(1) }
     }
 }
 
@@ -132,6 +138,9 @@ pub enum Mesh2dError {
     /// The quadtree failed.
     #[error("quadtree: {0}")]
     Quadtree(#[from] QuadtreeError),
+    /// Delaunay refinement failed.
+    #[error("delaunay: {0}")]
+    Delaunay(#[from] super::delaunay::Error),
     /// Ear cutting failed.
     #[error("ear: {0}")]
     Ear(#[from] super::ear::Error),
@@ -180,7 +189,11 @@ pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2
     domain.validate()?;
     let split;
     let domain = match options.boundary {
-        Boundary::Split | Boundary::Free if options.method != Method::Quadtree => {
+        Boundary::Split if options.method != Method::Quadtree => {
+            split = split_boundary(domain, size)?;
+            &split.domain
+        }
+        Boundary::Free if !matches!(options.method, Method::Quadtree | Method::Delaunay) => {
             split = split_boundary(domain, size)?;
             &split.domain
         }
@@ -200,6 +213,14 @@ pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2
             no_angle_or_area(options)?;
             let o = super::removal::Options { region: options.region, ..Default::default() };
             let m = super::removal::mesh(domain, size, &o)?;
+            Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
+        }
+        Method::Delaunay => {
+            let mut o = super::delaunay::Options { region: options.region, use_size: options.use_size, max_area: options.max_area, split_segments: options.boundary == Boundary::Free, ..Default::default() };
+            if let Some(a) = options.min_angle {
+                o.min_angle = a;
+            }
+            let m = super::delaunay::mesh(domain, size, &o)?;
             Ok(Meshed2d { mesh: m.mesh, midpoints: Vec::new(), stats: json(&m.stats) })
         }
         Method::Ear => {

@@ -58,6 +58,8 @@ pub(crate) fn mesh2d_poly_to(poly: &Path, request: &Mesh2dRequest, outputs: &[&P
         let options = Mesh2dOptions {
             region: r.tag,
             boundary: if lone { Boundary::Free } else { Boundary::Split },
+            // only a max area asked (Triangle's -a): the size is not a bound of Delaunay's
+            use_size: request.size.is_some() || request.options.max_area.is_none(),
             max_area: match (request.options.max_area, r.max_area) {
                 (Some(a), Some(b)) => Some(a.min(b)),
                 (a, b) => a.or(b),

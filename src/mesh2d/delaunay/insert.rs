@@ -225,6 +225,9 @@ fn commit(tri: &mut Tri, sc: &mut Scratch, p: DVec2, seed: u32, split: Option<us
             tri.tn[e.nb as usize][e.back as usize] = s;
         }
         sc.start_of[e.a as usize] = s;
+        // both ends: a split subsegment's far end starts no fan edge, and its old triangle
+        // may have been in the cavity
+        tri.vtri[e.b as usize] = s;
         tri.vtri[e.a as usize] = s;
         sc.created.push(s);
     }

@@ -56,7 +56,7 @@ use glam::DVec2;
 pub const MAX_MIN_ANGLE: f64 = 35.0;
 
 /// A triangle is too large when its circumradius exceeds `SIZE_FACTOR · h / √3`.
-pub const SIZE_FACTOR: f64 = 1.0;
+pub const SIZE_FACTOR: f64 = 1.3;
 
 /// Options of [`mesh`].
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -24,8 +24,6 @@
 
 use super::insert::{encroaches, insert, Kind, Outcome, Scratch};
 use super::tri::{next, prev, Located, Tri, NONE};
-use crate::core::predicates::orient2d;
-use crate::core::Sign;
 use glam::DVec2;
 use rustc_hash::FxHashSet;
 use std::collections::VecDeque;
@@ -162,8 +160,14 @@ impl<'a> Refiner<'a> {
             }
             self.split_triangle(t);
             if !self.enc.is_empty() {
-                self.bad.push(t, v, key);
+                // tried again only when splitting the subsegments inserted something
+                let before = self.tri.pts.len();
                 self.split_encroached();
+                if self.tri.pts.len() > before {
+                    self.bad.push(t, v, key);
+                } else {
+                    self.counts.refused += 1;
+                }
             }
         }
         match self.stop.take() {
@@ -356,22 +360,26 @@ impl<'a> Refiner<'a> {
                 0.5
             };
             let mut p = pa + split * (pb - pa);
-            // one Newton step onto the line
-            let det = robust::orient2d(robust::Coord { x: pa.x, y: pa.y }, robust::Coord { x: pb.x, y: pb.y }, robust::Coord { x: p.x, y: p.y });
-            let len2 = (pb - pa).length_squared();
+            // one Newton step onto the segment's line (Triangle's step, on the whole segment)
+            let seg = self.segment_of(a, b);
+            let (la, lb) = match self.crit.segments.get(seg as usize) {
+                Some(&[u, v]) => (self.tri.pts[u as usize], self.tri.pts[v as usize]),
+                None => (pa, pb),
+            };
+            let det = robust::orient2d(robust::Coord { x: la.x, y: la.y }, robust::Coord { x: lb.x, y: lb.y }, robust::Coord { x: p.x, y: p.y });
+            let len2 = (lb - la).length_squared();
             if det != 0.0 && len2 > 0.0 {
                 let m = det / len2;
                 if m.is_finite() {
-                    p += m * DVec2::new(pb.y - pa.y, pa.x - pb.x);
+                    p += m * DVec2::new(lb.y - la.y, la.x - lb.x);
                 }
             }
-            // strictly between the ends, not outside the domain
-            if orient2d(pa, pb, p) == Sign::Negative || (p - pa).dot(pb - pa) <= 0.0 || (p - pb).dot(pa - pb) <= 0.0 {
+            // strictly between the ends (the cavity check decides the rest exactly)
+            if (p - pa).dot(pb - pa) <= 0.0 || (p - pb).dot(pa - pb) <= 0.0 {
                 self.failed.insert((a, b));
                 self.counts.refused_splits += 1;
                 continue;
             }
-            let seg = self.segment_of(a, b);
             match insert(&mut self.tri, &mut self.sc, p, t, Kind::Split(i as u8)) {
                 Outcome::Inserted(v) => {
                     self.tri.on_seg[v as usize] = seg;

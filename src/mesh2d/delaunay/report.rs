@@ -109,11 +109,12 @@ pub(crate) fn below(tri: &Tri, domain: &Domain, small: &[SmallAngle], min_angle:
     for (t, v) in tri.tv.iter().enumerate() {
         let ang = smallest_angle(tri.corners(t as u32));
         all = all.min(ang);
-        let at_small = v.iter().any(|&x| (x as usize) < n && is_small[x as usize])
-            || (0..3).any(|k| {
-                let (s1, s2) = (segs_of(v[k]), segs_of(v[(k + 1) % 3]));
-                s1.iter().any(|&a| s2.iter().any(|&b| a != b && meet_small(a, b)))
-            });
+        let at_small = !small.is_empty()
+            && (v.iter().any(|&x| (x as usize) < n && is_small[x as usize])
+                || (0..3).any(|k| {
+                    let (s1, s2) = (segs_of(v[k]), segs_of(v[(k + 1) % 3]));
+                    s1.iter().any(|&a| s2.iter().any(|&b| a != b && meet_small(a, b)))
+                }));
         if !at_small {
             away = away.min(ang);
         }
