@@ -7,11 +7,13 @@
 //!   fill from the segments' sides, never crossing a segment); the domain's points keep their
 //!   indices; every segment is a constrained edge.
 //! - How: spade's CDT (bulk loaded, order kept), converted into the triangle arrays; every
-//!   triangle's orientation is checked again with fepre's exact predicate on the domain's own
-//!   coordinates.
+//!   triangle's orientation is checked again with fepre's exact predicate on the same
+//!   coordinates (the domain's, with residue under the guard's flush made 0, as spade sees
+//!   them; those are the output's points).
 
 use super::tri::{next, prev, Tri, NONE};
-use crate::core::cdt::point;
+use crate::core::cdt::{flush, point};
+use glam::DVec2;
 use crate::core::predicates::orient2d;
 use crate::core::Sign;
 use crate::mesh2d::Domain;
@@ -21,8 +23,10 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 /// went wrong (an internal failure: the domain was validated).
 pub(crate) fn build(domain: &Domain) -> Result<Tri, String> {
     let n = domain.points.len();
+    // the points as spade sees them (residue under the guard's flush is 0), used throughout
+    let pts: Vec<DVec2> = domain.points.iter().map(|p| DVec2::new(flush(p.x), flush(p.y))).collect();
     let mut guarded = Vec::with_capacity(n);
-    for p in &domain.points {
+    for p in &pts {
         guarded.push(point(*p).ok_or_else(|| format!("point ({}, {}) is beyond the triangulation's range", p.x, p.y))?);
     }
     let edges: Vec<[usize; 2]> = domain.segments.iter().map(|s| [s[0] as usize, s[1] as usize]).collect();
@@ -39,7 +43,7 @@ pub(crate) fn build(domain: &Domain) -> Result<Tri, String> {
     let mut tv: Vec<[u32; 3]> = Vec::with_capacity(cdt.num_inner_faces());
     for f in cdt.inner_faces() {
         let v = f.vertices().map(|h| h.fix().index() as u32);
-        let p = v.map(|i| domain.points[i as usize]);
+        let p = v.map(|i| pts[i as usize]);
         if orient2d(p[0], p[1], p[2]) != Sign::Positive {
             return Err(format!("triangle {v:?} of the initial triangulation is not positive"));
         }
@@ -114,7 +118,7 @@ pub(crate) fn build(domain: &Domain) -> Result<Tri, String> {
             k += 1;
         }
     }
-    let mut tri = Tri { pts: domain.points.clone(), on_seg: vec![NONE; n], vtri: vec![NONE; n], inputs: n, ..Tri::default() };
+    let mut tri = Tri { pts, on_seg: vec![NONE; n], vtri: vec![NONE; n], inputs: n, ..Tri::default() };
     for t in 0..tv.len() {
         if state[t] != 1 {
             continue;

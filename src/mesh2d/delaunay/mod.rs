@@ -196,8 +196,11 @@ pub fn mesh(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Options) -> 
         refused: counts.refused,
         refused_splits: counts.refused_splits,
     };
+    // the domain's own points back (refinement saw them with sub-1e-30 residue made 0)
+    let mut vertices = tri.pts;
+    vertices[..domain.points.len()].copy_from_slice(&domain.points);
     let mesh = PlanarMesh {
-        vertices: tri.pts,
+        vertices,
         triangle_tags: vec![options.region; tri.tv.len()],
         triangles: tri.tv,
         quads: Vec::new(),
