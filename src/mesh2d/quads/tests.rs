@@ -144,3 +144,59 @@ fn errors_name_the_problem() {
     let cw = PlanarMesh { vertices: vec![d(0.0, 0.0), d(1.0, 0.0), d(0.0, 1.0)], triangles: vec![[0, 2, 1]], triangle_tags: vec![RegionId(1)], ..PlanarMesh::default() };
     assert!(matches!(from_triangles(&cw, &Options::default()), Err(Error::Input(_))));
 }
+
+/// The gmsh expression of each region's size (the same field as [`regions`]).
+fn gmsh_size(name: &str) -> String {
+    match name {
+        "12-gon" => "0.08".into(),
+        "rectangle" | "L" => "0.1".into(),
+        "star" => "0.06".into(),
+        "comb" => "0.07".into(),
+        "two-holes" => "0.12".into(),
+        "strip" => "0.1".into(),
+        _ => "0.03*(1+2*Sqrt((x-1.5)^2+(y-1.0)^2)/3.0)".into(),
+    }
+}
+
+/// Writes every test region (its loops as the mesher got them, the size as a gmsh
+/// expression, fepre's figures) as JSON into `$QUADS_DUMP` for `tools/gmsh_quads_sj.py`.
+/// Run: `QUADS_DUMP=/tmp/quads cargo test --release --lib mesh2d::quads::tests::dump -- --ignored`.
+#[test]
+#[ignore]
+fn dump_regions_for_gmsh() {
+    let dir = std::path::PathBuf::from(std::env::var("QUADS_DUMP").unwrap_or_else(|_| "/tmp/quads".into()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, loops, size) in regions() {
+        let dom = domain_of(&loops, &*size);
+        let t0 = std::time::Instant::now();
+        let out = accept(&dom, &*size, &Options::default());
+        let secs = t0.elapsed().as_secs_f64();
+        // loops back from the segments (each point has one segment out)
+        let mut next = vec![u32::MAX; dom.points.len()];
+        for &[a, b] in &dom.segments {
+            next[a as usize] = b;
+        }
+        let mut seen = vec![false; dom.points.len()];
+        let mut json_loops = Vec::new();
+        for s in 0..dom.points.len() {
+            if seen[s] {
+                continue;
+            }
+            let mut l = Vec::new();
+            let mut v = s;
+            while !seen[v] {
+                seen[v] = true;
+                l.push(format!("[{:?},{:?}]", dom.points[v].x, dom.points[v].y));
+                v = next[v] as usize;
+            }
+            json_loops.push(format!("[{}]", l.join(",")));
+        }
+        let s = out.stats;
+        let text = format!(
+            "{{\"name\":\"{name}\",\"size\":\"{}\",\"loops\":[{}],\"fepre\":{{\"quads\":{},\"pairs\":{},\"leftovers\":{},\"moves\":{},\"sj_before\":[{},{}],\"sj_after\":[{},{}],\"seconds\":{secs}}}}}\n",
+            gmsh_size(name), json_loops.join(","), out.mesh.quads.len(), s.pairs, s.leftover_triangles, s.smoothing_moves,
+            s.scaled_jacobian_before[0], s.scaled_jacobian_before[1], s.scaled_jacobian_after[0], s.scaled_jacobian_after[1]
+        );
+        std::fs::write(dir.join(format!("{name}.json")), text).unwrap();
+    }
+}
