@@ -3,7 +3,8 @@
 //! conforming mesh covering each region or face exactly with its boundary points kept (or a
 //! refusal naming why), the lifted faces sharing their edge points, sizes near the size asked
 //! (median element size within 20 % for the decomposition and front methods), the advancing
-//! front's angles at least 25° on the regions. The corpus comes from `FEPRE_CORPUS` or
+//! front's angles at least 25° on the regions; and `--quads` with every method: all quads,
+//! covering, conforming across faces, median size within 20 % (but the quadtree's). The corpus comes from `FEPRE_CORPUS` or
 //! `../shared/cad_corpus` (skipped when missing, failing under `CI=true`).
 
 mod common;
@@ -44,30 +45,35 @@ fn check_cover(what: &str, d: &Domain, m: &fepre::mesh::PlanarMesh) {
     }
 }
 
-fn regions_by(method: Method) {
+fn regions_by(method: Method, quads: bool) {
     for name in REGIONS {
         let file = read_poly(&region_file(name)).unwrap();
         for r in file.to_regions().unwrap() {
             let h = region_size(name);
-            let what = format!("{} on {name} at {h}", method.name());
+            let what = format!("{}{} on {name} at {h}", method.name(), if quads { " --quads" } else { "" });
             // boundary divided by the size and kept (as for regions sharing segments)
-            let o = Mesh2dOptions { method, boundary: Boundary::Split, region: RegionId(7), ..Mesh2dOptions::default() };
+            let o = Mesh2dOptions { method, quads, boundary: Boundary::Split, region: RegionId(7), ..Mesh2dOptions::default() };
             let m = match mesh_domain(&r.domain, &|_| h, &o) {
                 Ok(m) => m,
                 Err(e) => panic!("{what}: {e}"),
             };
             let split = fepre::mesh2d::boundary::split_boundary(&r.domain, &|_| h).unwrap();
-            if !o.quads && method != Method::Quadtree {
+            if quads {
+                // all quads, covering the region, its boundary points kept
+                check_cover(&what, &r.domain, &m.mesh);
+                assert!(m.mesh.triangles.is_empty() && !m.mesh.quads.is_empty(), "{what}: {} triangles", m.mesh.triangles.len());
+            } else if method != Method::Quadtree {
                 check_cover(&what, &split.domain, &m.mesh);
             } else {
                 m.mesh.validate().unwrap_or_else(|e| panic!("{what}: {e}"));
             }
             assert!(m.mesh.triangle_tags.iter().chain(&m.mesh.quad_tags).all(|&t| t == RegionId(7)), "{what}: tags");
             let q = measure(&m.mesh, &|_| h);
-            if sized(method) {
+            // (the quadtree's leaves, and so its quads, are between half the size and the size)
+            if sized(method) || (quads && method != Method::Quadtree) {
                 assert!((0.8..=1.2).contains(&q.size_ratio[1]), "{what}: median size ratio {:?}", q.size_ratio);
             }
-            if method.name() == "front" && *name != "small_angle" {
+            if method.name() == "front" && !quads && *name != "small_angle" {
                 assert!(q.angle_range[0] >= 25.0, "{what}: smallest angle {:?}", q.angle_range);
             }
             // the same input, the same mesh
@@ -77,7 +83,7 @@ fn regions_by(method: Method) {
     }
 }
 
-fn corpus_by(method: Method) {
+fn corpus_by(method: Method, quads: bool) {
     let Some(dir) = common::corpus_dir() else { return };
     let mut parts: Vec<PathBuf> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))).collect();
     parts.sort();
@@ -85,7 +91,7 @@ fn corpus_by(method: Method) {
     let mut faces = 0;
     for part in &parts {
         let name = part.file_name().unwrap().to_string_lossy().to_string();
-        let o = Mesh2dOptions { method, ..Mesh2dOptions::default() };
+        let o = Mesh2dOptions { method, quads, ..Mesh2dOptions::default() };
         let r = match mesh_planar_faces(part, &FaceChoice::AllPlanar, None, &o) {
             Ok(r) => r,
             Err(e) => panic!("{} on {name}: {e}", method.name()),
@@ -93,14 +99,17 @@ fn corpus_by(method: Method) {
         assert!(r.failed.is_empty(), "{} on {name}: {:?}", method.name(), r.failed);
         for m in &r.meshed {
             let what = format!("{} on {name} face {}", method.name(), m.planar.face.0);
-            if method != Method::Quadtree {
+            if method != Method::Quadtree || quads {
                 check_cover(&what, &m.planar.domain, &m.meshed.mesh);
+            }
+            if quads {
+                assert!(m.meshed.mesh.triangles.is_empty(), "{what}: {} triangles", m.meshed.mesh.triangles.len());
             }
             faces += 1;
         }
         let s = r.surface();
         s.validate().unwrap_or_else(|e| panic!("{} on {name}: lifted surface: {e}", method.name()));
-        if method != Method::Quadtree {
+        if method != Method::Quadtree || quads {
             assert_eq!(r.unshared_boundary_points(), 0, "{} on {name}: faces do not conform", method.name());
         }
     }
@@ -108,27 +117,33 @@ fn corpus_by(method: Method) {
 }
 
 macro_rules! method_tests {
-    ($($regions:ident, $corpus:ident, $name:literal;)*) => {$(
+    ($($regions:ident, $corpus:ident, $quad_regions:ident, $quad_corpus:ident, $name:literal;)*) => {$(
         #[test]
         fn $regions() {
-            let method: Method = $name.parse().unwrap();
-            regions_by(method);
+            regions_by($name.parse().unwrap(), false);
         }
         #[test]
         fn $corpus() {
-            let method: Method = $name.parse().unwrap();
-            corpus_by(method);
+            corpus_by($name.parse().unwrap(), false);
+        }
+        #[test]
+        fn $quad_regions() {
+            regions_by($name.parse().unwrap(), true);
+        }
+        #[test]
+        fn $quad_corpus() {
+            corpus_by($name.parse().unwrap(), true);
         }
     )*};
 }
 
 method_tests! {
-    quadtree_on_regions, quadtree_on_corpus_faces, "quadtree";
-    removal_on_regions, removal_on_corpus_faces, "removal";
-    front_on_regions, front_on_corpus_faces, "front";
-    ear_on_regions, ear_on_corpus_faces, "ear";
-    recursive_on_regions, recursive_on_corpus_faces, "recursive";
-    delaunay_on_regions, delaunay_on_corpus_faces, "delaunay";
+    quadtree_on_regions, quadtree_on_corpus_faces, quadtree_quads_on_regions, quadtree_quads_on_corpus_faces, "quadtree";
+    removal_on_regions, removal_on_corpus_faces, removal_quads_on_regions, removal_quads_on_corpus_faces, "removal";
+    front_on_regions, front_on_corpus_faces, front_quads_on_regions, front_quads_on_corpus_faces, "front";
+    ear_on_regions, ear_on_corpus_faces, ear_quads_on_regions, ear_quads_on_corpus_faces, "ear";
+    recursive_on_regions, recursive_on_corpus_faces, recursive_quads_on_regions, recursive_quads_on_corpus_faces, "recursive";
+    delaunay_on_regions, delaunay_on_corpus_faces, delaunay_quads_on_regions, delaunay_quads_on_corpus_faces, "delaunay";
 }
 
 #[test]

@@ -18,7 +18,7 @@ pub const EXAMPLES: &str = "\
 Examples:
   fepre mesh2d part.step -o faces.vtu                  every planar face, default size (diagonal / 25)
   fepre mesh2d part.step --face 3 --size 0.5 -o f3.msh  face 3 only, elements of about 0.5 mm
-  fepre mesh2d part.step --method quadtree --quads -o faces.mesh
+  fepre mesh2d part.step --method front --quads -o faces.mesh   all quadrilaterals
   fepre mesh2d part.step --size 2 --json               no file: the JSON summary only
   fepre mesh2d part.step --require-min-angle 20 -o f.inp   exit 1, nothing written, under 20 deg
   fepre mesh2d plate.poly --method delaunay --min-angle 33 --max-area 0.01 -o plate.msh
@@ -38,6 +38,10 @@ Methods (the lecture's section 23.2):
               every new triangle checked to be Delaunay, then flips and smoothing
   quadtree    Yerry and Shephard's modified quadtree: 2:1 balanced, 45-degree templates
               inside, the boundary band triangulated (its own cuts of the boundary)
+
+--quads makes all quadrilaterals with any method: its triangles at twice the size are
+paired by a maximum-weight matching and split into quads (gmsh's Blossom recombination
+plus subdivision); with the quadtree its interior lattice seeds the triangles.
 
 A face's boundary points are the part's tessellation's, so neighbouring faces conform.
 The output (.msh, .vtu, .mesh, .inp, .obj, .stl) is the faces' meshes on their planes,
@@ -67,7 +71,8 @@ pub struct Args {
     /// Largest triangle area (Triangle's -a), besides the size.
     #[arg(long, value_name = "AREA", value_parser = crate::cli::positive)]
     pub max_area: Option<f64>,
-    /// Quadrilaterals: with the quadtree, interior quadrants without hanging nodes.
+    /// All quadrilaterals: the method's triangles at twice the size, paired (a
+    /// maximum-weight matching) and split into quads (every edge halved).
     #[arg(long)]
     pub quads: bool,
     /// Exit 1 and write nothing when an angle is under A degrees.

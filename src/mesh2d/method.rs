@@ -7,8 +7,13 @@
 //!   region; the others get it divided by the size); [`Boundary::Split`] divides the domain's segments by the size first
 //!   ([`split_boundary`]), for regions whose segments are long; [`Boundary::Keep`] keeps the
 //!   given points as the boundary (a CAD face: the tessellation's edge points, so that
-//!   neighbouring faces conform). Quadrilaterals halve every boundary segment (listed in
-//!   [`Meshed2d::midpoints`]).
+//!   neighbouring faces conform).
+//! - Quadrilaterals ([`Mesh2dOptions::quads`]): all quads for every method. The method's
+//!   triangles are made at twice the size (the boundary divided at twice the size too), then
+//!   paired and split by [`super::quads::from_triangles`]: every edge halved, so the quads
+//!   come out at the size and every boundary edge gets its midpoint (listed in
+//!   [`Meshed2d::midpoints`]). The quadtree's triangles are [`super::quads::mesh`]'s (its
+//!   interior lattice as seeds, which pairs into squares).
 
 use super::boundary::{split_boundary, SizeError};
 use super::domain::{Domain, DomainError};
@@ -153,6 +158,9 @@ pub enum Mesh2dError {
     /// The advancing front failed.
     #[error("front: {0}")]
     Front(#[from] super::front::Error),
+    /// The split into quadrilaterals failed.
+    #[error("quads: {0}")]
+    Quads(#[from] super::quads::Error),
 }
 
 /// A meshed domain.
@@ -160,8 +168,9 @@ pub enum Mesh2dError {
 pub struct Meshed2d {
     /// The mesh (every element tagged with the options' region).
     pub mesh: PlanarMesh,
-    /// Vertices added at the middle of a boundary segment (quadrilaterals): the vertex and the
-    /// two mesh vertices, domain points, of the segment it halves.
+    /// Vertices added at the middle of a boundary edge (quadrilaterals): the vertex and the
+    /// two mesh vertices of the edge it halves (domain points unless Delaunay refinement
+    /// split the segments first, [`Boundary::Free`]).
     pub midpoints: Vec<(u32, [u32; 2])>,
     /// The method's own figures, as JSON.
     pub stats: serde_json::Value,
@@ -187,6 +196,34 @@ fn no_angle_or_area(options: &Mesh2dOptions) -> Result<(), Mesh2dError> {
 /// method's own error.
 pub fn mesh_domain(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2dOptions) -> Result<Meshed2d, Mesh2dError> {
     domain.validate()?;
+    if !options.quads {
+        return triangles(domain, size, options);
+    }
+    // all quads: the method's triangles at twice the size, each split into quads (every
+    // edge halved); the quadtree's lattice seeds the triangles of `quads::mesh`
+    let twice = |p: DVec2| 2.0 * size(p);
+    let domain_free = options.boundary == Boundary::Free && options.method == Method::Delaunay;
+    let split;
+    let domain = match options.boundary {
+        _ if options.boundary == Boundary::Keep || domain_free => domain,
+        _ => {
+            split = split_boundary(domain, &twice)?;
+            &split.domain
+        }
+    };
+    let qo = super::quads::Options { region: options.region, ..Default::default() };
+    let (m, source) = if options.method == Method::Quadtree {
+        no_angle_or_area(options)?;
+        (super::quads::mesh(domain, size, &qo)?, serde_json::Value::Null)
+    } else {
+        let tri = triangles(domain, &twice, &Mesh2dOptions { quads: false, boundary: if domain_free { Boundary::Free } else { Boundary::Keep }, ..options.clone() })?;
+        (super::quads::from_triangles(&tri.mesh, &qo)?, tri.stats)
+    };
+    Ok(Meshed2d { mesh: m.mesh, midpoints: m.midpoints, stats: serde_json::json!({ "triangles": source, "quads": m.stats }) })
+}
+
+/// [`mesh_domain`] without quads.
+fn triangles(domain: &Domain, size: &dyn Fn(DVec2) -> f64, options: &Mesh2dOptions) -> Result<Meshed2d, Mesh2dError> {
     let split;
     let domain = match options.boundary {
         Boundary::Split if options.method != Method::Quadtree => {

@@ -22,6 +22,7 @@ pub mod delaunay;
 pub(crate) mod domain;
 pub mod ear;
 pub(crate) mod face;
+pub(crate) mod flips;
 pub mod front;
 pub mod measure;
 pub(crate) mod method;

@@ -146,9 +146,12 @@ pub fn mesh_planar_faces_sized(path: &Path, choice: &FaceChoice, size: Option<f6
             // the boundary: the tessellation's edges divided by the size in 3D, kept, so that
             // neighbouring faces share its points; the quadtree cuts its own boundary by its
             // leaves (its band needs that for its angles), which neighbours do not share
-            let quadtree = options.method == Method2d::Quadtree;
+            // (all quads halve every boundary edge: the edges are divided at twice the size)
+            let quadtree = options.method == Method2d::Quadtree && !options.quads;
             let h3 = |p: DVec3| field.map_or(size, |fd| fd.size_at(p));
-            let planar = if quadtree { planar } else { divide_edges(&planar, &h3, &mut points, &mut pieces).map_err(|e| format!("{f}: {e}"))? };
+            let edge_factor = if options.quads { 2.0 } else { 1.0 };
+            let edge_size = |p: DVec3| edge_factor * h3(p);
+            let planar = if quadtree { planar } else { divide_edges(&planar, &edge_size, &mut points, &mut pieces).map_err(|e| format!("{f}: {e}"))? };
             let boundary = if quadtree { Boundary::Split } else { Boundary::Keep };
             let o = Mesh2dOptions { region: RegionId(f.0), boundary, ..options.clone() };
             let frame = planar.frame;

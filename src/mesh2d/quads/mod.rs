@@ -3,7 +3,8 @@
 //! fair shape are candidates), then one split to all quads (each quad into 4, each
 //! leftover triangle into 3), then smoothing.
 //!
-//! Stages, one file each:
+//! Stages, one file each (the input is first flipped to its constrained Delaunay
+//! triangulation, boundary kept: `mesh2d::flips`):
 //! 1. `source`: [`mesh`] only: triangles of the domain at twice the size, its boundary
 //!    points kept (the quadtree's interior lattice as seeds, spade's CDT with the segments as
 //!    constraints, refined to 25° without splitting them);
@@ -37,7 +38,9 @@ mod tests;
 use crate::core::RegionId;
 use crate::mesh::PlanarMesh;
 use crate::mesh2d::domain::{Domain, DomainError};
+use crate::mesh2d::flips::lawson_flips;
 use crate::mesh2d::measure::min_corner_jacobian;
+use rustc_hash::FxHashSet;
 use glam::DVec2;
 
 /// Options of [`mesh`] and [`from_triangles`].
@@ -77,6 +80,8 @@ pub struct Stats {
     pub pairs: usize,
     /// Triangles left unpaired (each became 3 quads).
     pub leftover_triangles: usize,
+    /// Edges of the input flipped to make it constrained Delaunay (boundary kept).
+    pub flips: usize,
     /// Pairs the greedy start gave, before the augmenting searches.
     pub greedy_pairs: usize,
     /// Accepted alternating paths (augmenting or weight-improving).
@@ -164,6 +169,12 @@ pub fn from_triangles(tris: &PlanarMesh, options: &Options) -> Result<Output, Er
         return Err(Error::Input("it has no triangles".to_string()));
     }
     tris.validate().map_err(|e| Error::Input(e.to_string()))?;
+    // the constrained Delaunay triangulation of the same points and boundary first: the
+    // largest smallest angle, so no sliver whose split would be degenerate
+    let mut flipped = tris.clone();
+    let boundary = boundary_edges(&flipped.triangles);
+    let flips = lawson_flips(&flipped.vertices, &mut flipped.triangles, &boundary);
+    let tris = &flipped;
     let m = matching::match_triangles(tris, options);
     let mut stats = Stats {
         triangles: tris.triangles.len(),
@@ -172,6 +183,7 @@ pub fn from_triangles(tris: &PlanarMesh, options: &Options) -> Result<Output, Er
         leftover_triangles: m.leftovers.len(),
         greedy_pairs: m.greedy_pairs,
         augmentations: m.augmentations,
+        flips,
         ..Stats::default()
     };
     let s = split::split(tris, &m, options.region);
@@ -186,6 +198,22 @@ pub fn from_triangles(tris: &PlanarMesh, options: &Options) -> Result<Output, Er
         return Err(Error::Internal(format!("area {} instead of {}", mesh.area(), tris.area())));
     }
     Ok(Output { mesh, midpoints: s.midpoints, stats })
+}
+
+/// The edges of one triangle only, as sorted pairs.
+fn boundary_edges(triangles: &[[u32; 3]]) -> FxHashSet<[u32; 2]> {
+    let mut all: Vec<[u32; 2]> = triangles.iter().flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])])).collect();
+    all.sort_unstable();
+    let mut out = FxHashSet::default();
+    let mut i = 0;
+    while i < all.len() {
+        let single = i + 1 >= all.len() || all[i + 1] != all[i];
+        if single {
+            out.insert(all[i]);
+        }
+        i += if single { 1 } else { 2 };
+    }
+    out
 }
 
 /// Smallest and median scaled Jacobian of the quads (the median as `measure` takes it).

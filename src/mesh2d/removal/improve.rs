@@ -13,11 +13,12 @@
 //!   sine around it (Verdict's Jacobian, unscaled) does not decrease; after each pass, flips
 //!   again, until a pass moves nothing.
 
-use crate::core::predicates::{incircle, orient2d};
+use crate::core::predicates::orient2d;
 use crate::core::Sign;
+use crate::mesh2d::flips::lawson_flips;
 use crate::mesh2d::measure::min_corner_jacobian;
 use glam::DVec2;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashSet;
 
 /// Counts of the improvement.
 #[derive(Clone, Copy, Debug, Default)]
@@ -29,64 +30,16 @@ pub(crate) struct Improved {
 /// Flips, then `passes` times smoothing and flips (see the module docs).
 pub(crate) fn improve(points: &mut [DVec2], triangles: &mut [[u32; 3]], fixed: usize, segments: &[[u32; 2]], passes: usize) -> Improved {
     let constrained: FxHashSet<[u32; 2]> = segments.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
-    let mut out = Improved { flips: flip(points, triangles, &constrained), moves: 0 };
+    let mut out = Improved { flips: lawson_flips(points, triangles, &constrained), moves: 0 };
     for _ in 0..passes {
         let moved = smooth(points, triangles, fixed);
         out.moves += moved;
-        out.flips += flip(points, triangles, &constrained);
+        out.flips += lawson_flips(points, triangles, &constrained);
         if moved == 0 {
             break;
         }
     }
     out
-}
-
-/// Lawson flips until every unconstrained interior edge is locally Delaunay.
-fn flip(points: &[DVec2], triangles: &mut [[u32; 3]], constrained: &FxHashSet<[u32; 2]>) -> usize {
-    let mut map: FxHashMap<[u32; 2], u32> = FxHashMap::default();
-    map.reserve(3 * triangles.len());
-    let mut stack = Vec::with_capacity(3 * triangles.len());
-    for (t, tri) in triangles.iter().enumerate() {
-        for e in 0..3 {
-            let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            map.insert([a, b], t as u32);
-            if a < b {
-                stack.push([a, b]);
-            }
-        }
-    }
-    stack.reverse();
-    let p = |i: u32| points[i as usize];
-    let third = |t: &[u32; 3], a: u32, b: u32| t.iter().copied().find(|&v| v != a && v != b);
-    let limit = 50 * triangles.len() + 100;
-    let mut flips = 0;
-    while let Some([a, b]) = stack.pop() {
-        if flips >= limit {
-            break;
-        }
-        if constrained.contains(&[a.min(b), a.max(b)]) {
-            continue;
-        }
-        let (Some(&t), Some(&u)) = (map.get(&[a, b]), map.get(&[b, a])) else { continue };
-        let (Some(r), Some(s)) = (third(&triangles[t as usize], a, b), third(&triangles[u as usize], a, b)) else { continue };
-        // t = (a, b, r), u = (b, a, s)
-        if incircle(p(a), p(b), p(r), p(s)) != Sign::Positive {
-            continue;
-        }
-        if orient2d(p(a), p(s), p(r)) != Sign::Positive || orient2d(p(s), p(b), p(r)) != Sign::Positive {
-            continue;
-        }
-        triangles[t as usize] = [a, s, r];
-        triangles[u as usize] = [s, b, r];
-        map.remove(&[a, b]);
-        map.remove(&[b, a]);
-        for (e, tri) in [([a, s], t), ([s, r], t), ([r, a], t), ([s, b], u), ([b, r], u), ([r, s], u)] {
-            map.insert(e, tri);
-        }
-        stack.extend([[a, s], [s, b], [b, r], [r, a]]);
-        flips += 1;
-    }
-    flips
 }
 
 /// One Gauss-Seidel pass of guarded Laplacian smoothing; returns the moves made.
