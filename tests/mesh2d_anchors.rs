@@ -147,7 +147,7 @@ fn delaunay_is_within_15_percent_of_cgal_mesh2_and_no_worse() {
 }
 
 /// Writes `name`'s `--quads` mesh as `stem.msh` and `stem.vtu` in `dir`; its (triangles,
-/// quads) (the quadtree's `--quads` keeps triangles in its boundary band).
+/// quads): all quads, so no triangles.
 fn quads(dir: &Path, name: &str, method: &str) -> (u64, u64) {
     let path = region(name);
     // about TARGET / 2 quads: the edge of an equilateral triangle of 1.2 times the max area
@@ -157,7 +157,7 @@ fn quads(dir: &Path, name: &str, method: &str) -> (u64, u64) {
         let out = dir.join(format!("{name}.{ext}"));
         let j = fepre_json(&[path.to_str().unwrap(), "--method", method, "--quads", "--size", &h, "-o", out.to_str().unwrap()]);
         let q = (j["triangles"].as_u64().unwrap(), j["quads"].as_u64().unwrap());
-        assert!(q.1 > 0 && quads.is_none_or(|p| p == q), "{name}: {q:?} triangles and quads");
+        assert!(q.0 == 0 && q.1 > 0 && quads.is_none_or(|p| p == q), "{name} by {method}: {q:?} triangles and quads");
         quads = Some(q);
     }
     quads.unwrap()
@@ -167,7 +167,8 @@ fn quads(dir: &Path, name: &str, method: &str) -> (u64, u64) {
 fn meshio_and_gmsh_read_the_quads_as_quads() {
     let dir = tempfile::tempdir().unwrap();
     let names = ["convex", "l_shape", "two_holes"];
-    let counts: Vec<(u64, u64)> = names.iter().map(|n| quads(dir.path(), n, "quadtree")).collect();
+    let methods = ["quadtree", "front", "delaunay"];
+    let counts: Vec<(u64, u64)> = names.iter().zip(methods).map(|(n, m)| quads(dir.path(), n, m)).collect();
     if let Some(py) = require(tools::meshio_python(), "python with meshio", "meshio reading the quads") {
         let script = "import sys, meshio
 for p in sys.argv[1:]:
