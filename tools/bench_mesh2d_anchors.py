@@ -16,11 +16,11 @@ A = 1.7 * region area / --triangles (Triangle's -q33 triangles average about 0.5
 about --triangles of them; --million: the region 'large' at a million triangles):
   - Triangle: triangle.triangulate(poly, 'pq33a<A>Q'); only that call is timed (Python's
     start and the import excluded). Every ratio in the table is to this row.
-  - fepre: `fepre mesh2d REGION.poly --method M --json --max-area A --min-angle 33` for M in
-    delaunay ear recursive removal front quadtree, and `--quads` (max area only) for each M;
-    the whole process is timed (its start and the file read included), and its own
-    `total_seconds` is shown beside; the quadtree and the --quads runs get `--size h` (h as
-    for gmsh below) instead, as the quadtree sizes by the size field only.
+  - fepre: `fepre mesh2d REGION.poly --method delaunay --json --max-area A --min-angle 33`,
+    and `--method M --size h` (h as for gmsh below) for M in ear recursive removal front
+    quadtree (they size by the size field only), and `--quads --size h` for each M; the whole
+    process is timed (its start and the file read included), and its own `total_seconds` is
+    shown beside.
   - CGAL Mesh_2 at 30 deg (its refinement is not sure to end at 33), timed inside
     (refine_Delaunay_mesh_2 alone; the CDT's time in brackets): `cgal_mesh2 REGION.poly
     --area A --min-angle 30` (the driver's area criteria, Triangle's -a: CGAL leaves some
@@ -175,10 +175,10 @@ def run_triangle(poly_path, A, angle=33):
 
 
 def run_fepre(fepre, poly_path, method, A, angle, quads, size=None):
-    """quadtree and --quads runs take the size h (as gmsh) instead of A and the angle: the
-    quadtree sizes by the size field only."""
+    """delaunay's triangle runs take A and the angle; every other run (the methods that size by
+    the size field only, and every --quads run) takes the size h, as gmsh."""
     cmd = [fepre, "mesh2d", poly_path, "--method", method, "--json"]
-    if quads or method == "quadtree":
+    if quads or method != "delaunay":
         cmd += ["--size", repr(size if size is not None else float(f"{math.sqrt(4 * 0.6 * A / math.sqrt(3)):.3g}"))] + (["--quads"] if quads else [])
     else:
         cmd += ["--max-area", repr(A)] if A is not None else ["--size", repr(size)]
@@ -303,7 +303,7 @@ def main():
             A = float(f"{1.7 * region_area(pts, segs) / a.triangles:.3g}")
             rows = [("Triangle -q33", run_triangle(path, A))]
             for m in methods:
-                rows.append((f"fepre {m} -q33" if m != "quadtree" else "fepre quadtree (--size h)", run_fepre(a.fepre, path, m, A, 33, False)))
+                rows.append((f"fepre {m} -q33" if m == "delaunay" else f"fepre {m} (--size h)", run_fepre(a.fepre, path, m, A, 33, False)))
             built = os.path.exists(a.cgal)
             rows.append(("CGAL Mesh_2 30° area", run_cgal(a.cgal, path, A) if built else dict(error="not built (make -C tools/cgal_mesh2)")))
             rows.append(("fepre delaunay 30°", run_fepre(a.fepre, path, "delaunay", A, 30, False)))
