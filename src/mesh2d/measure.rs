@@ -74,60 +74,117 @@ fn median(v: &mut [f64]) -> f64 {
     quantile(v, 0.5)
 }
 
+/// The value at rank `round((n - 1) q)` of `v` in `total_cmp` order (a selection, not a sort).
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }
-    v.sort_by(f64::total_cmp);
-    v[((v.len() - 1) as f64 * q).round() as usize]
+    let k = ((v.len() - 1) as f64 * q).round() as usize;
+    *v.select_nth_unstable_by(k, f64::total_cmp).1
+}
+
+/// The angle between `a` and `b`, degrees.
+fn angle(a: DVec2, b: DVec2) -> f64 {
+    b.perp_dot(a).atan2(b.dot(a)).to_degrees().abs()
+}
+
+/// Corner angles compared without trigonometry: a corner's cosine (from its two edges) orders
+/// the angles the other way round; the extreme corners' angles are taken exactly at the end,
+/// and a cosine within rounding of a threshold's is settled by the angle itself.
+struct Corners {
+    /// The smallest angle's corner: its cosine and its edges.
+    widest_cos: (f64, DVec2, DVec2),
+    /// The largest angle's corner.
+    narrowest_cos: (f64, DVec2, DVec2),
+}
+
+impl Corners {
+    fn new() -> Corners {
+        Corners { widest_cos: (f64::NEG_INFINITY, DVec2::ZERO, DVec2::ZERO), narrowest_cos: (f64::INFINITY, DVec2::ZERO, DVec2::ZERO) }
+    }
+
+    /// Takes one corner of edges `a`, `b`; its cosine.
+    fn add(&mut self, a: DVec2, b: DVec2) -> f64 {
+        let c = a.dot(b) / (a.length_squared() * b.length_squared()).sqrt();
+        if c > self.widest_cos.0 {
+            self.widest_cos = (c, a, b);
+        }
+        if c < self.narrowest_cos.0 {
+            self.narrowest_cos = (c, a, b);
+        }
+        c
+    }
+
+    fn range(&self) -> [f64; 2] {
+        if self.widest_cos.0.is_infinite() {
+            return [f64::NAN, f64::NAN];
+        }
+        [angle(self.widest_cos.1, self.widest_cos.2), angle(self.narrowest_cos.1, self.narrowest_cos.2)]
+    }
+}
+
+/// Whether the corner of edges `a`, `b` and cosine `c` is under `deg` degrees (cosine `cos_deg`).
+fn under(c: f64, cos_deg: f64, a: DVec2, b: DVec2, deg: f64) -> bool {
+    if (c - cos_deg).abs() > 1e-9 {
+        c > cos_deg
+    } else {
+        angle(a, b) < deg
+    }
 }
 
 /// Measures `mesh` against the size field `size` (see [`Quality2d`]).
 pub fn measure(mesh: &PlanarMesh, size: &dyn Fn(DVec2) -> f64) -> Quality2d {
     let v = |i: u32| mesh.vertices[i as usize];
-    let mut q = Quality2d { vertices: mesh.vertices.len(), triangles: mesh.triangles.len(), quads: mesh.quads.len(), angle_range: [f64::INFINITY, 0.0], ..Quality2d::default() };
+    let mut q = Quality2d { vertices: mesh.vertices.len(), triangles: mesh.triangles.len(), quads: mesh.quads.len(), ..Quality2d::default() };
     let mut ratios = Vec::with_capacity(mesh.triangles.len() + mesh.quads.len());
     let mut sj = Vec::with_capacity(mesh.triangles.len());
     let mut ar = Vec::with_capacity(mesh.triangles.len());
-    let element = |p: &[DVec2], q: &mut Quality2d, ratios: &mut Vec<f64>| {
-        let n = p.len();
-        let mut perimeter = 0.0;
-        let mut twice_area = 0.0;
-        for i in 0..n {
-            perimeter += p[i].distance(p[(i + 1) % n]);
-            twice_area += p[i].perp_dot(p[(i + 1) % n]);
-        }
-        q.area += 0.5 * twice_area;
-        let angles = corner_angles(p);
-        for &a in &angles {
-            q.angle_range = [q.angle_range[0].min(a), q.angle_range[1].max(a)];
-        }
-        let c = p.iter().copied().sum::<DVec2>() / n as f64;
-        ratios.push(perimeter / n as f64 / size(c));
-        angles
-    };
+    let mut corners = Corners::new();
+    let (cos20, cos30) = (20f64.to_radians().cos(), 30f64.to_radians().cos());
     for t in &mesh.triangles {
         let p = [v(t[0]), v(t[1]), v(t[2])];
-        let angles = element(&p, &mut q, &mut ratios);
-        let min = angles.iter().copied().fold(f64::INFINITY, f64::min);
-        if min < 20.0 {
+        let e = [p[1] - p[0], p[2] - p[1], p[0] - p[2]];
+        let l = [e[0].length(), e[1].length(), e[2].length()];
+        let twice_area = e[0].perp_dot(-e[2]);
+        q.area += 0.5 * twice_area;
+        let perimeter = l[0] + l[1] + l[2];
+        ratios.push(perimeter / 3.0 / size((p[0] + p[1] + p[2]) / 3.0));
+        // the smallest angle is at the corner of the largest cosine
+        let mut worst = (f64::NEG_INFINITY, DVec2::ZERO, DVec2::ZERO);
+        for k in 0..3 {
+            let (a, b) = (e[k], -e[(k + 2) % 3]);
+            let c = corners.add(a, b);
+            if c > worst.0 {
+                worst = (c, a, b);
+            }
+        }
+        if under(worst.0, cos20, worst.1, worst.2, 20.0) {
             q.triangles_under[0] += 1;
         }
-        if min < 30.0 {
+        if under(worst.0, cos30, worst.1, worst.2, 30.0) {
             q.triangles_under[1] += 1;
         }
-        sj.push(triangle_scaled_jacobian(p));
-        ar.push(triangle_aspect_ratio(p));
+        // Verdict: the smallest corner sine (twice the area over the two edges' lengths)
+        let sine = (twice_area / (l[0] * l[2])).min(twice_area / (l[0] * l[1])).min(twice_area / (l[1] * l[2]));
+        sj.push(sine * 2.0 / 3f64.sqrt());
+        let lmax = l[0].max(l[1]).max(l[2]);
+        ar.push(lmax * perimeter / (4.0 * 3f64.sqrt() * 0.5 * twice_area));
     }
     let mut qsj = Vec::with_capacity(mesh.quads.len());
     for quad in &mesh.quads {
         let p = [v(quad[0]), v(quad[1]), v(quad[2]), v(quad[3])];
-        element(&p, &mut q, &mut ratios);
+        let mut perimeter = 0.0;
+        let mut twice_area = 0.0;
+        for i in 0..4 {
+            perimeter += p[i].distance(p[(i + 1) % 4]);
+            twice_area += p[i].perp_dot(p[(i + 1) % 4]);
+            corners.add(p[(i + 3) % 4] - p[i], p[(i + 1) % 4] - p[i]);
+        }
+        q.area += 0.5 * twice_area;
+        ratios.push(perimeter / 4.0 / size(p.iter().copied().sum::<DVec2>() / 4.0));
         qsj.push(min_corner_jacobian(&p));
     }
-    if q.angle_range[0].is_infinite() {
-        q.angle_range = [f64::NAN, f64::NAN];
-    }
+    q.angle_range = corners.range();
     let min = |v: &[f64]| v.iter().copied().fold(f64::NAN, f64::min);
     let max = |v: &[f64]| v.iter().copied().fold(f64::NAN, f64::max);
     q.triangle_scaled_jacobian = [min(&sj), median(&mut sj)];

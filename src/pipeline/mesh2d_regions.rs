@@ -71,12 +71,22 @@ pub(crate) fn mesh2d_poly_to(poly: &Path, request: &Mesh2dRequest, outputs: &[&P
         meshes.push(m.mesh);
     }
     // one mesh: regions side by side, the points they share merged (the same coordinates)
-    let all = concatenate(meshes.iter());
-    let merged = merge_equal_points(&all);
-    let quality = measure(&all, &|_| size);
+    // (a lone region is its own whole: no copy, no merge, measured once)
+    let all = if lone { meshes.pop().unwrap_or_default() } else { concatenate(meshes.iter()) };
+    let merged_owned;
+    let merged = if lone {
+        &all
+    } else {
+        merged_owned = merge_equal_points(&all);
+        &merged_owned
+    };
+    let quality = match per_face.first() {
+        Some(f) if lone => f.quality.clone(),
+        _ => measure(&all, &|_| size),
+    };
     check_min_angle(poly, request.require_min_angle, &quality, &per_face)?;
     let t2 = Instant::now();
-    let surface = MixedSurface::from_planar(&merged);
+    let surface = MixedSurface::from_planar(merged);
     for out in outputs {
         write_faces(out, &surface, &format!("{}: regions meshed by fepre mesh2d --method {}", poly.display(), request.options.method))?;
     }

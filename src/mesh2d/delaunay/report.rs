@@ -70,12 +70,11 @@ pub(crate) fn small_input_angles(domain: &Domain) -> Vec<SmallAngle> {
 
 /// The smallest angle of a triangle, degrees.
 pub(crate) fn smallest_angle(p: [DVec2; 3]) -> f64 {
-    let mut best = 180.0f64;
-    for k in 0..3 {
-        let (u, w) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-        best = best.min(u.perp_dot(w).abs().atan2(u.dot(w)).to_degrees());
-    }
-    best
+    // the smallest angle is opposite the shortest edge (one arctangent, not three)
+    let l = |k: usize| (p[(k + 2) % 3] - p[(k + 1) % 3]).length_squared();
+    let k = if l(0) <= l(1) && l(0) <= l(2) { 0 } else if l(1) <= l(2) { 1 } else { 2 };
+    let (u, w) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+    u.perp_dot(w).abs().atan2(u.dot(w)).to_degrees()
 }
 
 /// The counts under `min_angle` by cause, the smallest angle over all triangles and over
