@@ -203,3 +203,25 @@ fn a_job_with_mesh2d_writes_the_mesh_and_the_report() {
     assert_eq!(r.meshed, 1);
     assert!(r.triangles > 100, "{}", r.triangles);
 }
+
+#[test]
+fn the_same_bytes_for_one_and_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let part = Path::new(env!("CARGO_MANIFEST_DIR")).join("cad_fixtures/bracket.step");
+    let inputs = [(part.clone(), "delaunay", false), (part, "front", true), (region_file("two_holes"), "delaunay", false), (region_file("comb"), "ear", true)];
+    for (k, (input, method, quads)) in inputs.iter().enumerate() {
+        let mut outs = Vec::new();
+        for threads in ["1", "2"] {
+            let out = dir.path().join(format!("{k}_{threads}.msh"));
+            let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_fepre"));
+            cmd.env("RAYON_NUM_THREADS", threads).args(["mesh2d", input.to_str().unwrap(), "--method", method, "-o", out.to_str().unwrap()]);
+            if *quads {
+                cmd.arg("--quads");
+            }
+            let o = cmd.output().unwrap();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            outs.push(std::fs::read(&out).unwrap());
+        }
+        assert!(outs[0] == outs[1], "{} by {method}: the output differs between 1 and 2 threads", input.display());
+    }
+}

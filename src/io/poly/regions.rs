@@ -17,7 +17,7 @@
 //! - Invariants: deterministic (the regions are ordered by their first segment in the file;
 //!   each domain's points by first use along its segments, which keep the file's order).
 
-use super::{PolyError, PolyFile};
+use super::types::{PolyError, PolyFile};
 use crate::core::cdt;
 use crate::core::predicates::orient2d;
 use crate::core::{RegionId, Sign};
