@@ -3,7 +3,7 @@
 //! quadrants split by templates, boundary quadrants cut and triangulated conformingly.
 //!
 //! Stages, one file each:
-//! 1. the input, [`Domain`](crate::mesh2d::Domain): a polygon with holes whose segments carry
+//! 1. the input, [`Domain`]: a polygon with holes whose segments carry
 //!    tags, checked exactly;
 //! 2. `tree`: the quadtree, refined until each quadrant is no larger than the size at its
 //!    centre and around boundary features (two segments that share no point within a
