@@ -225,3 +225,38 @@ fn the_same_bytes_for_one_and_two_threads() {
         assert!(outs[0] == outs[1], "{} by {method}: the output differs between 1 and 2 threads", input.display());
     }
 }
+
+#[test]
+fn a_job_meshes_its_own_polygons() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = dir.path().join("plate.toml");
+    let run = |text: &str, extra: &[&str]| {
+        std::fs::write(&job, text).unwrap();
+        std::process::Command::new(env!("CARGO_BIN_EXE_fepre")).arg("run").arg(&job).args(extra).output().unwrap()
+    };
+    let region = "[[mesh2d.region]]\nouter = [[0, 0], [4, 0], [4, 2], [0, 2]]\nholes = [[[1, 0.5], [1.5, 0.5], [1.5, 1.5], [1, 1.5]]]\ntag = 5\n";
+    let text = format!("units = \"cm\"\n[density]\nsize = 0.2\n[mesh2d]\nmethod = \"front\"\nquads = true\n{region}[[output]]\nfile = \"plate.inp\"\n[[output]]\nfile = \"plate.json\"\n");
+    let o = run(&text, &["--check"]);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("1 polygon region"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!dir.path().join("plate.inp").exists(), "--check wrote the mesh");
+    let o = run(&text, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let inp = std::fs::read_to_string(dir.path().join("plate.inp")).unwrap();
+    assert!(inp.contains("*ELEMENT, TYPE=CPS4, ELSET=REGION_5"), "{}", &inp[..inp.len().min(400)]);
+    let rep: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("plate.json")).unwrap()).unwrap();
+    assert_eq!(rep["triangles"], 0);
+    // the polygon and the mesh in the job's units (cm): the plate's area less the hole's
+    let area = rep["quality"]["area"].as_f64().unwrap();
+    assert!((area - 7.5).abs() < 1e-9, "area {area}");
+    assert_eq!(rep["size"], 0.2);
+    // a hole outside the boundary, and polygons beside an [input] file: exit 1, the line named
+    let bad = format!("[mesh2d]\n[[mesh2d.region]]\nouter = [[0, 0], [4, 0], [4, 2], [0, 2]]\nholes = [[[5, 0.5], [6, 0.5], [6, 1.5]]]\n[[output]]\nfile = \"bad.msh\"\n");
+    let o = run(&bad, &[]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("hole") && err.contains(":2:"), "{err}");
+    assert!(!dir.path().join("bad.msh").exists());
+    let o = run(&format!("[input]\nfile = \"a.poly\"\n[mesh2d]\n{region}"), &[]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("one or the other"), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -51,6 +51,13 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let progress = crate::cli::progress::Progress::start(&format!("running {}", args.job.display()));
     let jf = JobFile::read(&args.job)?;
+    let polygons = jf.job.mesh2d.as_ref().is_some_and(|m| !m.region.is_empty());
+    if polygons && args.check {
+        let n = fepre::pipeline::check_mesh2d_regions(&jf)?;
+        progress.finish();
+        outln!("job OK: {n} polygon region(s) for [mesh2d]");
+        return Ok(());
+    }
     if jf.job.mesh2d.is_some() && !args.check {
         // a 2D job: the lecture's 2D methods on the part's planar faces or a .poly's regions
         let report = fepre::pipeline::mesh2d_job(&jf)?;
@@ -58,7 +65,7 @@ pub fn run(args: &Args) -> Result<()> {
         if args.json {
             outln!("{}", serde_json::to_string_pretty(&report)?);
         } else {
-            crate::cli::mesh2d::print(&report, report.input.to_ascii_lowercase().ends_with(".poly"));
+            crate::cli::mesh2d::print(&report, polygons || report.input.to_ascii_lowercase().ends_with(".poly"));
         }
         crate::cli::print_warnings(&report.warnings);
         return Ok(());

@@ -39,8 +39,9 @@ pub struct Job {
     /// Unit of every length in the job (sizes, points, boxes, offsets, radii); default `mm`.
     #[serde(default)]
     pub units: LengthUnit,
-    /// What to read.
-    pub input: Input,
+    /// What to read (absent only for a `[mesh2d]` job of `[[mesh2d.region]]` polygons).
+    #[serde(default)]
+    pub input: Option<Input>,
     /// Named selectors.
     #[serde(default)]
     pub selectors: BTreeMap<String, Spanned<Selector>>,
@@ -96,6 +97,22 @@ pub struct Mesh2dSection {
     pub faces: Vec<u32>,
     /// Fail, writing nothing, when an angle is under this, degrees.
     pub require_min_angle: Option<Positive>,
+    /// Polygons to mesh instead of an `[input]` file.
+    #[serde(default)]
+    pub region: Vec<Spanned<PolygonRegion>>,
+}
+
+/// `[[mesh2d.region]]`: a polygon with holes, in the job's units.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PolygonRegion {
+    /// The boundary's points `[x, y]`, in order (either way round; the last joins the first).
+    pub outer: Vec<[f64; 2]>,
+    /// The holes, each a list of points.
+    #[serde(default)]
+    pub holes: Vec<Vec<[f64; 2]>>,
+    /// The region's tag (default: its place in the list, from 1).
+    pub tag: Option<u32>,
 }
 
 /// A length unit.
@@ -300,7 +317,21 @@ impl JobFile {
         Ok(jf)
     }
 
+    /// The `[input]` section.
+    ///
+    /// # Errors
+    /// A job without one.
+    pub fn input(&self) -> Result<&Input, PipelineError> {
+        self.job.input.as_ref().ok_or_else(|| self.error_at(0, "missing `[input]`: the part to read".into()))
+    }
+
     fn check_values(&self) -> Result<(), PipelineError> {
+        let regions = self.job.mesh2d.as_ref().map_or(&[][..], |m| m.region.as_slice());
+        match (&self.job.input, regions.first()) {
+            (None, None) => return Err(self.error_at(0, "missing `[input]`: the part to read (or `[[mesh2d.region]]` polygons)".into())),
+            (Some(_), Some(r)) => return Err(self.error_at(r.span().start, "`[[mesh2d.region]]` polygons are meshed instead of an `[input]` file: give one or the other".into())),
+            _ => {}
+        }
         if let Some(m) = self.job.mesh2d.as_ref().and_then(|m| m.method.as_ref()) {
             if let Err(e) = m.get_ref().parse::<crate::mesh2d::Method>() {
                 return Err(self.error_at(m.span().start, format!("key `method`: {e}")));

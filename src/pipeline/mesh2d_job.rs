@@ -1,16 +1,19 @@
 //! A job file with a `[mesh2d]` section: the 2D method on the planar faces of its STEP part,
 //! sized by its `[density]` (the size field lifted onto each face's plane: face sizes,
 //! distances, points and boxes apply), or on the regions of its `.poly` file (`[density] size`
-//! only); its `[[output]]` files are the mesh (any mesh, surface or deck extension that holds
+//! only), or on its `[[mesh2d.region]]` polygons (no `[input]` then); its `[[output]]` files are the mesh (any mesh, surface or deck extension that holds
 //! a 2D mesh: .msh, .vtu, .mesh, .inp, .obj, .stl) and the report (.json).
 
 use super::job::{JobFile, Mesh2dSection, OutputKind};
 use super::mesh2d_file::{mesh2d_step, Mesh2dReport, Mesh2dRequest};
-use super::mesh2d_regions::mesh2d_poly_to;
+use super::mesh2d_regions::{mesh2d_poly_to, mesh2d_regions_to};
 use super::part::Part;
 use super::planar::FaceChoice;
 use super::PipelineError;
-use crate::core::FaceId;
+use crate::core::{FaceId, RegionId};
+use crate::io::PolyRegion;
+use crate::mesh2d::Domain;
+use glam::DVec2;
 use crate::io::atomic::write_atomic;
 use crate::mesh2d::{Mesh2dOptions, Method};
 use std::io::Write as _;
@@ -37,6 +40,44 @@ fn request(jf: &JobFile, m: &Mesh2dSection, unit: f64) -> Result<Mesh2dRequest, 
     })
 }
 
+/// The `[[mesh2d.region]]` polygons as checked domains (`unit`: 1, the job's units, as a
+/// `.poly` job's), tagged by their
+/// `tag` or their place in the list; an invalid polygon is named by its line.
+fn regions(jf: &JobFile, m: &Mesh2dSection, unit: f64) -> Result<Vec<PolyRegion>, PipelineError> {
+    let point = |p: &[f64; 2]| DVec2::new(p[0] * unit, p[1] * unit);
+    let mut out = Vec::with_capacity(m.region.len());
+    for (k, r) in m.region.iter().enumerate() {
+        let region = r.get_ref();
+        let loops: Vec<Vec<DVec2>> = std::iter::once(&region.outer).chain(&region.holes).map(|l| l.iter().map(point).collect()).collect();
+        let domain = Domain::from_loops(&loops, None).map_err(|e| jf.error_at(r.span().start, format!("[[mesh2d.region]] {}: {e}", k + 1)))?;
+        // a hole outside the boundary would be kept as an island of its own
+        if loops.len() > 1 && domain.area() > polygon_area(&loops[0]) * (1.0 + 1e-9) {
+            return Err(jf.error_at(r.span().start, format!("[[mesh2d.region]] {}: a hole is not inside the outer boundary", k + 1)));
+        }
+        out.push(PolyRegion { tag: RegionId(region.tag.unwrap_or(k as u32 + 1)), domain, max_area: None });
+    }
+    Ok(out)
+}
+
+/// Checks a `[mesh2d]` job of `[[mesh2d.region]]` polygons without meshing (`fepre run
+/// --check`): the number of polygons, each a valid domain.
+///
+/// # Errors
+/// A job without `[mesh2d]`, a polygon that is not a valid domain (naming its line).
+pub fn check_mesh2d_regions(jf: &JobFile) -> Result<usize, PipelineError> {
+    let Some(section) = &jf.job.mesh2d else {
+        return Err(jf.error_at(0, "the job has no [mesh2d] section".into()));
+    };
+    // the polygons and the mesh are in the job's units, as a .poly's coordinates are
+    Ok(regions(jf, section, 1.0)?.len())
+}
+
+/// The absolute area of a closed polygon.
+fn polygon_area(p: &[DVec2]) -> f64 {
+    let n = p.len();
+    (0..n).map(|i| p[i].perp_dot(p[(i + 1) % n])).sum::<f64>().abs() * 0.5
+}
+
 /// Runs the `[mesh2d]` section of `jf` (see the module docs) and writes its outputs.
 ///
 /// # Errors
@@ -48,9 +89,13 @@ pub fn mesh2d_job(jf: &JobFile) -> Result<Mesh2dReport, PipelineError> {
     let Some(section) = &job.mesh2d else {
         return Err(jf.error_at(0, "the job has no [mesh2d] section".into()));
     };
-    let input = jf.resolve(job.input.file.get_ref());
-    let poly = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("poly"));
-    let unit = if poly { job.units.to_mm() / job.input.units.unwrap_or(job.units).to_mm() } else { job.units.to_mm() };
+    let polygons = !section.region.is_empty();
+    let (input, input_units) = match &job.input {
+        Some(i) => (jf.resolve(i.file.get_ref()), i.units),
+        None => (jf.path.clone(), None),
+    };
+    let poly = polygons || input.extension().is_some_and(|e| e.eq_ignore_ascii_case("poly"));
+    let unit = if poly { job.units.to_mm() / input_units.unwrap_or(job.units).to_mm() } else { job.units.to_mm() };
     let request = request(jf, section, unit)?;
     let mut meshes: Vec<PathBuf> = Vec::new();
     let mut reports: Vec<PathBuf> = Vec::new();
@@ -70,7 +115,12 @@ pub fn mesh2d_job(jf: &JobFile) -> Result<Mesh2dReport, PipelineError> {
         if d.min.is_some() || d.max.is_some() || !d.face.is_empty() || !d.distance.is_empty() || !d.point.is_empty() || d.curvature.is_some() {
             return Err(jf.error_at(0, "a .poly job takes [density] size only (the other entries need a CAD part's faces)".into()));
         }
-        mesh2d_poly_to(&input, &request, &outs)?
+        if polygons {
+            let t0 = std::time::Instant::now();
+            mesh2d_regions_to(&jf.path, &regions(jf, section, unit)?, t0, &request, &outs)?
+        } else {
+            mesh2d_poly_to(&input, &request, &outs)?
+        }
     } else {
         let part = Part::open(&input)?;
         let field = part.density_field(&job.density, &jf.selectors(), unit).map_err(|e| match e {

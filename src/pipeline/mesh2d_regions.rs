@@ -9,7 +9,7 @@
 use super::PipelineError;
 use super::mesh2d_file::{angle_warnings, check_min_angle, concatenate, face_report, write_faces, FaceReport, Mesh2dReport, Mesh2dRequest};
 use crate::core::FaceId;
-use crate::io::read_poly;
+use crate::io::{read_poly, PolyRegion};
 use crate::mesh::MixedSurface;
 use crate::mesh2d::measure::measure;
 use crate::mesh2d::{mesh_domain, Boundary, Mesh2dOptions};
@@ -43,8 +43,14 @@ pub(crate) fn mesh2d_poly_to(poly: &Path, request: &Mesh2dRequest, outputs: &[&P
     let t0 = Instant::now();
     let file = read_poly(poly)?;
     let regions = file.to_regions().map_err(|source| PipelineError::PolyRegions { path: poly.to_path_buf(), source })?;
+    mesh2d_regions_to(poly, &regions, t0, request, outputs)
+}
+
+/// Meshes `regions` (read from `source` at `t0`, which names them in messages) as
+/// [`mesh2d_poly`] does.
+pub(crate) fn mesh2d_regions_to(poly: &Path, regions: &[PolyRegion], t0: Instant, request: &Mesh2dRequest, outputs: &[&Path]) -> Result<Mesh2dReport, PipelineError> {
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-    for p in &file.points {
+    for p in regions.iter().flat_map(|r| &r.domain.points) {
         lo = lo.min(*p);
         hi = hi.max(*p);
     }
@@ -53,7 +59,7 @@ pub(crate) fn mesh2d_poly_to(poly: &Path, request: &Mesh2dRequest, outputs: &[&P
     let lone = regions.len() == 1;
     let mut meshes = Vec::with_capacity(regions.len());
     let mut per_face: Vec<FaceReport> = Vec::with_capacity(regions.len());
-    for r in &regions {
+    for r in regions {
         let t = Instant::now();
         let options = Mesh2dOptions {
             region: r.tag,

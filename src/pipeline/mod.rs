@@ -58,7 +58,7 @@ pub use inspect::{InspectOptions, InspectReport, TagInfo, TetKeys, inspect_file}
 pub use job::{JobFile, Method};
 pub use mesh2d_file::{FaceReport, Mesh2dReport, Mesh2dRequest, mesh2d_file};
 pub use mesh2d_regions::mesh2d_poly;
-pub use mesh2d_job::mesh2d_job;
+pub use mesh2d_job::{check_mesh2d_regions, mesh2d_job};
 pub use mesh_file::{MeshFileReport, mesh_file};
 pub use part::{Certified, Part, StageSeconds, failure_message, tessellate_file, tessellate_model};
 pub use plan::{Interface, Plan};

@@ -139,9 +139,10 @@ pub fn run_job(jf: &JobFile, check_only: bool) -> Result<RunReport, PipelineErro
 /// As [`run_job`].
 pub fn carry_out(jf: &JobFile, check_only: bool) -> Result<JobOutcome, PipelineError> {
     let job = &jf.job;
-    let input = jf.resolve(job.input.file.get_ref());
+    let input_section = jf.input()?;
+    let input = jf.resolve(input_section.file.get_ref());
     let mut part = Part::open(&input)?;
-    let unit = if part.is_step() { job.units.to_mm() } else { job.units.to_mm() / job.input.units.unwrap_or(job.units).to_mm() };
+    let unit = if part.is_step() { job.units.to_mm() } else { job.units.to_mm() / input_section.units.unwrap_or(job.units).to_mm() };
     let plan = Plan {
         selectors: jf.selectors(),
         density: job.density.clone(),
