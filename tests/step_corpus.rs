@@ -132,6 +132,20 @@ fn missing_reference_names_both_ids() {
 }
 
 #[test]
+fn an_unneeded_reference_to_nothing_is_read_and_noted() {
+    // some exporters write #18446744073709551615 (an unsigned -1) for "none"; OpenCASCADE reads
+    // such files, and so does fepre where the reference is not needed
+    let Some(path) = common::corpus_file("occt-cube.step") else { return };
+    let text = std::fs::read_to_string(&path).unwrap();
+    let end = text.find("ENDSEC;\nEND-ISO").or_else(|| text.rfind("ENDSEC;")).unwrap();
+    let edited = format!("{}#999999 = PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#18446744073709551615));\n{}", &text[..end], &text[end..]);
+    let model = step::read_bytes(Path::new("none.step"), edited.as_bytes()).unwrap();
+    let clean = step::read_bytes(&path, text.as_bytes()).unwrap();
+    assert_eq!(model.faces.len(), clean.faces.len());
+    assert!(model.notes.iter().any(|n| n.contains("#999999 refers to #18446744073709551615")), "{:?}", model.notes);
+}
+
+#[test]
 fn reference_cycle_names_the_id() {
     // a B-spline surface's control point replaced by... a surface that is its own basis
     let Some(e) = corrupted("occt-cylinder.step", |t| {

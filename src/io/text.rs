@@ -18,8 +18,10 @@ pub struct Tokens<'a> {
 impl<'a> Tokens<'a> {
     /// Tokens of `data`, read from `path`; `comment` starts a comment running to the end of
     /// the line (`#` for OFF, TetGen, Medit).
+    /// A UTF-8 byte order mark at the start (some Windows exporters write one) is skipped.
     pub fn new(path: &'a Path, data: &'a [u8], comment: Option<u8>) -> Self {
-        Tokens { path, data, pos: 0, cursor_line: 1, token_line: 1, comment }
+        let pos = if data.starts_with(&[0xEF, 0xBB, 0xBF]) { 3 } else { 0 };
+        Tokens { path, data, pos, cursor_line: 1, token_line: 1, comment }
     }
 
     /// The file being read.
@@ -168,5 +170,13 @@ mod tests {
         t.next();
         let e = t.finite("z").unwrap_err().to_string();
         assert!(e.contains("unexpected end of file"), "{e}");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let mut t = Tokens::new(Path::new("x.off"), b"\xEF\xBB\xBFOFF\n3 1 0", Some(b'#'));
+        assert_eq!(t.next(), Some("OFF"));
+        assert_eq!(t.parse::<usize>("count").unwrap(), 3);
+        assert_eq!(t.line(), 2);
     }
 }

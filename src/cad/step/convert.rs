@@ -82,10 +82,13 @@ impl<'f> Converter<'f> {
         }
     }
 
-    /// The instance `#id` (references were checked when parsing).
+    /// The instance `#id`; a reference the file does not define fails here, where it is
+    /// needed (parsing lists such references and goes on).
     pub fn entity(&self, id: u64) -> R<&'f Entity> {
         self.file.get(id).ok_or_else(|| {
-            Fail::Fatal(StepError::MissingEntity { path: self.file.path.clone(), id, from: self.stack.last().copied().unwrap_or(0), line: 0 })
+            let from = self.stack.last().copied().unwrap_or(0);
+            let line = self.file.get(from).map_or(0, |e| e.line);
+            Fail::Fatal(StepError::MissingEntity { path: self.file.path.clone(), id, from, line })
         })
     }
 

@@ -14,15 +14,22 @@ use super::param::Param;
 use super::table::{Entity, Record, StepFile};
 use std::path::Path;
 
-/// Parses the bytes of an exchange file and checks that every reference resolves.
+/// Parses the bytes of an exchange file. References to instances the file does not define
+/// (some exporters write `#18446744073709551615` for "none") are kept and listed in the
+/// file's notes: reading fails only where such a reference is needed
+/// ([`StepError::MissingEntity`] then, naming both ids), as OpenCASCADE reads them.
 ///
 /// # Errors
 /// [`StepError::NotStep`], [`StepError::Syntax`], [`StepError::Truncated`],
-/// [`StepError::DuplicateId`], [`StepError::MissingEntity`], each naming the line or `#id`.
+/// [`StepError::DuplicateId`], each naming the line or `#id`.
 pub fn parse(path: &Path, bytes: &[u8]) -> Result<StepFile, StepError> {
     let mut p = Parser { s: bytes, pos: 0, line: 1, path, context_line: 1, context: String::new() };
-    let file = p.file()?;
-    file.check_references()?;
+    let mut file = p.file()?;
+    let dangling = file.dangling();
+    if let Some(&(from, line, id)) = dangling.first() {
+        let more = if dangling.len() > 1 { format!(" (and {} more instances)", dangling.len() - 1) } else { String::new() };
+        file.notes.push(format!("line {line}: #{from} refers to #{id}, which the file does not define{more}: read as unset where it is not needed"));
+    }
     Ok(file)
 }
 

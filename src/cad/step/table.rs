@@ -120,6 +120,16 @@ impl StepFile {
     /// # Errors
     /// [`StepError::MissingEntity`] for the first dangling reference, naming both ids.
     pub fn check_references(&self) -> Result<(), StepError> {
+        match self.dangling().first() {
+            Some(&(from, line, id)) => Err(StepError::MissingEntity { path: self.path.clone(), id, from, line }),
+            None => Ok(()),
+        }
+    }
+
+    /// The references to instances the file does not define: `(from, its line, id)`, the
+    /// first of each instance, in file order.
+    pub fn dangling(&self) -> Vec<(u64, u32, u64)> {
+        let mut out = Vec::new();
         for e in &self.entities {
             let mut missing = None;
             for r in &e.records {
@@ -132,9 +142,9 @@ impl StepFile {
                 }
             }
             if let Some(id) = missing {
-                return Err(StepError::MissingEntity { path: self.path.clone(), id, from: e.id, line: e.line });
+                out.push((e.id, e.line, id));
             }
         }
-        Ok(())
+        out
     }
 }

@@ -44,9 +44,12 @@ fn errors_name_line_and_id() {
     let e = parse(&trunc).unwrap_err();
     assert!(matches!(e, StepError::Truncated { line: 9, .. }), "{e}");
     assert!(e.to_string().contains("#2"), "{e}");
+    // a reference to an instance the file does not define: read, noted, and an error
+    // naming both ids where it is needed
     let missing = format!("{HEAD}#1 = VERTEX_POINT('',#7);\nENDSEC;\nEND-ISO-10303-21;\n");
-    let e = parse(&missing).unwrap_err();
-    assert!(matches!(e, StepError::MissingEntity { id: 7, from: 1, line: 8, .. }), "{e}");
+    let f = parse(&missing).unwrap();
+    assert!(f.notes.iter().any(|n| n.contains("line 8: #1 refers to #7")), "{:?}", f.notes);
+    assert!(matches!(f.check_references().unwrap_err(), StepError::MissingEntity { id: 7, from: 1, line: 8, .. }));
     let dup = format!("{HEAD}#1 = A();\n#1 = B();\nENDSEC;\n");
     assert!(matches!(parse(&dup).unwrap_err(), StepError::DuplicateId { id: 1, line: 9, first_line: 8, .. }));
     let bad = format!("{HEAD}#1 = A(,);\nENDSEC;\n");

@@ -410,7 +410,7 @@ pub enum MeshingError {
     Abandoned,
     /// Two solids of an assembly overlap: a point of one lies deeper than the gap inside the
     /// other (on its surface or inside both).
-    #[error("{a} and {b} overlap: the point ({}, {}, {}) lies {depth:.4} deep inside both (touching within {gap:.3e} is contact, deeper is overlap); move the solids apart or cut one out of the other", point[0], point[1], point[2])]
+    #[error("{a} and {b} overlap: the point ({}, {}, {}) lies {depth:.3e} deep inside both (within {gap:.3e} of a surface is contact, deeper is overlap); move the solids apart or cut one out of the other", point[0], point[1], point[2])]
     Overlap {
         /// The first solid and its face at the point.
         a: SolidFace,

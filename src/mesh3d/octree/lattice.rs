@@ -42,7 +42,7 @@ pub enum LatticeError {
         h: f64,
     },
     /// The box is empty: the surface has no vertices.
-    #[error("the surface has no vertices")]
+    #[error("the surface is empty: it has no vertices")]
     NoVertices,
     /// The lattice would have more than `MAX_VERTICES` vertices.
     #[error(
@@ -85,11 +85,12 @@ impl Lattice {
     /// [`LatticeError`]: `h` is not positive and finite, the box is empty, or the lattice would
     /// have more than `MAX_VERTICES` vertices.
     pub fn covering(bbox: &Aabb, h: f64) -> Result<Lattice, LatticeError> {
-        if !(h.is_finite() && h > 0.0) {
-            return Err(LatticeError::NotASize { h });
-        }
+        // an empty surface first: its default size is no number either
         if bbox.is_empty() {
             return Err(LatticeError::NoVertices);
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(LatticeError::NotASize { h });
         }
         let origin = bbox.min - DVec3::new(1.0 + PHI[0], 1.0 + PHI[1], 1.0 + PHI[2]) * h;
         let e = bbox.max - origin;
@@ -215,6 +216,13 @@ impl Lattice {
 mod tests {
     use super::*;
     use crate::quality::tetrahedron::tet_min_max_dihedral;
+
+    #[test]
+    fn an_empty_surface_is_named_before_its_size() {
+        // an empty surface's default cell is no number: the emptiness is the fact to report
+        assert_eq!(Lattice::covering(&Aabb::from_points(&[]), f64::INFINITY).unwrap_err(), LatticeError::NoVertices);
+        assert!(matches!(Lattice::covering(&Aabb::from_points(&[DVec3::ZERO, DVec3::ONE]), f64::INFINITY), Err(LatticeError::NotASize { .. })));
+    }
 
     #[test]
     fn numbering_round_trips() {
