@@ -88,18 +88,24 @@ pub fn split_boundary(domain: &Domain, size: &dyn Fn(DVec2) -> f64) -> Result<Sp
 
 /// The interior parameters (in (0, 1), increasing) that divide `p0 -> p1` by the size.
 fn divide(p0: DVec2, p1: DVec2, size: &dyn Fn(DVec2) -> f64) -> Result<Vec<f64>, SizeError> {
+    divide_sampled(p0, p1, size, SAMPLES)
+}
+
+/// The interior parameters that divide `p0 -> p1` by the size, the integral of `1/h` taken
+/// by trapezoids at `samples + 1` stations: its rounded value gives the pieces (at least
+/// one), the parameters where it reaches its equal parts.
+pub(crate) fn divide_sampled(p0: DVec2, p1: DVec2, size: &dyn Fn(DVec2) -> f64, samples: usize) -> Result<Vec<f64>, SizeError> {
     let len = p0.distance(p1);
-    // cumulative integral of 1/h at SAMPLES + 1 stations (trapezoids)
-    let mut inv = [0.0; SAMPLES + 1];
+    let mut inv = vec![0.0; samples + 1];
     for (k, v) in inv.iter_mut().enumerate() {
-        let p = p0.lerp(p1, k as f64 / SAMPLES as f64);
+        let p = p0.lerp(p1, k as f64 / samples as f64);
         *v = 1.0 / check_size(p, size(p))?;
     }
-    let mut cum = [0.0; SAMPLES + 1];
-    for k in 1..=SAMPLES {
-        cum[k] = cum[k - 1] + 0.5 * (inv[k - 1] + inv[k]) * len / SAMPLES as f64;
+    let mut cum = vec![0.0; samples + 1];
+    for k in 1..=samples {
+        cum[k] = cum[k - 1] + 0.5 * (inv[k - 1] + inv[k]) * len / samples as f64;
     }
-    let total = cum[SAMPLES];
+    let total = cum[samples];
     let n = (total.round() as usize).max(1);
     if n == 1 {
         return Ok(Vec::new());
@@ -108,12 +114,12 @@ fn divide(p0: DVec2, p1: DVec2, size: &dyn Fn(DVec2) -> f64) -> Result<Vec<f64>,
     let mut k = 1;
     for j in 1..n {
         let target = total * j as f64 / n as f64;
-        while k < SAMPLES && cum[k] < target {
+        while k < samples && cum[k] < target {
             k += 1;
         }
         let (c0, c1) = (cum[k - 1], cum[k]);
         let f = if c1 > c0 { (target - c0) / (c1 - c0) } else { 0.5 };
-        out.push(((k - 1) as f64 + f) / SAMPLES as f64);
+        out.push(((k - 1) as f64 + f) / samples as f64);
     }
     Ok(out)
 }

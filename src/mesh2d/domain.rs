@@ -298,7 +298,7 @@ impl Domain {
 }
 
 /// Signed area of a closed loop.
-fn loop_area(pts: &[DVec2]) -> f64 {
+pub(crate) fn loop_area(pts: &[DVec2]) -> f64 {
     let n = pts.len();
     (0..n).map(|k| pts[k].perp_dot(pts[(k + 1) % n])).sum::<f64>() * 0.5
 }

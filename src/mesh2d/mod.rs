@@ -30,6 +30,7 @@ pub mod quads;
 pub mod quadtree;
 pub mod recursive;
 pub mod removal;
+pub(crate) mod stars;
 
 pub use domain::{Domain, DomainError};
 pub use method::{mesh_domain, Boundary, Mesh2dError, Mesh2dOptions, Meshed2d, Method, UnknownMethod};

@@ -12,6 +12,7 @@ use super::planar::FaceChoice;
 use super::PipelineError;
 use crate::core::{FaceId, RegionId};
 use crate::io::PolyRegion;
+use crate::mesh2d::domain::loop_area;
 use crate::mesh2d::Domain;
 use glam::DVec2;
 use crate::io::atomic::write_atomic;
@@ -51,7 +52,7 @@ fn regions(jf: &JobFile, m: &Mesh2dSection, unit: f64) -> Result<Vec<PolyRegion>
         let loops: Vec<Vec<DVec2>> = std::iter::once(&region.outer).chain(&region.holes).map(|l| l.iter().map(point).collect()).collect();
         let domain = Domain::from_loops(&loops, None).map_err(|e| jf.error_at(r.span().start, format!("[[mesh2d.region]] {}: {e}", k + 1)))?;
         // a hole outside the boundary would be kept as an island of its own
-        if loops.len() > 1 && domain.area() > polygon_area(&loops[0]) * (1.0 + 1e-9) {
+        if loops.len() > 1 && domain.area() > loop_area(&loops[0]).abs() * (1.0 + 1e-9) {
             return Err(jf.error_at(r.span().start, format!("[[mesh2d.region]] {}: a hole is not inside the outer boundary", k + 1)));
         }
         out.push(PolyRegion { tag: RegionId(region.tag.unwrap_or(k as u32 + 1)), domain, max_area: None });
@@ -70,12 +71,6 @@ pub fn check_mesh2d_regions(jf: &JobFile) -> Result<usize, PipelineError> {
     };
     // the polygons and the mesh are in the job's units, as a .poly's coordinates are
     Ok(regions(jf, section, 1.0)?.len())
-}
-
-/// The absolute area of a closed polygon.
-fn polygon_area(p: &[DVec2]) -> f64 {
-    let n = p.len();
-    (0..n).map(|i| p[i].perp_dot(p[(i + 1) % n])).sum::<f64>().abs() * 0.5
 }
 
 /// Runs the `[mesh2d]` section of `jf` (see the module docs) and writes its outputs.

@@ -8,6 +8,7 @@
 //!   angle grows; points are visited in index order (deterministic).
 
 use super::trimesh::min_angle;
+use crate::mesh2d::stars::Stars;
 use crate::core::predicates::orient2d;
 use crate::core::Sign;
 use glam::DVec2;
@@ -15,28 +16,12 @@ use glam::DVec2;
 /// Runs `passes` passes over the movable points (see the module docs).
 pub(crate) fn smooth(pts: &mut [DVec2], tris: &[[u32; 3]], movable: &dyn Fn(u32) -> bool, passes: usize) -> usize {
     let n = pts.len();
-    let mut start = vec![0usize; n + 1];
-    for t in tris {
-        for &v in t {
-            start[v as usize + 1] += 1;
-        }
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut inc = vec![0u32; start[n]];
-    for (t, tri) in tris.iter().enumerate() {
-        for &v in tri {
-            inc[fill[v as usize]] = t as u32;
-            fill[v as usize] += 1;
-        }
-    }
+    let stars = Stars::new(n, tris);
     let mut moves = 0;
     let mut ring: Vec<u32> = Vec::new();
     for _ in 0..passes {
         for v in 0..n as u32 {
-            let around = &inc[start[v as usize]..start[v as usize + 1]];
+            let around = stars.of(v as usize);
             if around.is_empty() || !movable(v) {
                 continue;
             }

@@ -17,6 +17,7 @@
 
 use crate::core::predicates::{incircle, orient2d};
 use crate::core::Sign;
+use crate::mesh2d::stars::Stars;
 use glam::DVec2;
 use rustc_hash::FxHashSet;
 
@@ -148,27 +149,10 @@ impl<'a> Improve<'a> {
     /// number of points moved.
     pub(crate) fn smooth(&mut self) -> usize {
         let n = self.pts.len();
-        // triangles around each point (CSR, in triangle order)
-        let mut start = vec![0u32; n + 1];
-        for tri in self.tris.iter() {
-            for &v in tri {
-                start[v as usize + 1] += 1;
-            }
-        }
-        for i in 0..n {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut star = vec![0u32; start[n] as usize];
-        for (t, tri) in self.tris.iter().enumerate() {
-            for &v in tri {
-                star[fill[v as usize] as usize] = t as u32;
-                fill[v as usize] += 1;
-            }
-        }
+        let stars = Stars::new(n, self.tris);
         let mut moves = 0;
         for v in self.boundary..n {
-            let around = &star[start[v] as usize..start[v + 1] as usize];
+            let around = stars.of(v);
             if around.is_empty() {
                 continue;
             }

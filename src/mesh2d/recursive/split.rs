@@ -10,7 +10,7 @@
 //!   the polygon except at the cut's own ends (exact crossing tests), so both parts are
 //!   weakly simple, counter-clockwise, and tile the polygon.
 
-use crate::mesh2d::boundary::{check_size, SizeError};
+use crate::mesh2d::boundary::{divide_sampled, SizeError};
 use crate::mesh2d::ear::{blocked, in_cone};
 use glam::DVec2;
 
@@ -20,30 +20,7 @@ const SAMPLES: usize = 16;
 /// The interior nodes of a cut from `a` to `b`: the rounded integral of `1/h` along it gives
 /// the pieces (at least one), the nodes where the integral reaches its equal parts.
 pub(crate) fn cut_nodes(a: DVec2, b: DVec2, size: &dyn Fn(DVec2) -> f64) -> Result<Vec<DVec2>, SizeError> {
-    let len = a.distance(b);
-    let mut inv = [0.0; SAMPLES + 1];
-    for (k, v) in inv.iter_mut().enumerate() {
-        let p = a.lerp(b, k as f64 / SAMPLES as f64);
-        *v = 1.0 / check_size(p, size(p))?;
-    }
-    let mut cum = [0.0; SAMPLES + 1];
-    for k in 1..=SAMPLES {
-        cum[k] = cum[k - 1] + 0.5 * (inv[k - 1] + inv[k]) * len / SAMPLES as f64;
-    }
-    let total = cum[SAMPLES];
-    let n = (total.round() as usize).max(1);
-    let mut out = Vec::with_capacity(n - 1);
-    let mut k = 1;
-    for j in 1..n {
-        let target = total * j as f64 / n as f64;
-        while k < SAMPLES && cum[k] < target {
-            k += 1;
-        }
-        let (c0, c1) = (cum[k - 1], cum[k]);
-        let f = if c1 > c0 { (target - c0) / (c1 - c0) } else { 0.5 };
-        out.push(a.lerp(b, ((k - 1) as f64 + f) / SAMPLES as f64));
-    }
-    Ok(out)
+    Ok(divide_sampled(a, b, size, SAMPLES)?.into_iter().map(|t| a.lerp(b, t)).collect())
 }
 
 /// A cut made: the two polygons it leaves.

@@ -16,6 +16,7 @@
 use crate::core::predicates::orient2d;
 use crate::core::Sign;
 use crate::mesh2d::flips::lawson_flips;
+use crate::mesh2d::stars::Stars;
 use crate::mesh2d::measure::min_corner_jacobian;
 use glam::DVec2;
 use rustc_hash::FxHashSet;
@@ -45,26 +46,10 @@ pub(crate) fn improve(points: &mut [DVec2], triangles: &mut [[u32; 3]], fixed: u
 /// One Gauss-Seidel pass of guarded Laplacian smoothing; returns the moves made.
 fn smooth(points: &mut [DVec2], triangles: &[[u32; 3]], fixed: usize) -> usize {
     let n = points.len();
-    let mut start = vec![0u32; n + 1];
-    for t in triangles {
-        for &v in t {
-            start[v as usize + 1] += 1;
-        }
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut star = vec![0u32; start[n] as usize];
-    for (k, t) in triangles.iter().enumerate() {
-        for &v in t {
-            star[fill[v as usize] as usize] = k as u32;
-            fill[v as usize] += 1;
-        }
-    }
+    let stars = Stars::new(n, triangles);
     let mut moves = 0;
     for v in fixed..n {
-        let around = &star[start[v] as usize..start[v + 1] as usize];
+        let around = stars.of(v);
         if around.is_empty() {
             continue;
         }
