@@ -433,6 +433,13 @@ impl SurfaceModel {
                 let fc = &self.facets[f as usize];
                 if let [t] = fc.triangles.as_slice() {
                     shape = shape.min(1.5 * min_altitude(t.map(|i| points[i as usize])));
+                } else if fc.triangles.len() <= STRIP_TRIANGLES {
+                    // a strip of a few triangles (a faceted cylinder's flat between two
+                    // generators): as wide as its farthest corner from this side
+                    let width = fc.triangles.iter().flatten().map(|&i| distance_to_line(points[i as usize], pa, pb)).fold(0.0, f64::max);
+                    if width > 0.0 {
+                        shape = shape.min(1.5 * width);
+                    }
                 }
             }
             let shape = shape.min(scale[a as usize]).min(scale[b as usize]).max(length / MAX_SHAPE_PIECES);
@@ -666,6 +673,17 @@ impl SurfaceModel {
 }
 
 /// The smallest altitude of a triangle (twice its area over its longest side).
+/// Facets of at most this many triangles are strips whose width cuts their sides (a CAD
+/// export's faceted cylinder or fillet: two triangles between generators).
+const STRIP_TRIANGLES: usize = 4;
+
+/// The distance from `p` to the line through `a` and `b`.
+fn distance_to_line(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let d = b - a;
+    let l = d.length();
+    if l > 0.0 { (p - a).cross(d).length() / l } else { p.distance(a) }
+}
+
 fn min_altitude(p: [DVec3; 3]) -> f64 {
     let longest = p[0].distance(p[1]).max(p[1].distance(p[2])).max(p[2].distance(p[0]));
     let area2 = (p[1] - p[0]).cross(p[2] - p[0]).length();
