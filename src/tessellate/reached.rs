@@ -8,7 +8,8 @@
 //! segments, between the edge curve and the segment's chord at its ends, a quarter, half and
 //! three quarters of the segment's parameters (the slivers between the trimming curves and
 //! the chords; at an edge's ends the chord runs to the B-rep vertex, which a file may place
-//! off the curve within its tolerance).
+//! off the curve within its tolerance), and between the surface's image of the segment's
+//! `(u, v)` (the quadrature's boundary) and the chord at a quarter, half and three quarters.
 
 use super::FaceDomain;
 use super::edge_points::EdgePoints;
@@ -53,7 +54,17 @@ pub fn face_deviation(model: &Model, fid: FaceId, domain: &FaceDomain, tris: &[[
     for (p, uv) in tris.iter().zip(&domain.uv) {
         d = d.max(triangle_gap(surf, *p, *uv));
     }
-    for &([a, b], _) in &domain.boundary {
+    for &([a, b], [ua, ub]) in &domain.boundary {
+        // the segment's image by the surface, the quadrature's boundary, against its chord:
+        // straight in (u, v) is curved on a surface whose map is not affine (a planar
+        // bilinear patch bulges in its plane, which no distance from a plane sees)
+        if let (Some(&pa), Some(&pb)) = (vertices.get(a as usize), vertices.get(b as usize)) {
+            for s in [0.25, 0.5, 0.75] {
+                let q = surf.point(ua.x + (ub.x - ua.x) * s, ua.y + (ub.y - ua.y) * s);
+                let gap = crate::core::closest::closest_point_on_segment(q, pa, pb).distance(q);
+                d = if gap.is_nan() { f64::INFINITY } else { d.max(gap) };
+            }
+        }
         let Some((e, k)) = index.segment(a, b) else { continue };
         let Some(ci) = model.edges.get(e as usize).and_then(|e| e.curve) else { continue };
         let Some(ep) = edges.get(e as usize) else { continue };
