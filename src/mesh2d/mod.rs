@@ -33,4 +33,15 @@ pub mod removal;
 pub(crate) mod stars;
 
 pub use domain::{Domain, DomainError};
+
+/// A method's triangles and its counts (ear cutting, recursive subdivision, point removal:
+/// each module's `Output`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counted<S> {
+    /// The triangles, each tagged with the method's `options.region`; the domain's points
+    /// first (same indices), then the added ones.
+    pub mesh: crate::mesh::PlanarMesh,
+    /// The method's counts.
+    pub stats: S,
+}
 pub use method::{mesh_domain, Boundary, Mesh2dError, Mesh2dOptions, Meshed2d, Method, UnknownMethod};

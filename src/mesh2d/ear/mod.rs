@@ -99,13 +99,7 @@ pub struct Stats {
 }
 
 /// The mesh and its counts.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Output {
-    /// The triangles, each tagged `options.region`.
-    pub mesh: PlanarMesh,
-    /// Counts.
-    pub stats: Stats,
-}
+pub type Output = crate::mesh2d::Counted<Stats>;
 
 /// Why a domain was not meshed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]

@@ -55,6 +55,19 @@ pub(crate) struct TriMesh {
     pub touched: Vec<u32>,
 }
 
+/// Triangle `t = (a, b, c)` (`a` its vertex `k`) and triangle `u` across its edge `b c`
+/// (opposite `a`), whose vertex opposite that edge is `q`: the neighbours (`n`) and fixed
+/// flags (`f`) across the four outer edges, `[c a, a b, b q, q c]`.
+struct Diamond {
+    u: u32,
+    a: u32,
+    b: u32,
+    c: u32,
+    q: u32,
+    n: [u32; 4],
+    f: [bool; 4],
+}
+
 impl TriMesh {
     /// Builds the adjacency; `None` if an edge is in more than two triangles or twice in the
     /// same direction (not a conforming tiling).
@@ -120,24 +133,28 @@ impl TriMesh {
         incircle(self.p(tri[0]), self.p(tri[1]), self.p(tri[2]), self.p(q)) == Sign::Positive
     }
 
-    /// Flips edge `k` of `t`; returns the two new triangles (both hold `t[k]`), or `None`
-    /// when the edge is fixed, on the boundary, or its quadrilateral is not strictly convex.
-    pub(crate) fn flip(&mut self, t: u32, k: usize) -> Option<[u32; 2]> {
+    /// The two triangles across edge `k` of `t` (`None` when the edge is fixed or on the
+    /// boundary).
+    fn diamond(&self, t: u32, k: usize) -> Option<Diamond> {
         let u = self.adj[t as usize][k];
         if u == NONE || self.fixed[t as usize][k] {
             return None;
         }
         let j = self.adj[u as usize].iter().position(|&x| x == t)?;
         let tri = self.tris[t as usize];
-        let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-        let q = self.tris[u as usize][j];
+        let (at, au) = (self.adj[t as usize], self.adj[u as usize]);
+        let (ft, fu) = (self.fixed[t as usize], self.fixed[u as usize]);
+        let (k1, k2, j1, j2) = ((k + 1) % 3, (k + 2) % 3, (j + 1) % 3, (j + 2) % 3);
+        Some(Diamond { u, a: tri[k], b: tri[k1], c: tri[k2], q: self.tris[u as usize][j], n: [at[k1], at[k2], au[j1], au[j2]], f: [ft[k1], ft[k2], fu[j1], fu[j2]] })
+    }
+
+    /// Flips edge `k` of `t`; returns the two new triangles (both hold `t[k]`), or `None`
+    /// when the edge is fixed, on the boundary, or its quadrilateral is not strictly convex.
+    pub(crate) fn flip(&mut self, t: u32, k: usize) -> Option<[u32; 2]> {
+        let Diamond { u, a, b, c, q, n: [n_ca, n_ab, n_bq, n_qc], f: [f_ca, f_ab, f_bq, f_qc] } = self.diamond(t, k)?;
         if orient2d(self.p(a), self.p(b), self.p(q)) != Sign::Positive || orient2d(self.p(a), self.p(q), self.p(c)) != Sign::Positive {
             return None;
         }
-        let (n_ca, n_ab) = (self.adj[t as usize][(k + 1) % 3], self.adj[t as usize][(k + 2) % 3]);
-        let (f_ca, f_ab) = (self.fixed[t as usize][(k + 1) % 3], self.fixed[t as usize][(k + 2) % 3]);
-        let (n_bq, n_qc) = (self.adj[u as usize][(j + 1) % 3], self.adj[u as usize][(j + 2) % 3]);
-        let (f_bq, f_qc) = (self.fixed[u as usize][(j + 1) % 3], self.fixed[u as usize][(j + 2) % 3]);
         self.tris[t as usize] = [a, b, q];
         self.adj[t as usize] = [n_bq, u, n_ab];
         self.fixed[t as usize] = [f_bq, false, f_ab];
@@ -234,18 +251,7 @@ impl TriMesh {
                 Some(v)
             }
             Location::OnEdge(t, k) => {
-                let u = self.adj[t as usize][k];
-                if u == NONE || self.fixed[t as usize][k] {
-                    return None;
-                }
-                let j = self.adj[u as usize].iter().position(|&x| x == t)?;
-                let tri = self.tris[t as usize];
-                let (a, b, c) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                let q = self.tris[u as usize][j];
-                let (n_ca, n_ab) = (self.adj[t as usize][(k + 1) % 3], self.adj[t as usize][(k + 2) % 3]);
-                let (f_ca, f_ab) = (self.fixed[t as usize][(k + 1) % 3], self.fixed[t as usize][(k + 2) % 3]);
-                let (n_bq, n_qc) = (self.adj[u as usize][(j + 1) % 3], self.adj[u as usize][(j + 2) % 3]);
-                let (f_bq, f_qc) = (self.fixed[u as usize][(j + 1) % 3], self.fixed[u as usize][(j + 2) % 3]);
+                let Diamond { u, a, b, c, q, n: [n_ca, n_ab, n_bq, n_qc], f: [f_ca, f_ab, f_bq, f_qc] } = self.diamond(t, k)?;
                 self.pts.push(p);
                 let (t2, u2) = (self.tris.len() as u32, self.tris.len() as u32 + 1);
                 self.tris[t as usize] = [a, b, v];

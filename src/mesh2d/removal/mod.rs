@@ -99,14 +99,8 @@ pub struct Stats {
     pub moves: usize,
 }
 
-/// The mesh and the counts.
-#[derive(Clone, Debug)]
-pub struct Output {
-    /// The triangles (the domain's points first, same indices, then the added ones).
-    pub mesh: PlanarMesh,
-    /// The counts.
-    pub stats: Stats,
-}
+/// The mesh and its counts.
+pub type Output = crate::mesh2d::Counted<Stats>;
 
 /// Why a domain was not meshed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize)]
