@@ -17,9 +17,11 @@
 //! on its faces (the loss is linear in the chord: this aims at `a η`, with `a` = 0.75 in
 //! [`super::tessellate`] and 0.9 before a size field spaces the points), at most
 //! [`ROUNDS`] times, never below `δ / MAX_SHRINK`, and only while the error is one chords
-//! make (below [`MAX_LOSS`], and halved by the last shrink). The quadrature is only done
-//! for groups whose band `Σ δ_f A_f` over their curved faces (the most chords within `δ_f`
-//! can cut) exceeds `η |V_mesh,g|`: the others keep their volume whatever it says. `|V| / A` is a thickness (half a
+//! make (below [`MAX_LOSS`]; where the last shrink did not halve it, as on a thin curved
+//! wall whose two sides' chords cut opposite ways, below the band and aimed at through it).
+//! The quadrature is only done for groups whose band `Σ δ_f A_f` over their curved faces,
+//! plus `δ_f` times the length of a plane's curved edges (the most chords within `δ_f` can
+//! cut), exceeds `η |V_mesh,g|`: the others keep their volume whatever it says. `|V| / A` is a thickness (half a
 //! plate's, half a rod's radius): the bound follows the local feature size of the part, not
 //! its diagonal, and parts that keep their volume at `δ` are left as they are. An edge takes
 //! the smallest chord of the faces that use it.
@@ -28,6 +30,7 @@ use super::Tessellation;
 use super::certificate::face_groups;
 use super::quadrature::{FaceIntegrals, SegmentIndex, oriented, surface_integrals};
 use crate::cad::brep::Model;
+use crate::cad::geom::Curve;
 use crate::core::FaceId;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -75,6 +78,10 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
             continue;
         }
         let curved = !matches!(model.surface(model.faces[f].surface), crate::cad::geom::Surface::Plane(_));
+        if !curved {
+            // a plane's chords cut only along its curved edges: the slivers there
+            band[g] += chords[f] * curved_edge_length(model, t, f);
+        }
         for tr in s.triangles.get(dom.triangles.clone()).unwrap_or(&[]) {
             let [a, b, c] = tr.map(|i| s.vertices.get(i as usize).copied().unwrap_or(DVec3::NAN) - centre);
             volume[g][0] += a.dot(b.cross(c)) / 6.0;
@@ -109,10 +116,15 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
         .enumerate()
         .map(|(g, [mesh, brep])| {
             let loss = (mesh - brep).abs();
-            let f = aim * eta * brep.abs() / loss;
+            // a loss the last smaller chords halved is linear in them; one they did not (a
+            // thin curved wall: the chords of its two sides cut opposite ways and their
+            // segment counts jump apart) is aimed at through the band, the most the chords
+            // can cut, which shrinks with them whatever the sides do
+            let halved = prev_loss[g].is_none_or(|p| loss <= 0.5 * p);
+            let f = aim * eta * brep.abs() / if halved { loss } else { band[g] };
             // a loss the chords cannot make (a solid whose faces do not close it, cross or
-            // fold), or that the last smaller chords did not halve, is not theirs to mend
-            let chords_made_it = loss <= MAX_LOSS * brep.abs() && prev_loss[g].is_none_or(|p| loss <= 0.5 * p);
+            // fold: more than the band, or than MAX_LOSS) is not theirs to mend
+            let chords_made_it = loss <= MAX_LOSS * brep.abs() && (halved || loss <= band[g]);
             if suspect[g] {
                 prev_loss[g] = Some(loss);
             }
@@ -121,6 +133,24 @@ pub(super) fn shrink_chords(model: &Model, t: &Tessellation, chords: &[f64], tol
         .collect();
     let next: Vec<f64> = chords.iter().enumerate().map(|(f, &d)| (d * factor[group[f] as usize]).max(floor).min(d)).collect();
     (next.iter().zip(chords).any(|(n, d)| n < d).then_some(next), quadrature)
+}
+
+/// The length of face `f`'s edges that are not straight lines, along their points.
+fn curved_edge_length(model: &Model, t: &Tessellation, f: usize) -> f64 {
+    let mut length = 0.0;
+    for &l in &model.faces[f].loops {
+        for c in &model.loops[l as usize].coedges {
+            let straight = model.edges[c.edge as usize].curve.is_none_or(|ci| matches!(model.curve(ci), Curve::Line(_)));
+            if straight {
+                continue;
+            }
+            if let Some(ep) = t.edges.get(c.edge as usize) {
+                let at = |i: u32| t.surface.vertices.get(i as usize).copied().unwrap_or(DVec3::NAN);
+                length += ep.ids.windows(2).map(|w| at(w[0]).distance(at(w[1]))).sum::<f64>();
+            }
+        }
+    }
+    length
 }
 
 /// The chord of every edge: the smallest of the faces that use it, `tol` for an edge no face
