@@ -85,7 +85,7 @@ impl<'a> Buried<'a> {
         if d + reach > self.seal {
             return Some(Side::Unsure);
         }
-        let inside = |q: DVec3| self.w.at(q) > super::winding::INSIDE;
+        let inside = |q: DVec3| self.w.inside(q);
         (inside(c + n * self.seal) && inside(c - n * self.seal)).then_some(Side::Sealed)
     }
 
@@ -144,7 +144,7 @@ impl<'a> Buried<'a> {
         if !(step > tol) {
             return Side::Unsure;
         }
-        let (front, back) = (self.w.at(c + n * step), self.w.at(c - n * step));
+        let (front, back) = (self.w.counted(c + n * step), self.w.counted(c - n * step));
         let jump = back - front;
         if (jump - jump.round()).abs() > 0.1 {
             return Side::Unsure;

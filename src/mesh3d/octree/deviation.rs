@@ -11,14 +11,18 @@
 //!   by longest-edge bisection, each new midpoint measured, until every piece is *settled*:
 //!   with `r` its covering radius (below) and `m` its largest corner distance,
 //!   `m + r ≤ h / 2`, or `r ≤ h / 8`, or the triangle's budget of 65,536 midpoints
-//!   (`MAX_SPLITS`) is spent. A piece so settled with `m ≤ h < m + r` (its samples within the
+//!   (`MAX_SPLITS`; in the second, buried-aware measure below, a share of 2 per triangle of
+//!   the mesh's boundary, at least 1,024) is spent. A piece so settled with `m ≤ h < m + r` (its samples within the
 //!   cell, its bound past it) is measured again *finely*, to `r ≤ h / 64` (and the thin rule
 //!   below at `h / 64`), and if its fine bound still passes the cell, *closely*, to
 //!   `r ≤ h / 256`: the bound is tight where it decides whether the boundary is within the
 //!   cell, and the pieces far inside or far outside it cost no more. Every point of a piece lies within `r` of one of its corners, and the distance to
 //!   a surface is 1-Lipschitz, so the true one-sided distance is at most the largest `m + r`
 //!   over the pieces: `hausdorff_bound` is that upper bound, never an estimate below the
-//!   truth; `hausdorff` is the largest distance actually found.
+//!   truth; `hausdorff` is the largest distance actually found. Where no second measure
+//!   follows (below), a piece bounded within the farthest corner of the whole surface is
+//!   settled at once: it can hold no farther sample than that corner, and its bound does not
+//!   pass it (a soup's boundary, floating off every input triangle, costs its corners).
 //! - A piece thinner than `h / 16` (its altitude onto its longest side) is instead sampled
 //!   along that side at spacing `h / 8`: its angles there are acute, so every point of it
 //!   lies within the altitude of the side, and its bound is the side's sampled maximum plus
@@ -156,6 +160,16 @@ fn nearest_from(s: &TriSurface, bvh: &Bvh, p: DVec3, hint: Option<u32>) -> Optio
 /// Most midpoints measured per triangle (its bound stays honest, only looser, past them).
 const MAX_SPLITS: usize = 1 << 16;
 
+/// The second measure, leaving out what is buried (`buried.rs`), gets at most this many
+/// midpoints per triangle of the mesh's boundary, shared among the input's triangles (at
+/// least [`AWARE_MIN`] each): on a soup every piece near a crossing is unsure and would
+/// otherwise be cut to the close measure along every crossing, 65,536 midpoints a triangle
+/// for a mesh of a few thousand.
+const AWARE_PER_BOUNDARY: usize = 2;
+
+/// The least midpoints per triangle of the second measure.
+const AWARE_MIN: usize = 1024;
+
 /// The fine measure's covering radius, thin test and side spacing, in cells: a piece whose
 /// coarse bound passes the cell is measured again to this.
 const FINE: f64 = 1.0 / 64.0;
@@ -192,10 +206,14 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         .map(|(&p, &u)| if u { nearest_from(to, to_bvh, p, None).map_or((f64::INFINITY, None), |x| (x.1, Some(x.0))) } else { (0.0, None) })
         .collect();
     let corners = used.iter().filter(|&&u| u).count();
+    // without a second measure, every corner is a sample: a piece bounded within the
+    // farthest corner can hold no farther sample, nor raise the bound past that sample
+    let floor = if buried.is_none() { at_vertex.iter().map(|x| x.0).filter(|d| d.is_finite()).fold(0.0, f64::max) } else { 0.0 };
     // a piece is measured coarsely first (level 0); one whose samples are within the cell but
     // whose bound would pass it is measured again finely (level 1), and again closely (level
     // 2) if its fine bound still passes it: the bound is tight where it decides the cell's line
     let settled = |m: f64, r: f64, level: usize| m + r <= 0.5 * h || r <= SETTLE[level] * h;
+    let aware_splits = (AWARE_PER_BOUNDARY * to.triangles.len() / from.triangles.len().max(1)).clamp(AWARE_MIN, MAX_SPLITS);
     // `aware`: the pieces buried in the stuffed volume (or outside it) are left out, and the
     // samples are those of the pieces kept
     let measure_as = |t: usize, aware: Option<&Buried>| {
@@ -224,6 +242,11 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             for (k, &v) in tri.iter().enumerate() {
                 farther(&mut worst, d[k], from.vertices[v as usize]);
             }
+            // a corner past the cell: the buried-aware measure follows, and this one's
+            // figures would be dropped (a soup's triangles, mostly far inside)
+            if buried.is_some() && worst.0 > h {
+                return ((worst.0, worst.1, t), f64::INFINITY, n, centroid.flatten().map(|x| x.0), 0.0);
+            }
         }
         if let Some(Some((_, dc))) = centroid {
             farther(&mut worst, dc, tri.iter().map(|&v| from.vertices[v as usize]).sum::<DVec3>() / 3.0);
@@ -234,6 +257,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
         // whether the piece is known to be on the boundary
         let mut stack: Vec<([DVec3; 3], [f64; 3], Option<u32>, usize, bool)> = vec![(from.corners(t), d, hint, 0, false)];
         let mut splits = 0;
+        let max_splits = if aware.is_some() { aware_splits } else { MAX_SPLITS };
         // (aware) the area of the pieces left out as sealed gaps
         let mut sealed = 0.0;
         while let Some((p, d, hint, level, mut on_boundary)) = stack.pop() {
@@ -253,13 +277,18 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             let k = (0..3).fold(0, |k, i| if len[i] > len[k] { i } else { k });
             let m = d[0].max(d[1]).max(d[2]);
             let r = covering_radius(&p, len);
+            if m + r <= floor {
+                corners_kept(&mut worst, &p, &d);
+                bound = bound.max(m + r);
+                continue;
+            }
             // (aware) a piece the judge could not place whose measure passes the cell is cut
             // further at the fine level even with its samples past the cell, and never bounded
             // by the thin rule while it is larger than the close measure: its pieces away from
             // the triangles that meet it are judged
             let unplaced = aware.is_some() && !on_boundary && m + r > h;
-            let deeper = level < LEVELS - 1 && splits < MAX_SPLITS;
-            if settled(m, r, level) || splits >= MAX_SPLITS {
+            let deeper = level < LEVELS - 1 && splits < max_splits;
+            if settled(m, r, level) || splits >= max_splits {
                 if deeper && (m <= h || (unplaced && level == 0)) && m + r > h {
                     stack.push((p, d, hint, level + 1, on_boundary));
                     continue;
@@ -273,7 +302,7 @@ fn one_sided(from: &TriSurface, to: &TriSurface, to_bvh: &Bvh, h: f64, centroids
             if altitude <= THIN[level] * h && !(unplaced && level > 0) {
                 // thin: every point is within the altitude of a point of the longest side
                 // (its angles at both ends are acute); sample that side at the spacing
-                let steps = ((len[k] / (SPACING[level] * h)).ceil() as usize).clamp(1, MAX_SPLITS - splits);
+                let steps = ((len[k] / (SPACING[level] * h)).ceil() as usize).clamp(1, max_splits - splits);
                 let mut side = d[i].max(d[j]);
                 // the samples, kept for `worst` only where this piece is bounded here
                 let mut far = (0.0, p[i]);

@@ -11,7 +11,8 @@
 //!
 //! Stages, one file each:
 //! 1. `winding.rs`: the fast generalised winding number (BVH, dipoles far, exact near);
-//!    `rows.rs`: for a closed surface, its exact integers counted along the lattice's rows;
+//!    `rows.rs`: its exact integers counted along the lattice's rows, for any surface once
+//!    `cap.rs` has closed it into a cycle (the cap's solid angle subtracted);
 //! 2. `lattice.rs`: the BCC lattice of cell size `h` over the surface's box;
 //! 3. `cut.rs`: signs at the lattice vertices, one cut point per sign-changing edge, the
 //!    warping rule with `α_long = 0.24999`, `α_short = 0.41189`;
@@ -56,6 +57,7 @@
 //!   anything.
 
 mod buried;
+mod cap;
 pub(crate) mod coarsen;
 mod cut;
 mod deviation;
@@ -384,7 +386,7 @@ fn mesh_at(oracle: &Winding, cycle: bool, h: f64, opts: &OctreeOptions, prepared
     let mut t = Instant::now();
     let lattice = Lattice::covering(&surface.bbox(), h)?;
     let n = lattice.num_vertices();
-    let w = winding_at_lattice(&lattice, oracle, cycle);
+    let w = winding_at_lattice(&lattice, oracle);
     // the divergence theorem gives the stuffed volume where the winding number is 0 or 1
     let input_volume_exact = cycle && w.par_iter().all(|&x| x > -0.5 && x < 1.5);
     stage("winding", &mut t);
@@ -704,50 +706,25 @@ enum Minus {
 
 use cut::Cuts;
 
-/// Cells per side of a block whose vertices share one winding number when no triangle comes
-/// near it.
-const BLOCK: u32 = 4;
-
-/// The winding number at every lattice vertex. For a closed surface (a cycle), exact
-/// integers counted along the lattice's rows (`rows.rs`). Otherwise: in a block of `BLOCK³`
-/// cells whose box, grown by a cell, meets no triangle's box, every vertex takes the value at
-/// the block's centre, a smooth approximation across the hole of an open surface; elsewhere
-/// each vertex is evaluated, with [`winding::BETA`] where a triangle's box comes within a
-/// cell, [`winding::FAR_BETA`] farther (as the rows' degenerate rows are).
-fn winding_at_lattice(lattice: &Lattice, oracle: &Winding, cycle: bool) -> Vec<f64> {
+/// The winding number at every lattice vertex: the integers of the surface closed into a
+/// cycle by its cap ([`Winding::closed`]; the surface itself where it is one), counted along
+/// the lattice's rows (`rows.rs`), less the cap's solid angle. A degenerate row sums the
+/// solid angles at its vertices, with [`winding::BETA`] where a triangle's box comes within
+/// a cell, [`winding::FAR_BETA`] farther.
+fn winding_at_lattice(lattice: &Lattice, oracle: &Winding) -> Vec<f64> {
     let h = lattice.h;
+    let (cycle, cap) = oracle.closed();
+    let cap_at = |v: u32| cap.map_or(0.0, |c| c.at(lattice.position(v)));
     let one = |v: u32| {
         let q = lattice.position(v);
         let near = Aabb { min: q - DVec3::splat(h), max: q + DVec3::splat(h) };
-        oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA })
+        oracle.at_with(q, if oracle.bvh().any_overlapping(&near) { winding::BETA } else { winding::FAR_BETA }) + cap_at(v)
     };
-    if cycle {
-        return rows::winding_by_rows(lattice, oracle, &one);
+    let mut w = rows::winding_by_rows(lattice, cycle, &one);
+    if cap.is_some() {
+        w.par_iter_mut().enumerate().for_each(|(v, x)| *x -= cap_at(v as u32));
     }
-    let nb = lattice.n.map(|x| x / BLOCK + 1);
-    let blocks: Vec<Option<f64>> = (0..nb[0] * nb[1] * nb[2])
-        .into_par_iter()
-        .map(|b| {
-            let (x, y, z) = (b % nb[0], (b / nb[0]) % nb[1], b / (nb[0] * nb[1]));
-            let lo = lattice.origin + DVec3::new(x as f64, y as f64, z as f64) * (BLOCK as f64 * h);
-            let hi = lo + DVec3::splat(BLOCK as f64 * h);
-            let grown = Aabb { min: lo - DVec3::splat(h), max: hi + DVec3::splat(h) };
-            (!oracle.bvh().any_overlapping(&grown)).then(|| oracle.at(0.5 * (lo + hi)))
-        })
-        .collect();
-    (0..lattice.num_vertices() as u32)
-        .into_par_iter()
-        .map(|v| {
-            let c = lattice.coords(v);
-            // corners (2i) and centres (2i + 1) of cube i belong to block i / BLOCK
-            let [i, j, k] = c.map(|x| (x as u32 / 2) / BLOCK);
-            let b = (i.min(nb[0] - 1) + nb[0] * (j.min(nb[1] - 1) + nb[1] * k.min(nb[2] - 1))) as usize;
-            if let Some(wb) = blocks[b] {
-                return wb;
-            }
-            one(v)
-        })
-        .collect()
+    w
 }
 
 /// The position of a global corner id (a lattice vertex, or the lattice count plus a cut

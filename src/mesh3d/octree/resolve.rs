@@ -19,7 +19,8 @@
 //! fins rounded off by about a cell: featuretype, wing_fuselage), up to
 //! [`Resolve::bound_tries`] finer tries follow, and the one with the smallest bound over its
 //! cell is kept (a dirty input's inner faces stay as far from the boundary whatever the cell:
-//! there the first is kept). An input without an exact volume (open, overlapping) has its mesh
+//! there the first is kept, and the tries stop after two in a row whose bound in model units
+//! is not a tenth below the best's). An input without an exact volume (open, overlapping) has its mesh
 //! volume judged by how little it changes from one cell to the next (the stuffed volume
 //! converges to the winding number's), for at most [`Resolve::change_tries`] tries after the
 //! first with lattice vertices inside. Counts, never clocks: the same cells on any machine.
@@ -60,6 +61,14 @@ pub struct Resolve {
 /// five for an inexact volume to settle.
 pub const RESOLVE: Resolve = Resolve { volume_error: 0.01, max_lattice_vertices: 1 << 25, max_tets: 1 << 25, bound_tries: 4, change_tries: 5 };
 
+/// A try for the bound whose bound is above this fraction of the best's brings it no closer.
+const STALL: f64 = 0.9;
+
+/// Tries for the bound in a row that bring it no closer stop the tries (one is not enough:
+/// `pins.glb`'s hairline gaps are sealed at a sixteenth of the cell, and the second finer
+/// cell closes them).
+const STALLS: usize = 2;
+
 /// Each try's cell is the last one's over this.
 const STEP: f64 = std::f64::consts::SQRT_2;
 
@@ -99,6 +108,8 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
     // the last mesh volume, and how many tries had lattice vertices inside
     let mut previous: Option<f64> = None;
     let mut inside = 0;
+    // tries for the bound in a row that did not bring it closer
+    let mut stalls = 0;
     loop {
         let result = mesh_at(&oracle, cycle, h, opts, prepared);
         let next = h / STEP;
@@ -120,6 +131,15 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
                 if holds {
                     first_hold.get_or_insert(k);
                 }
+                // a try for the bound whose bound, in model units, is not a tenth below the
+                // best's: the finer cell did not bring the boundary closer (a dirty input's
+                // inner walls, a soup); two in a row stop the tries
+                if holds && first_hold.is_some_and(|f| f < k) && best.as_ref().is_some_and(|b| report.bound_over_cell * report.cell_size >= STALL * b.2.bound_over_cell * b.2.cell_size) {
+                    stalls += 1;
+                } else {
+                    stalls = 0;
+                }
+                let stalled = stalls >= STALLS;
                 if holds && best.as_ref().is_none_or(|b| report.bound_over_cell < b.2.bound_over_cell) {
                     best = Some((k, mesh, report));
                 } else if best.is_none() && (!room || unsettled) {
@@ -128,7 +148,7 @@ pub fn mesh_octree_resolved(surface: &TriSurface, size: &dyn SizeField, opts: &O
                 }
                 if best.is_some() {
                     let bound_tries = first_hold.map_or(0, |f| k - f);
-                    if (holds && within) || bound_tries >= r.bound_tries || !room || unsettled {
+                    if (holds && within) || bound_tries >= r.bound_tries || stalled || !room || unsettled {
                         let (k, mesh, mut report) = best.take().ok_or_else(|| OctreeError::Internal("no try kept".into()))?;
                         tries[k].kept = true;
                         report.cell_tries = tries;

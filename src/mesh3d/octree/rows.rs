@@ -23,9 +23,8 @@
 
 use super::lattice::Lattice;
 use super::winding::Winding;
-use crate::core::Sign;
-use crate::core::predicates::orient3d;
 use crate::mesh::TriSurface;
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// True when every edge of `s` is used as often in each direction: a closed, consistently
@@ -73,37 +72,10 @@ pub fn winding_by_rows(lattice: &Lattice, oracle: &Winding, fallback: &(dyn Fn(u
 
 /// Fills `out` with the winding numbers of the row of vertices `first..first + out.len()`.
 fn row(lattice: &Lattice, oracle: &Winding, first: u32, out: &mut [f64], fallback: &(dyn Fn(u32) -> f64 + Sync)) {
-    let last = out.len() - 1;
-    let at = |k: usize| lattice.position(first + k as u32);
-    let (p, q) = (at(0), at(last));
-    let mut jump = vec![0i32; out.len()];
-    for c in oracle.crossings(p, q) {
-        if c.degenerate {
-            return fill_fallback(first, out, fallback);
-        }
-        let tri = oracle.surface().corners(c.triangle as usize);
-        let side = |k: usize| orient3d(tri[0], tri[1], tri[2], at(k));
-        let start = side(0);
-        // the last vertex on the start's side: the sign along the row changes once
-        let (mut lo, mut hi) = (0usize, last);
-        while hi - lo > 1 {
-            let mid = (lo + hi) / 2;
-            let s = side(mid);
-            if s == Sign::Zero {
-                return fill_fallback(first, out, fallback);
-            }
-            if s == start {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        jump[hi] += c.jump;
-    }
-    let mut w = 0;
-    for (o, j) in out.iter_mut().zip(jump) {
-        w += j;
-        *o = w as f64;
+    let points: Vec<DVec3> = (0..out.len()).map(|k| lattice.position(first + k as u32)).collect();
+    match oracle.along_row(&points) {
+        Some(w) => out.iter_mut().zip(w).for_each(|(o, w)| *o = w as f64),
+        None => fill_fallback(first, out, fallback),
     }
 }
 
@@ -116,7 +88,6 @@ fn fill_fallback(first: u32, out: &mut [f64], fallback: &(dyn Fn(u32) -> f64 + S
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
 
     /// On a sphere and a cube with a cube-shaped void, the rows give the winding number's
     /// own integers at every lattice vertex.
