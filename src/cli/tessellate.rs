@@ -121,6 +121,10 @@ pub fn run(args: &Args) -> Result<()> {
             let what = if x.void { "void, enclosed" } else { "enclosed" };
             outln!("reoriented   shell {} ({} faces, {what} {:.6e} mm3 as written): its face senses disagree with its geometry: turned (OpenCASCADE turns it too)", shells.join(" "), x.faces, x.volume_as_written);
         }
+        if !r.certificate.turned_faces.is_empty() {
+            let faces: Vec<String> = r.certificate.turned_faces.iter().map(|s| s.to_string()).collect();
+            outln!("turned       {} faces ({}): their sense disagreed with their loops and their neighbours across most shared edges: turned", faces.len(), faces.join(" "));
+        }
         outln!("faces        {} ({} failed)", r.faces, r.failed_faces.len());
         outln!("triangles    {} ({} vertices)", r.triangles, r.vertices);
         outln!("watertight   {} (of the {})", r.watertight, r.watertight_of);

@@ -16,7 +16,7 @@ use crate::mesh3d::mesher::{Abandon, Contact, MeshOptions, MeshReport, MeshingEr
 use super::assembly::{ContactReport, GAP_CHORDS, contact_reports, gap_of, solids_of, step_id};
 use crate::tessellate::certificate::{Certificate, CertifyOptions, certify};
 use crate::tessellate::{TessellateOptions, Tessellation, tessellate, tessellate_sized};
-use crate::tessellate::orient::turn_inside_out_shells;
+use crate::tessellate::orient::{turn_inside_out_shells, turn_misoriented_faces};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -318,7 +318,7 @@ impl Part {
         let Some(model) = &self.model else {
             return Err(PipelineError::Usage { path: self.path.clone(), problem: UsageProblem::NotCad });
         };
-        if !c.certificate.reoriented.is_empty() {
+        if !c.certificate.reoriented.is_empty() || !c.certificate.turned_faces.is_empty() {
             // faces turned: what the catalogue says of their normals is built again on use
             self.catalogue = OnceLock::new();
         }
@@ -550,8 +550,9 @@ type Meshed = Result<(TetMesh, MeshReport, Solids, Option<Vec<Contact>>), Meshin
 
 /// Tessellates `model` (to `size` where given) and certifies the result; with the seconds of
 /// each.
-/// Shells the file wrote inside out are turned in `model` first ([`turn_inside_out_shells`]),
-/// and listed in the certificate.
+/// Faces written against their shell and shells the file wrote inside out are turned in
+/// `model` first ([`turn_misoriented_faces`], [`turn_inside_out_shells`]), and listed in the
+/// certificate.
 fn certified_tessellation(model: &mut Model, opts: &TessellateOptions, size: Option<&dyn SizeField>, checks: &CertifyOptions) -> (Certified, [f64; 2]) {
     let t0 = Instant::now();
     let mut tessellation = match size {
@@ -568,6 +569,14 @@ fn certified_tessellation(model: &mut Model, opts: &TessellateOptions, size: Opt
 /// turned (in `model` and `tessellation`, listed in [`Certificate::reoriented`]); `certificate`
 /// itself where none is.
 fn turned_certified(model: &mut Model, tessellation: &mut Tessellation, certificate: Certificate, checks: &CertifyOptions) -> Certificate {
+    let mut certificate = certificate;
+    if !certificate.oriented {
+        let faces = turn_misoriented_faces(model, tessellation);
+        if !faces.is_empty() {
+            certificate = certify(model, tessellation, checks);
+            certificate.turned_faces = faces.iter().map(|&f| model.face(f).source).collect();
+        }
+    }
     if certificate.outward {
         return certificate;
     }
@@ -575,8 +584,10 @@ fn turned_certified(model: &mut Model, tessellation: &mut Tessellation, certific
     if turned.is_empty() {
         return certificate;
     }
+    let faces = std::mem::take(&mut certificate.turned_faces);
     let mut certificate = certify(model, tessellation, checks);
     certificate.reoriented = turned;
+    certificate.turned_faces = faces;
     certificate
 }
 

@@ -207,6 +207,9 @@ pub struct Certificate {
     /// Closed shells the file oriented inside out (an outer shell enclosing negative volume, a
     /// void positive), turned before this certificate was made (`super::orient`).
     pub reoriented: Vec<Reoriented>,
+    /// Faces whose sense disagreed with their neighbours' across most of their shared edges
+    /// (STEP `#id`s), turned before this certificate was made (`super::orient`).
+    pub turned_faces: Vec<EntityRef>,
     /// Time spent, seconds.
     pub seconds: f64,
 }
@@ -683,6 +686,7 @@ pub fn certify(model: &Model, t: &Tessellation, opts: &CertifyOptions) -> Certif
         failure_count,
         open_solids,
         reoriented: Vec::new(),
+        turned_faces: Vec::new(),
         seconds: t0.elapsed().as_secs_f64(),
     }
 }

@@ -75,6 +75,24 @@ fn tetrahedron_is_closed_outward_and_tagged() {
     assert_eq!(tags, vec![FaceId(1), FaceId(2), FaceId(3), FaceId(4)]);
 }
 
+/// A face whose sense flag disagrees with its loops and its neighbours is turned back, and
+/// the shell closes outward around the tetrahedron's volume.
+#[test]
+fn a_face_written_against_its_shell_is_turned() {
+    let mut m = tetrahedron();
+    m.faces[2].same_sense = !m.faces[2].same_sense;
+    let mut t = tessellate(&m, &TessellateOptions::default());
+    assert!(!surface_report(&t.surface, &ReportOptions::default()).oriented);
+    assert_eq!(orient::turn_misoriented_faces(&mut m, &mut t), vec![FaceId::from_index(2)]);
+    assert_eq!(m.faces[2].same_sense, tetrahedron().faces[2].same_sense);
+    let r = surface_report(&t.surface, &ReportOptions::default());
+    assert!(r.closed && r.oriented && r.outward, "{r:?}");
+    let v: f64 = r.shells.iter().map(|s| s.volume).sum();
+    assert!((v - 1.0 / 6.0).abs() < 1e-12, "{v}");
+    // nothing more to turn
+    assert!(orient::turn_misoriented_faces(&mut m, &mut t).is_empty());
+}
+
 #[test]
 fn constraint_parity_keeps_a_concave_face_concave() {
     // an L-shaped planar face: the notch must stay empty
