@@ -496,6 +496,51 @@ fn a_lens_face_whose_two_edges_are_one_segment_each_is_split_and_meshed() {
     assert!(area > 0.49 * sagitta && area <= 2.0 / 3.0 * sagitta * (1.0 + 1e-6), "{area} against {}", 2.0 / 3.0 * sagitta);
 }
 
+/// A band of a torus (R = 3, r = 1, axis z) between its outer equator (v = 0) and its top
+/// circle (v = π/2), as STEP text: `quarter` the band between them, else the other three
+/// quarters of the tube, chosen by the circles' senses alone.
+fn torus_band(quarter: bool) -> String {
+    let (a, b) = if quarter { (".T.", ".F.") } else { (".F.", ".T.") };
+    format!(
+        "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=TOROIDAL_SURFACE('',#4,3.,1.);\
+#6=CARTESIAN_POINT('',(0.,0.,1.));#7=AXIS2_PLACEMENT_3D('',#6,#2,#3);\
+#8=CIRCLE('',#4,4.);#9=CIRCLE('',#7,3.);\
+#11=CARTESIAN_POINT('',(4.,0.,0.));#12=CARTESIAN_POINT('',(3.,0.,1.));#21=VERTEX_POINT('',#11);#22=VERTEX_POINT('',#12);\
+#41=EDGE_CURVE('',#21,#21,#8,.T.);#42=EDGE_CURVE('',#22,#22,#9,.T.);\
+#51=ORIENTED_EDGE('',*,*,#41,{a});#52=ORIENTED_EDGE('',*,*,#42,{b});\
+#55=EDGE_LOOP('',(#51));#56=EDGE_LOOP('',(#52));#57=FACE_BOUND('',#55,.T.);#58=FACE_BOUND('',#56,.T.);\
+#62=ADVANCED_FACE('band',(#57,#58),#5,.T.);\
+#70=OPEN_SHELL('',(#62));#71=SHELL_BASED_SURFACE_MODEL('',(#70));\
+#80=( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );\
+#81=( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#80)) REPRESENTATION_CONTEXT('','') );\
+#90=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#4,#71),#81);\nENDSEC;\nEND-ISO-10303-21;\n"
+    )
+}
+
+/// Two circles split a torus into two bands: the one on the face's side of its loops is
+/// meshed, whichever way round the tube it runs (area 2πr(R·Δv + r·Δsin v)).
+#[test]
+fn a_torus_band_between_two_circles_is_the_side_its_loops_bound() {
+    use std::f64::consts::PI;
+    let quarter = 2.0 * PI * (3.0 * PI / 2.0 + 1.0);
+    for (q, want) in [(true, quarter), (false, 4.0 * PI * PI * 3.0 - quarter)] {
+        let m = crate::cad::step::read_bytes(std::path::Path::new("band.stp"), torus_band(q).as_bytes()).unwrap();
+        let t = tessellate(&m, &TessellateOptions::default());
+        assert!(t.failed.is_empty(), "{q}: {:?}", t.failed);
+        let s = &t.surface;
+        let area: f64 = s.triangles.iter().map(|tr| 0.5 * (s.vertices[tr[1] as usize] - s.vertices[tr[0] as usize]).cross(s.vertices[tr[2] as usize] - s.vertices[tr[0] as usize]).length()).sum();
+        assert!((area / want - 1.0).abs() < 2e-3, "{q}: area {area} against {want}");
+        // outward from the tube (same_sense): the triangles' normals point away from its core
+        let c = s.triangles[0].map(|v| s.vertices[v as usize]);
+        let n = (c[1] - c[0]).cross(c[2] - c[0]);
+        let mid = (c[0] + c[1] + c[2]) / 3.0;
+        let core = DVec3::new(mid.x, mid.y, 0.0).normalize() * 3.0;
+        assert!(n.dot(mid - core) > 0.0, "{q}");
+    }
+}
+
 /// A STEP file of one solid: the header, `data` (entities up to the solid `#71` and its
 /// placement `#4`) and millimetre units.
 fn step_text(name: &str, data: &str) -> String {

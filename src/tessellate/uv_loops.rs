@@ -1,6 +1,7 @@
 //! A face's boundary in its parameter domain: the B-rep loops mapped to `(u, v)` (seam points
 //! on their neighbours' side, poles opened, a loop across a closed B-spline's seam refused),
-//! loops that go around a periodic surface joined by a cut between them or to a pole line,
+//! loops that go around a periodic surface joined by a cut between them (on a torus, the band
+//! on the face's side of them: two circles bound two bands) or to a pole line,
 //! and the domain rectangle of a face without edge loops. `face_mesh` triangulates what this
 //! gives.
 
@@ -367,25 +368,47 @@ pub(super) fn uv_loops(model: &Model, fid: FaceId, edges: &[EdgePoints], tol: f6
                 })
                 .unwrap_or(0);
             let bj_shift = crate::cad::geom::unwrap_near(b.pts[jb].0.x, a0.0.x, period) - b.pts[jb].0.x;
-            let mut pb: UvLoop = Vec::with_capacity(b.pts.len() + 1);
-            for k in 0..b.pts.len() {
-                let i = (jb + k) % b.pts.len();
-                let (p, id) = b.pts[i];
-                let shift = bj_shift + if i < jb { gb } else { 0.0 };
-                pb.push((p + DVec2::new(shift, 0.0), id));
-            }
-            // b must run back by ga: traverse it so its total change is -ga
-            let b_seq: UvLoop = if (gb + ga).abs() < 0.5 * period {
-                // natural order ends at b0 + gb = b0 - ga
-                let mut v = pb.clone();
-                v.push((pb[0].0 + DVec2::new(gb, 0.0), pb[0].1));
-                v
-            } else {
-                let mut v = vec![pb[0]];
-                v.extend(pb[1..].iter().rev().copied());
-                v.push((pb[0].0 - DVec2::new(gb, 0.0), pb[0].1));
-                v
+            // b traversed so that its total change is -ga (it must run back by ga), moved by
+            // `dv` in v
+            let b_run = |dv: f64| -> UvLoop {
+                let mut pb: UvLoop = Vec::with_capacity(b.pts.len() + 1);
+                for k in 0..b.pts.len() {
+                    let i = (jb + k) % b.pts.len();
+                    let (p, id) = b.pts[i];
+                    let shift = bj_shift + if i < jb { gb } else { 0.0 };
+                    pb.push((p + DVec2::new(shift, dv), id));
+                }
+                if (gb + ga).abs() < 0.5 * period {
+                    // natural order ends at b0 + gb = b0 - ga
+                    let mut v = pb.clone();
+                    v.push((pb[0].0 + DVec2::new(gb, 0.0), pb[0].1));
+                    v
+                } else {
+                    let mut v = vec![pb[0]];
+                    v.extend(pb[1..].iter().rev().copied());
+                    v.push((pb[0].0 - DVec2::new(gb, 0.0), pb[0].1));
+                    v
+                }
             };
+            // the band between the two loops, without the cut's inner points (it is straight
+            // in (u, v)): on a surface periodic in v too (a torus) the loops bound two bands,
+            // and the one on the face's side of `a` is taken, b moved by a period if need be
+            let band = |b_seq: &UvLoop| -> Vec<DVec2> {
+                let mut poly: Vec<DVec2> = pa.iter().map(|(p, _)| *p).collect();
+                poly.push(a0.0 + DVec2::new(ga, 0.0));
+                poly.extend(b_seq.iter().map(|(p, _)| *p + DVec2::new(ga, 0.0)));
+                poly
+            };
+            let mut b_seq = b_run(0.0);
+            if let Some(vp) = dom.v_period
+                && (signed_area(&band(&b_seq)) > 0.0) != a.face_left
+            {
+                let dv = if b_seq[0].0.y > a0.0.y { -vp } else { vp };
+                let other = b_run(dv);
+                if (signed_area(&band(&other)) > 0.0) == a.face_left {
+                    b_seq = other;
+                }
+            }
             // b_seq runs from b0 to b0 - ga; shifted by +ga it runs from b0 + ga to b0
             // points along the cut from a0 to b0, shared by its two sides (u and u + ga)
             let b0 = b_seq[0].0;
