@@ -20,6 +20,7 @@
 //! - Deterministic: edges sorted, components and apexes in that order.
 
 use crate::core::ids::FaceId;
+use crate::core::union_find::UnionFind;
 use crate::mesh::TriSurface;
 use glam::DVec3;
 
@@ -75,25 +76,15 @@ pub fn capped(s: &TriSurface) -> Option<Capped> {
     verts.sort_unstable();
     verts.dedup();
     let slot = |v: u32| verts.binary_search(&v).expect("a chain vertex");
-    let mut parent: Vec<usize> = (0..verts.len()).collect();
-    fn root(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+    let mut uf = UnionFind::new(verts.len());
     for &(a, b, _) in &chain {
-        let (ra, rb) = (root(&mut parent, slot(a)), root(&mut parent, slot(b)));
-        if ra != rb {
-            parent[ra.max(rb)] = ra.min(rb);
-        }
+        uf.union(slot(a) as u32, slot(b) as u32);
     }
     // one apex per component, numbered in the order of their smallest vertex
     let mut apex_of = vec![usize::MAX; verts.len()];
     let mut sums: Vec<(DVec3, usize)> = Vec::new();
     for (i, &v) in verts.iter().enumerate() {
-        let r = root(&mut parent, i);
+        let r = uf.find(i as u32) as usize;
         if apex_of[r] == usize::MAX {
             apex_of[r] = sums.len();
             sums.push((DVec3::ZERO, 0));
@@ -111,7 +102,7 @@ pub fn capped(s: &TriSurface) -> Option<Capped> {
     let n_s = s.vertices.len() as u32;
     union.vertices.extend(&apexes);
     for &(a, b, m) in &chain {
-        let k = apex_of[root(&mut parent, slot(a))] as u32;
+        let k = apex_of[uf.find(slot(a) as u32) as usize] as u32;
         for _ in 0..m {
             cap.triangles.push([slot(b) as u32, slot(a) as u32, n_chain + k]);
             union.triangles.push([b, a, n_s + k]);
