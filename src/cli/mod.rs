@@ -261,6 +261,13 @@ pub(crate) fn print_mesh_summary(m: &fepre::pipeline::MeshSummary, delaunay: boo
     if m.flattening_moved_volume() {
         outln!("flat facets      input triangles flat within 0.1° merged and retriangulated (TetGen's -p rule): the volume moves by at most {} ({:.2e} of it)", fmt_num(m.flattening_volume), m.flattening_volume / m.volume.abs().max(f64::MIN_POSITIVE));
     }
+    if let Some((groups, imprinted)) = m.imprinted {
+        outln!(
+            "imprint          {imprinted} of {groups} groups of faces in contact imprinted (shared nodes; the rest tied, curved contacts for now); the solids' volumes move by {} ({:.2e} of the volume)",
+            fmt_num(m.imprint_volume),
+            m.imprint_volume / m.volume.abs().max(f64::MIN_POSITIVE)
+        );
+    }
     if !delaunay {
         return;
     }

@@ -111,6 +111,11 @@ pub struct MeshSummary {
     /// The most the volume can differ from the input's by merging nearly flat input triangles
     /// into facets (TetGen's `-p` rule, 0.1 degrees); zero for exactly flat ones.
     pub flattening_volume: f64,
+    /// An assembly's: the most imprinting its solids on each other moved their volumes
+    /// (summed over the solids).
+    pub imprint_volume: f64,
+    /// An assembly's: groups of faces in contact, and of them those imprinted (conforming).
+    pub imprinted: Option<(usize, usize)>,
 }
 
 impl MeshSummary {
@@ -217,6 +222,8 @@ pub(crate) fn summarise(mesh: &TetMesh, surface: Option<&TriSurface>, report: &M
         input_caps_repaired: report.input_caps_repaired,
         narrow: report.narrow.clone(),
         flattening_volume: report.flattening_volume,
+        imprint_volume: report.imprint_volume,
+        imprinted: report.imprinted,
     };
     Summarised { summary, quality: q, boundary, angles, bound }
 }

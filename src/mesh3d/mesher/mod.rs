@@ -87,6 +87,10 @@ pub struct MeshOptions {
     /// that almost meet). `None`: [`NARROW_SHARE`] of the input's diagonal; `Some(0.0)`: off
     /// (as with `keep_surface`, which keeps the input as it is).
     pub narrow_tolerance: Option<f64>,
+    /// In an assembly, imprint touching solids on each other where their faces in contact
+    /// lie in one plane, so that the merged mesh is conforming there (shared nodes) instead
+    /// of tied ([`mesh_solids`]).
+    pub imprint: bool,
     /// Set from outside: the run stops at its next stage ([`MeshingError::Abandoned`]).
     pub(crate) abandon: Abandon,
 }
@@ -133,6 +137,7 @@ impl Default for MeshOptions {
             presize: true,
             slide_boundary: true,
             narrow_tolerance: None,
+            imprint: true,
             abandon: Abandon::default(),
         }
     }
@@ -224,6 +229,11 @@ impl MeshOptions {
         self.abandon = abandon;
         self
     }
+    /// Sets [`MeshOptions::imprint`].
+    pub fn with_imprint(mut self, imprint: bool) -> Self {
+        self.imprint = imprint;
+        self
+    }
     /// Sets [`MeshOptions::narrow_tolerance`].
     pub fn with_narrow_tolerance(mut self, tol: Option<f64>) -> Self {
         self.narrow_tolerance = tol;
@@ -294,6 +304,13 @@ pub struct MeshReport {
     /// triangles were merged into facets and retriangulated (TetGen's `-p` rule, 0.1 degrees);
     /// zero when every merged facet is exactly planar, and with `keep_surface`.
     pub flattening_volume: f64,
+    /// In an assembly, the most the solids' volumes moved by imprinting them on each other
+    /// (points of one solid's contact boundary slid onto the other's, within the gap): the
+    /// sum over the solids of the change of each one's enclosed volume.
+    pub imprint_volume: f64,
+    /// In an assembly: groups of faces in contact, and of them those imprinted (the rest are
+    /// tied where the solids touch).
+    pub imprinted: Option<(usize, usize)>,
     /// The surface meshed where the checks changed the input (caps repaired, narrow strips
     /// closed), for the summary's input angles ([`prepared_surface`]).
     #[serde(skip)]

@@ -8,15 +8,20 @@
 //! 2. triangles of different solids within the gap of each other are paired (one BVH over
 //!    all of them); [`overlap`] refuses solids whose interiors overlap deeper than the gap,
 //!    [`contact`] measures the area over which facing faces touch, per pair of faces;
-//! 3. each solid is meshed on its own by [`mesh_surface`](crate::mesh3d::mesher::mesh_surface) (in parallel, results in solid
+//! 3. [`imprint`] (unless [`MeshOptions::imprint`] is off, or with `keep_surface`): faces in
+//!    contact that lie in one plane are remade of one triangulation of that plane, so that
+//!    where two solids overlap they have the same triangles;
+//! 4. each solid is meshed on its own by [`mesh_surface`](crate::mesh3d::mesher::mesh_surface) (in parallel, results in solid
 //!    order: the same mesh for any thread count), which always works for solids that only
 //!    touch;
-//! 4. [`merge`] makes one mesh: region tag and name per solid, face tags kept, and where two
+//! 5. [`merge`] makes one mesh: region tag and name per solid, face tags kept, and where two
 //!    solids' boundary triangles coincide exactly their nodes merged into a conforming
 //!    interface. Each [`Contact`] says how much of its area became such an interface
 //!    (`shared_area`); the rest is where a solver must tie the solids.
 
 mod contact;
+mod imprint;
+mod imprint_plane;
 mod merge;
 mod overlap;
 mod solid;
@@ -142,8 +147,14 @@ pub fn mesh_solids_on(
         *t = Instant::now();
     };
     let count = solids.solids.len();
-    let (parts, mut contacts) = checked_solids(surface, solids, gap)?;
+    let (mut parts, mut contacts) = checked_solids(surface, solids, gap)?;
     stage("solids", &mut clock);
+    // keep-surface keeps the input's triangles as they are
+    let imprinted = (options.imprint && !options.keep_surface).then(|| {
+        let outcome = imprint::imprint(&mut parts, &contacts, solids, gap);
+        stage("imprint", &mut clock);
+        outcome
+    });
     let in_solid = |s: usize, part: &solid::SolidSurface, e: MeshingError| in_solid(solids, s, part, e);
     // the error reported is the first solid's in order, whatever the thread count: a solid
     // after one known to fail is not started, every solid before it still is
@@ -194,6 +205,10 @@ pub fn mesh_solids_on(
     report.nodes = mesh.vertices.len();
     report.tets = mesh.tets.len();
     report.regions = count;
+    if let Some(o) = imprinted {
+        report.imprint_volume = o.volume;
+        report.imprinted = Some((o.components, o.imprinted));
+    }
     report.seconds = start.elapsed().as_secs_f64();
     Ok((mesh, report, contacts))
 }
