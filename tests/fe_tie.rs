@@ -3,8 +3,10 @@
 //! solves the pair as one bar: the reaction equals the load, the interface moves as one (the
 //! slave nodes follow the master faces) and the tip deflects as a single block of the same
 //! length does; the same with the blocks aligned, whose contact is conforming in part (a
-//! node-based slave surface). Without the tie (`[model] tie = false`) holding one block is
-//! singular.
+//! node-based slave surface); these run with `[model] contacts = "tie"`. By default
+//! (`contacts = "conforming"`) the pair is imprinted: one mesh sharing the interface's nodes,
+//! no tie, the tip deflection of one block within 0.5 %. Without joining them
+//! (`contacts = "none"`) holding one block is singular.
 //!
 //! A missing `ccx` skips the solve with a message, except under `CI=true` where it fails.
 
@@ -49,6 +51,9 @@ fn stacked_pair() -> Model {
 }
 
 /// The far ends, both blocks' contact faces, and a size.
+/// Contacts tied, not imprinted.
+const TIED: &str = "[model]\ncontacts = \"tie\"\n";
+
 fn selectors(length: f64) -> String {
     let bx = |x: f64| format!("{{ inside = {{ min = [{}, -1, -1], max = [{}, {}, {}] }} }}", x - 0.1, x + 0.1, SIDE + 1.0, SIDE + 1.0);
     format!("[selectors]\ntip = {}\nclamp = {}\n[density]\nsize = 3\n", bx(0.0), bx(length))
@@ -69,7 +74,7 @@ fn write_job(dir: &Path, name: &str, part: &Model, job: &str) -> JobFile {
 #[test]
 fn touching_blocks_meshed_differently_get_one_tie_slave_the_finer_side() {
     let dir = tempfile::tempdir().unwrap();
-    let jf = write_job(dir.path(), "pair", &stacked_pair(), &format!("{}{}", selectors(2.0 * HALF), bending(1000.0)));
+    let jf = write_job(dir.path(), "pair", &stacked_pair(), &format!("{TIED}{}{}", selectors(2.0 * HALF), bending(1000.0)));
     let outcome = carry_out(&jf, false).unwrap();
     // the contact: the whole end face, not conforming
     let contacts = &outcome.part.contacts;
@@ -110,7 +115,7 @@ fn touching_blocks_meshed_differently_get_one_tie_slave_the_finer_side() {
 #[test]
 fn without_the_tie_holding_one_block_is_singular() {
     let dir = tempfile::tempdir().unwrap();
-    let jf = write_job(dir.path(), "pair", &stacked_pair(), &format!("[model]\ntie = false\n{}{}", selectors(2.0 * HALF), bending(1000.0)));
+    let jf = write_job(dir.path(), "pair", &stacked_pair(), &format!("[model]\ncontacts = \"none\"\n{}{}", selectors(2.0 * HALF), bending(1000.0)));
     let e = carry_out(&jf, false).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("singular") && e.contains("6 rigid-body motion(s) are free"), "{e}");
     assert!(!dir.path().join("pair.inp").exists());
@@ -254,7 +259,7 @@ struct PairRun {
 /// Solves `part` (two blocks end to end) under the tip force `p`: the far block's end
 /// (x = 2·HALF) clamped, the force on the other's (x = 0).
 fn solve_pair(dir: &Path, name: &str, part: &Model, p: f64) -> PairRun {
-    let jf = write_job(dir, name, part, &format!("{}{}", selectors(2.0 * HALF), bending(p)));
+    let jf = write_job(dir, name, part, &format!("{TIED}{}{}", selectors(2.0 * HALF), bending(p)));
     let (report, r) = solve(&jf);
     let c = &report.run.contacts[0];
     let u = displacements(&r);
@@ -301,6 +306,31 @@ fn a_tied_pair_under_a_tip_force_bends_as_one_block() {
         assert!(run.mismatch <= 2e-5 * run.u_max, "{name}: the slave nodes move apart from the master faces: {} (largest displacement {})", run.mismatch, run.u_max);
         assert!((ratio - 1.0).abs() < 0.03, "{name}: tied pair tip deflection {} against one block's {single}", run.tip);
     }
+}
+
+#[test]
+fn an_imprinted_pair_shares_its_interface_and_bends_as_one_block() {
+    if tools::require(tools::ccx(), "ccx (CalculiX)", "the imprinted pair's solve").is_none() {
+        return;
+    }
+    let p = 1000.0;
+    let dir = tempfile::tempdir().unwrap();
+    let jf = write_job(dir.path(), "single", &Block::new(2.0 * HALF, SIDE, SIDE).build().unwrap(), &format!("{}{}", selectors(2.0 * HALF), bending(p)));
+    let (_, rs) = solve(&jf);
+    let single = tip_deflection(&rs, &displacements(&rs));
+    // the turned pair: its end faces tessellated differently, imprinted into one
+    let jf = write_job(dir.path(), "pair", &stacked_pair(), &format!("{}{}", selectors(2.0 * HALF), bending(p)));
+    let (report, r) = solve(&jf);
+    let c = &report.run.contacts[0];
+    assert!((c.shared_area - c.area).abs() <= 1e-9 * c.area, "the contact is conforming: {c:?}");
+    let deck = std::fs::read_to_string(&report.deck).unwrap();
+    assert!(!deck.lines().any(|l| l.starts_with("*TIE")), "a conforming contact needs no tie");
+    let u = displacements(&r);
+    let tip = tip_deflection(&r, &u);
+    let reaction = report.steps[0].reactions["CLAMP"];
+    eprintln!("imprinted pair: tip deflection {tip:.6} against one block's {single:.6}: ratio {:.5}; reaction {reaction:?}", tip / single);
+    assert!((reaction[2] - p).abs() <= 1e-6 * p, "reaction {reaction:?} against the tip force {p}");
+    assert!((tip / single - 1.0).abs() < 0.005, "imprinted pair tip deflection {tip} against one block's {single}");
 }
 
 /// A real assembly (the corpus' `as1-tu-203`: 18 solids, 88 pairs of touching faces, none

@@ -23,14 +23,15 @@ pub const ALL_NODES: &str = "NALL";
 /// The sets made for one named group of CAD faces.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GroupSets {
-    /// The node set: every node of the group's faces (mid nodes included).
+    /// The node set: every node of the group's faces on the outer boundary (mid nodes
+    /// included).
     pub node_set: String,
     /// The element-face surface: the group's faces on the outer boundary.
     pub surface: String,
     /// Tet faces on the outer boundary.
     pub boundary_faces: usize,
-    /// Faces between two elements (an interface between solids): in the node set, not in
-    /// the surface.
+    /// Faces between two elements (an interface between solids, a face partly covered by
+    /// another solid it is imprinted on): in neither the node set nor the surface.
     pub interface_faces: usize,
 }
 
@@ -167,9 +168,11 @@ pub fn build_model(mesh: &TetMesh, groups: &BTreeMap<String, Vec<FaceId>>, kind:
             }
             let Some(fs) = faces_of.get(&sorted(*tri)) else { continue };
             let Some(&first) = fs.first() else { continue };
-            let el = model.element(first.element as usize);
-            node_set.extend(face_nodes(kind, first.face).into_iter().map(|k| el[k]));
+            // the node set and surface of the outer part: a face partly covered by another
+            // solid (an imprinted contact) leaves out the nodes inside the model
             if fs.len() == 1 {
+                let el = model.element(first.element as usize);
+                node_set.extend(face_nodes(kind, first.face).into_iter().map(|k| el[k]));
                 surface.push(first);
             } else {
                 interface += 1;

@@ -89,7 +89,7 @@ pub fn build_fe(jf: &JobFile, part: &Part, groups: &Groups, unit: f64) -> Result
     };
     let geometry = part.model.as_ref().map(BrepGeometry::new);
     let mut built = build_model(mesh, groups.as_map(), kind, geometry.as_ref().map(|g| g as &dyn crate::fe::BoundaryGeometry), 1.0 / unit);
-    let ties = if job.model.tie { tie_contacts(&mut built, &part.contacts, TIE_TOLERANCE_GAPS * part.gap() / unit) } else { Vec::new() };
+    let ties = if job.model.ties() { tie_contacts(&mut built, &part.contacts, TIE_TOLERANCE_GAPS * part.gap() / unit) } else { Vec::new() };
     let mut m = built.model;
     // materials, under deck names unique without regard to case
     let mut material_name: BTreeMap<&str, String> = BTreeMap::new();
@@ -213,7 +213,8 @@ fn build_step(jf: &JobFile, m: &FeModel, sets: &BTreeMap<String, GroupSets>, gro
             let known: Vec<&str> = groups.as_map().keys().map(String::as_str).collect();
             return Err(jf.error_at(faces.span().start, format!("key `{key}`: selector `{sel}` is not defined under [selectors] (defined: {})", list_or_none(&known))));
         };
-        if g.interface_faces > 0 {
+        // a face partly covered by another solid (imprinted) loads its outer part only
+        if g.interface_faces > 0 && g.boundary_faces == 0 {
             return Err(jf.error_at(faces.span().start, format!("key `{key}`: selector `{sel}` takes {} element faces between two solids (an interface inside the model), not on its boundary; select boundary faces only", g.interface_faces)));
         }
         if g.boundary_faces == 0 {

@@ -21,7 +21,7 @@
 
 use super::PipelineError;
 pub use super::job_fe::{
-    DisplacementSpec, Dof, ElementChoice, FilmSpec, FixedSpec, ForceSpec, GravitySpec, MaterialSpec, ModelSection, Poisson, PressureSpec, SectionSpec,
+    Contacts, DisplacementSpec, Dof, ElementChoice, FilmSpec, FixedSpec, ForceSpec, GravitySpec, MaterialSpec, ModelSection, Poisson, PressureSpec, SectionSpec,
     SolidRef, SolveSection, StepKind, StepSpec, ValueOnFaces,
 };
 use crate::attributes::values::Positive;
@@ -418,7 +418,7 @@ impl JobFile {
     /// [`MeshOptions`] of the `[mesh]` section.
     pub fn mesh_options(&self) -> MeshOptions {
         let m = &self.job.mesh;
-        let mut o = MeshOptions::default().with_keep_surface(m.keep_surface);
+        let mut o = MeshOptions::default().with_keep_surface(m.keep_surface).with_imprint(self.job.model.imprint());
         if let Some(r) = &m.max_radius_edge {
             o = o.with_max_radius_edge(*r.get_ref());
         }

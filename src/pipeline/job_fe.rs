@@ -29,15 +29,45 @@ pub struct ModelSection {
     #[serde(default)]
     pub element: ElementChoice,
     /// Tie the solids of an assembly where they touch without sharing nodes (`*TIE`; default
-    /// true).
+    /// true). `tie = false` leaves them untied, as `contacts = "none"` does.
     #[serde(default = "yes")]
     pub tie: bool,
+    /// How the solids of an assembly hold together where they touch (default
+    /// `"conforming"`).
+    #[serde(default)]
+    pub contacts: Contacts,
 }
 
 impl Default for ModelSection {
     fn default() -> Self {
-        ModelSection { element: ElementChoice::default(), tie: true }
+        ModelSection { element: ElementChoice::default(), tie: true, contacts: Contacts::default() }
     }
+}
+
+impl ModelSection {
+    /// True where the solids are imprinted on each other before meshing.
+    pub fn imprint(&self) -> bool {
+        self.contacts == Contacts::Conforming
+    }
+
+    /// True where contacts without shared nodes are tied.
+    pub fn ties(&self) -> bool {
+        self.tie && self.contacts != Contacts::None
+    }
+}
+
+/// `[model] contacts`: how touching solids of an assembly are joined.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Contacts {
+    /// Imprinted on each other where their faces in contact lie in one plane, so that the
+    /// mesh shares nodes there (gmsh's fragment and coherence); tied where it does not.
+    #[default]
+    Conforming,
+    /// Meshed on their own and tied (`*TIE`) wherever they touch.
+    Tie,
+    /// Meshed on their own and not joined (each solid free, as separate parts).
+    None,
 }
 
 fn yes() -> bool {
