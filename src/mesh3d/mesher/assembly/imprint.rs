@@ -78,12 +78,12 @@ pub(crate) fn imprint(parts: &mut [SolidSurface], contacts: &[Contact], solids: 
     }
     for s in changed {
         let p = &mut parts[s];
-        let before = enclosed(&originals[s]);
+        let before = originals[s].signed_volume();
         if input::check(&p.surface).is_err() {
             p.surface = originals[s].clone();
             out.reverted.push(s);
         }
-        out.volume += (enclosed(&p.surface) - before).abs();
+        out.volume += (p.surface.signed_volume() - before).abs();
         p.prepare();
     }
     out
@@ -248,13 +248,6 @@ fn remake(surface: &TriSurface, s: usize, nodes: &[(usize, FaceId)], im: &imprin
     Some((out, from, vertex_from))
 }
 
-/// The volume a closed surface encloses (signed, divergence theorem).
-fn enclosed(s: &TriSurface) -> f64 {
-    s.triangles.iter().map(|t| {
-        let [a, b, c] = t.map(|v| s.vertices[v as usize]);
-        a.dot(b.cross(c)) / 6.0
-    }).sum()
-}
 
 /// The imprinted faces' triangles of this solid.
 fn im_count(mine: &[usize], im: &imprint_plane::Imprinted) -> usize {
