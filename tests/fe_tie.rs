@@ -274,6 +274,13 @@ fn solve_pair(dir: &Path, name: &str, part: &Model, p: f64) -> PairRun {
     PairRun { reaction: report.steps[0].reactions["CLAMP"], mismatch, checked, u_max, tip: tip_deflection(&r, &u), shared: c.shared_area / c.area }
 }
 
+/// The mean tip deflection of one block as long as the pair, solved the same way.
+fn single_block_tip(dir: &Path, p: f64) -> f64 {
+    let jf = write_job(dir, "single", &Block::new(2.0 * HALF, SIDE, SIDE).build().unwrap(), &format!("{}{}", selectors(2.0 * HALF), bending(p)));
+    let (_, rs) = solve(&jf);
+    tip_deflection(&rs, &displacements(&rs))
+}
+
 #[test]
 fn a_tied_pair_under_a_tip_force_bends_as_one_block() {
     if tools::require(tools::ccx(), "ccx (CalculiX)", "the tied pair's solve").is_none() {
@@ -281,10 +288,7 @@ fn a_tied_pair_under_a_tip_force_bends_as_one_block() {
     }
     let p = 1000.0;
     let dir = tempfile::tempdir().unwrap();
-    // one block of the same total length, solved the same way
-    let jf = write_job(dir.path(), "single", &Block::new(2.0 * HALF, SIDE, SIDE).build().unwrap(), &format!("{}{}", selectors(2.0 * HALF), bending(p)));
-    let (_, rs) = solve(&jf);
-    let single = tip_deflection(&rs, &displacements(&rs));
+    let single = single_block_tip(dir.path(), p);
     for (name, part) in [("turned", stacked_pair()), ("aligned", aligned_pair())] {
         let run = solve_pair(dir.path(), name, &part, p);
         let ratio = run.tip / single;
@@ -315,9 +319,7 @@ fn an_imprinted_pair_shares_its_interface_and_bends_as_one_block() {
     }
     let p = 1000.0;
     let dir = tempfile::tempdir().unwrap();
-    let jf = write_job(dir.path(), "single", &Block::new(2.0 * HALF, SIDE, SIDE).build().unwrap(), &format!("{}{}", selectors(2.0 * HALF), bending(p)));
-    let (_, rs) = solve(&jf);
-    let single = tip_deflection(&rs, &displacements(&rs));
+    let single = single_block_tip(dir.path(), p);
     // the turned pair: its end faces tessellated differently, imprinted into one
     let jf = write_job(dir.path(), "pair", &stacked_pair(), &format!("{}{}", selectors(2.0 * HALF), bending(p)));
     let (report, r) = solve(&jf);

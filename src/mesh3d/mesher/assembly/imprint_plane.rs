@@ -470,20 +470,10 @@ pub(super) fn imprint(faces: &[Face], tol: f64) -> Option<Imprinted> {
         }
         handle.push(Some(h));
     }
-    // per undirected constraint: the faces it bounds, each with its direction (face on the left of a -> b)
-    let mut bounds: FxHashMap<(u32, u32), Vec<(usize, bool)>> = FxHashMap::default();
-    for (k, cs) in chains.iter().enumerate() {
-        for c in cs {
-            for w in c.windows(2) {
-                // the face is on the left of a -> b in its own orientation: in the plane's
-                // where its normal is the plane's, else on the right
-                let (a, b) = (w[0], w[1]);
-                bounds.entry((a.min(b), a.max(b))).or_default().push((k, (a < b) == sides[k]));
-            }
-        }
-    }
-    let mut keys: Vec<(u32, u32)> = bounds.keys().copied().collect();
+    // every chain piece, once, as a constraint
+    let mut keys: Vec<(u32, u32)> = chains.iter().flatten().flat_map(|c| c.windows(2).map(|w| (w[0].min(w[1]), w[0].max(w[1])))).collect();
     keys.sort_unstable();
+    keys.dedup();
     for &(a, b) in &keys {
         let (ha, hb) = (handle[a as usize]?, handle[b as usize]?);
         if !cdt::constrain(&mut cdt, ha, hb) {
@@ -542,8 +532,10 @@ pub(super) fn imprint(faces: &[Face], tol: f64) -> Option<Imprinted> {
             *c = out;
         }
     }
-    // the constraints' directions: on the chains as they are now
-    bounds.clear();
+    // per constraint piece of the chains as they are now: the faces it bounds, each with its
+    // direction (the face on the left of a -> b in its own orientation: in the plane's where
+    // its normal is the plane's, else on the right)
+    let mut bounds: FxHashMap<(u32, u32), Vec<(usize, bool)>> = FxHashMap::default();
     for (k, cs) in chains.iter().enumerate() {
         for c in cs {
             for w in c.windows(2) {
